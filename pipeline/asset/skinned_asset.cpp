@@ -1,0 +1,150 @@
+#include "crowdbake/pipeline/skinned_asset.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "crowdbake/pipeline/error.h"
+
+namespace crowdbake {
+
+glm::dmat4 Transform::matrix() const {
+  glm::dmat4 m = glm::mat4_cast(rotation);
+  m[0] *= scale.x;
+  m[1] *= scale.y;
+  m[2] *= scale.z;
+  m[3] = glm::dvec4(translation, 1.0);
+  return m;
+}
+
+int Skeleton::find(const std::string& name) const {
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+int Skeleton::depth() const {
+  std::vector<int> level(joints.size(), 1);
+  int deepest = 0;
+  for (size_t i = 0; i < joints.size(); ++i) {
+    // note: topological order (parent < child) makes one forward pass enough.
+    if (joints[i].parent >= 0) level[i] = level[joints[i].parent] + 1;
+    deepest = std::max(deepest, level[i]);
+  }
+  return deepest;
+}
+
+std::vector<int> Skeleton::roots() const {
+  std::vector<int> result;
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].parent < 0) result.push_back(static_cast<int>(i));
+  return result;
+}
+
+int Clip::keyframes() const {
+  size_t most = 0;
+  for (const JointChannels& c : channels)
+    most = std::max({most, c.translation.times.size(), c.rotation.times.size(),
+                     c.scale.times.size()});
+  return static_cast<int>(most);
+}
+
+size_t SkinnedAsset::vertex_count() const {
+  size_t n = 0;
+  for (const Primitive& p : primitives) n += p.vertex_count();
+  return n;
+}
+
+size_t SkinnedAsset::triangle_count() const {
+  size_t n = 0;
+  for (const Primitive& p : primitives) n += p.triangle_count();
+  return n;
+}
+
+namespace {
+
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::dquat& q) {
+  return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+}
+bool finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+template <typename T>
+void validate_track(const SkinnedAsset& asset, const Clip& clip, const Track<T>& track,
+                    const std::string& what) {
+  const size_t per_key = track.interpolation == Interpolation::kCubicSpline ? 3 : 1;
+  auto fail = [&](const std::string& why) {
+    throw input_error(asset.source, "clip '" + clip.name + "', " + what + ": " + why);
+  };
+  if (track.values.size() != track.times.size() * per_key) fail("value count does not match key count");
+  for (size_t k = 0; k < track.times.size(); ++k) {
+    if (!std::isfinite(track.times[k])) fail("key time is NaN or infinite");
+    if (k > 0 && track.times[k] < track.times[k - 1]) fail("key times are not ascending");
+  }
+  for (const T& v : track.values)
+    if (!finite(v)) fail("key value is NaN or infinite");
+}
+
+}  // namespace
+
+void validate_asset(const SkinnedAsset& asset) {
+  const auto fail = [&](const std::string& why) { throw input_error(asset.source, why); };
+  const size_t joint_count = asset.skeleton.joints.size();
+  if (joint_count == 0) fail("the character has no joints");
+  if (joint_count > 65535) fail("more than 65535 joints");
+  for (size_t j = 0; j < joint_count; ++j) {
+    const Joint& joint = asset.skeleton.joints[j];
+    const std::string who = "joint '" + joint.name + "'";
+    if (joint.parent >= static_cast<int>(j)) fail(who + " is not ordered after its parent");
+    if (!finite(joint.rest.translation) || !finite(joint.rest.rotation) ||
+        !finite(joint.rest.scale) || !finite(joint.pre_transform))
+      fail(who + " has a NaN or infinite rest transform");
+    if (!finite(joint.inverse_bind)) fail(who + " has a NaN or infinite inverse bind matrix");
+  }
+  if (asset.primitives.empty()) fail("the character has no mesh");
+  for (const Primitive& p : asset.primitives) {
+    const std::string who = "mesh '" + p.name + "'";
+    const size_t n = p.positions.size();
+    if (n == 0) fail(who + " has no vertices");
+    if (p.joints.size() != n || p.weights.size() != n) fail(who + " lacks skin weights");
+    if (!p.normals.empty() && p.normals.size() != n) fail(who + " has a normal count unlike its vertex count");
+    if (!p.uvs.empty() && p.uvs.size() != n) fail(who + " has a UV count unlike its vertex count");
+    if (p.indices.size() % 3 != 0) fail(who + " has an index count that is not a multiple of 3");
+    for (uint32_t i : p.indices)
+      if (i >= n) fail(who + " has a triangle index out of range");
+    for (size_t v = 0; v < n; ++v) {
+      if (!finite(p.positions[v])) fail(who + " has a NaN or infinite vertex position");
+      float sum = 0.0f;
+      for (int k = 0; k < 4; ++k) {
+        if (p.joints[v][k] >= joint_count) fail(who + " has a joint index out of range");
+        if (!(p.weights[v][k] >= 0.0f)) fail(who + " has a negative or NaN skin weight");
+        sum += p.weights[v][k];
+      }
+      if (std::fabs(sum - 1.0f) > 1e-3f) fail(who + " has skin weights that do not sum to 1");
+    }
+  }
+  for (const Clip& clip : asset.clips) {
+    if (clip.channels.size() != joint_count) fail("clip '" + clip.name + "' does not cover every joint");
+    if (!std::isfinite(clip.duration) || clip.duration < 0.0) fail("clip '" + clip.name + "' has a bad duration");
+    for (size_t j = 0; j < joint_count; ++j) {
+      const std::string who = "joint '" + asset.skeleton.joints[j].name + "'";
+      validate_track(asset, clip, clip.channels[j].translation, who + " translation");
+      validate_track(asset, clip, clip.channels[j].rotation, who + " rotation");
+      validate_track(asset, clip, clip.channels[j].scale, who + " scale");
+    }
+  }
+}
+
+}  // namespace crowdbake

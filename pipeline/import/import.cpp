@@ -1,0 +1,48 @@
+#include "crowdbake/pipeline/import.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "crowdbake/pipeline/error.h"
+
+namespace crowdbake {
+namespace {
+
+// glTF is recognised by content, not by extension: a .glb starts with "glTF", a .gltf
+// is JSON whose top level holds an "asset" object.
+bool looks_like_gltf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[4096] = {};
+  in.read(head, sizeof(head));
+  const std::streamsize n = in.gcount();
+  if (n >= 4 && std::memcmp(head, "glTF", 4) == 0) return true;
+  std::streamsize i = 0;
+  while (i < n && std::strchr(" \t\r\n", head[i]) && head[i] != 0) ++i;
+  if (i < 3 && n >= 3 && static_cast<unsigned char>(head[0]) == 0xEF) i = 3;  // UTF-8 BOM
+  return i < n && head[i] == '{' && std::string(head, static_cast<size_t>(n)).find("\"asset\"") != std::string::npos;
+}
+
+}  // namespace
+
+SkinnedAsset import_asset(const std::string& path, const ImportOptions& options) {
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) {
+      const int err = errno;
+      throw input_error(path, err == ENOENT ? "file not found; check the path"
+                                            : std::string("cannot open file (") +
+                                                  std::strerror(err) +
+                                                  "); check its permissions");
+    }
+  }
+  ImporterKind kind = options.importer;
+  if (kind == ImporterKind::kAuto)
+    kind = looks_like_gltf(path) ? ImporterKind::kGltf : ImporterKind::kAssimp;
+  SkinnedAsset asset =
+      kind == ImporterKind::kGltf ? import_gltf(path, options) : import_assimp(path, options);
+  validate_asset(asset);
+  return asset;
+}
+
+}  // namespace crowdbake

@@ -1,0 +1,127 @@
+// SkinnedAsset: the one in-memory model every importer fills and every bake reads.
+//
+// Validity rules (checked by validate_asset(), relied on everywhere else):
+// - joints are in topological order: parent < own index, roots have parent -1;
+// - every joint has a finite rest transform, pre-transform and inverse bind matrix;
+// - every primitive has positions and, per vertex, 4 joint indices < joint count and
+//   4 weights >= 0 summing to 1 (unused slots: joint 0, weight 0); normals and uvs
+//   are either empty or one per vertex; indices are triangles (size % 3 == 0) < vertex count;
+// - clips have one JointChannels per joint; an empty track means "rest value";
+//   key times are finite, ascending and within [0, duration].
+//
+// Two poses must never be confused (DESIGN.md §5): the *rest* pose (every joint at
+// its stored local transform) and the *bind* pose (the pose the inverse bind matrices
+// describe, in which skinning returns the stored vertex positions unchanged).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace crowdbake {
+
+struct Transform {
+  glm::dvec3 translation{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
+  glm::dvec3 scale{1.0};
+
+  glm::dmat4 matrix() const;
+};
+
+struct Joint {
+  std::string name;
+  int parent = -1;
+  Transform rest;
+  // Static transform of nodes that sit between the parent joint and this joint but are
+  // not joints themselves (or, for a root, of all its ancestors). local = pre * TRS.
+  glm::dmat4 pre_transform{1.0};
+  glm::dmat4 inverse_bind{1.0};
+};
+
+struct Skeleton {
+  std::vector<Joint> joints;
+
+  int find(const std::string& name) const;  // -1 when absent
+  int depth() const;                        // longest root-to-leaf chain, in joints
+  std::vector<int> roots() const;
+};
+
+struct Material {
+  std::string name;
+  glm::vec4 base_color{1.0f};
+  std::string base_color_texture;  // image name or URI, empty when untextured
+};
+
+// One draw's worth of skinned geometry (a glTF primitive, an Assimp mesh).
+struct Primitive {
+  std::string name;
+  int material = -1;
+  std::vector<glm::vec3> positions;  // bind-pose positions in model space
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<std::array<uint16_t, 4>> joints;
+  std::vector<std::array<float, 4>> weights;
+  std::vector<uint32_t> indices;  // triangle list
+
+  size_t vertex_count() const { return positions.size(); }
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+enum class Interpolation { kStep, kLinear, kCubicSpline };
+
+// For kCubicSpline, values holds 3 entries per key: in-tangent, value, out-tangent
+// (the glTF layout); otherwise one value per key.
+template <typename T>
+struct Track {
+  Interpolation interpolation = Interpolation::kLinear;
+  std::vector<double> times;
+  std::vector<T> values;
+
+  bool empty() const { return times.empty(); }
+};
+
+struct JointChannels {
+  Track<glm::dvec3> translation;
+  Track<glm::dquat> rotation;
+  Track<glm::dvec3> scale;
+};
+
+struct Clip {
+  std::string name;
+  double duration = 0.0;  // seconds
+  std::vector<JointChannels> channels;  // one per joint
+
+  int keyframes() const;  // largest key count of any track
+};
+
+// Facts an importer found and fixed; each nonzero count also appears in warnings.
+struct ImportStats {
+  int max_influences = 0;          // largest non-zero influence count seen in the source
+  int vertices_over_4_influences = 0;
+  int vertices_renormalized = 0;   // weight sum differed from 1 by more than 1e-3
+  int vertices_without_weights = 0;
+  int polygons_triangulated = 0;
+  int rigid_primitives = 0;        // unskinned meshes bound to the joint they hang off
+};
+
+struct SkinnedAsset {
+  std::string source;  // file the asset came from
+  Skeleton skeleton;
+  std::vector<Material> materials;
+  std::vector<Primitive> primitives;
+  std::vector<Clip> clips;
+  ImportStats stats;
+  std::vector<std::string> warnings;
+
+  size_t vertex_count() const;
+  size_t triangle_count() const;
+};
+
+// Throws crowdbake::Error (kind kInput) naming the first broken rule.
+void validate_asset(const SkinnedAsset& asset);
+
+}  // namespace crowdbake
