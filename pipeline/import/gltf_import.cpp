@@ -1,8 +1,562 @@
-// placeholder: being written (glTF importer)
+// glTF 2.0 importer (tinygltf). Follows the spec's skinning rules: joint matrices are
+// the joints' world transforms, a skinned mesh node's own transform is ignored, and
+// inverse bind matrices default to identity.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <type_traits>
+
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
+#include "import/gltf_accessor.h"
+#include "import/influences.h"
+#include "import/node_transform.h"
+#include "import/tinygltf.h"
+
 namespace crowdbake {
-SkinnedAsset import_gltf(const std::string& path, const ImportOptions&) {
-  throw input_error(path, "glTF importer not built yet");
+namespace {
+
+// note: images are kept as references only; pixels are never decoded at import.
+bool keep_image_undecoded(tg::Image*, const int, std::string*, std::string*, int, int,
+                          const unsigned char*, int, void*) {
+  return true;
 }
+
+tg::Model load_model(const std::string& path, std::vector<std::string>& warnings) {
+  char magic[4] = {};
+  std::ifstream(path, std::ios::binary).read(magic, 4);
+  tg::TinyGLTF loader;
+  loader.SetImageLoader(keep_image_undecoded, nullptr);
+  tg::Model model;
+  std::string err, warn;
+  const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok) {
+    std::string reason = err.empty() ? warn : err;
+    while (!reason.empty() && std::isspace(static_cast<unsigned char>(reason.back()))) reason.pop_back();
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    throw input_error(path, "not a readable glTF 2.0 file (" + reason +
+                                "); check that it is a complete .gltf/.glb export");
+  }
+  std::string line;
+  for (std::istringstream lines(warn); std::getline(lines, line);)
+    if (!line.empty()) warnings.push_back("glTF: " + line);
+  return model;
+}
+
+glm::dmat4 node_local(const tg::Node& n) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 m;
+    for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = n.matrix[i];
+    return m;
+  }
+  Transform t;
+  if (n.translation.size() == 3) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  if (n.rotation.size() == 4) t.rotation = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+  if (n.scale.size() == 3) t.scale = {n.scale[0], n.scale[1], n.scale[2]};
+  return t.matrix();
+}
+
+// The node hierarchy, checked: every child index in range, one parent per node, no cycle.
+struct NodeTree {
+  std::vector<int> parent;
+  std::vector<glm::dmat4> local;
+  std::vector<int> preorder;  // depth-first from the roots, in index order
+
+  // Product of local matrices strictly below `ancestor` down to and including `node`.
+  glm::dmat4 relative(int ancestor, int node) const {
+    glm::dmat4 m(1.0);
+    for (int n = node; n != ancestor && n >= 0; n = parent[n]) m = local[n] * m;
+    return m;
+  }
+  glm::dmat4 global(int node) const { return relative(-1, node); }
+};
+
+NodeTree build_tree(const tg::Model& model, const std::string& path) {
+  const int count = static_cast<int>(model.nodes.size());
+  NodeTree tree;
+  tree.parent.assign(count, -1);
+  tree.local.resize(count);
+  for (int n = 0; n < count; ++n) {
+    tree.local[n] = node_local(model.nodes[n]);
+    for (int c : model.nodes[n].children) {
+      if (c < 0 || c >= count)
+        throw input_error(path, "node '" + model.nodes[n].name + "' has a child index out of range; "
+                                "the hierarchy is broken, re-export the file");
+      if (tree.parent[c] != -1 || c == n)
+        throw input_error(path, "node '" + model.nodes[c].name + "' has more than one parent; "
+                                "the hierarchy is broken (glTF nodes form a tree), re-export the file");
+      tree.parent[c] = n;
+    }
+  }
+  std::vector<char> seen(count, 0);
+  std::function<void(int)> visit = [&](int n) {
+    seen[n] = 1;
+    tree.preorder.push_back(n);
+    for (int c : model.nodes[n].children) visit(c);
+  };
+  for (int n = 0; n < count; ++n)
+    if (tree.parent[n] == -1) visit(n);
+  // note: nodes never reached from a root can only sit on a cycle.
+  for (int n = 0; n < count; ++n)
+    if (!seen[n])
+      throw input_error(path, "node '" + model.nodes[n].name + "' is part of a cycle in the node "
+                              "hierarchy; the hierarchy is broken, re-export the file");
+  return tree;
+}
+
+// Skins that share a joint describe one character; groups are their union.
+std::vector<std::vector<int>> group_skins(const tg::Model& model) {
+  const int skins = static_cast<int>(model.skins.size());
+  std::vector<int> root(skins);
+  std::iota(root.begin(), root.end(), 0);
+  std::function<int(int)> find = [&](int s) { return root[s] == s ? s : root[s] = find(root[s]); };
+  std::map<int, int> owner;  // joint node -> first skin listing it
+  for (int s = 0; s < skins; ++s)
+    for (int j : model.skins[s].joints) {
+      auto [it, inserted] = owner.emplace(j, s);
+      if (!inserted) root[find(s)] = find(it->second);
+    }
+  std::map<int, std::vector<int>> groups;
+  for (int s = 0; s < skins; ++s) groups[find(s)].push_back(s);
+  std::vector<std::vector<int>> result;
+  for (auto& [first, members] : groups) result.push_back(members);
+  return result;
+}
+
+size_t skinned_vertices(const tg::Model& model, const std::vector<int>& skins) {
+  size_t total = 0;
+  for (const tg::Node& node : model.nodes) {
+    if (node.mesh < 0 || node.mesh >= static_cast<int>(model.meshes.size())) continue;
+    if (std::find(skins.begin(), skins.end(), node.skin) == skins.end()) continue;
+    for (const tg::Primitive& p : model.meshes[node.mesh].primitives) {
+      auto it = p.attributes.find("POSITION");
+      if (it != p.attributes.end() && it->second >= 0 && it->second < static_cast<int>(model.accessors.size()))
+        total += model.accessors[it->second].count;
+    }
+  }
+  return total;
+}
+
+std::string node_name(const tg::Model& model, int n) {
+  return model.nodes[n].name.empty() ? "node" + std::to_string(n) : model.nodes[n].name;
+}
+
+class GltfImporter {
+ public:
+  GltfImporter(const std::string& path, const ImportOptions& options) : path_(path), options_(options) {
+    asset_.source = path;
+    model_ = load_model(path, asset_.warnings);
+    tree_ = build_tree(model_, path);
+  }
+
+  SkinnedAsset run() {
+    pick_character();
+    build_skeleton();
+    read_materials();
+    read_meshes();
+    read_clips();
+    report_import_stats(asset_.stats, asset_.warnings);
+    return std::move(asset_);
+  }
+
+ private:
+  void pick_character() {
+    if (model_.skins.empty())
+      throw input_error(path_, "no skin: the file has no skinned mesh; crowdbake needs a character "
+                               "bound to a skeleton (export with the armature/skin included)");
+    for (size_t s = 0; s < model_.skins.size(); ++s) {
+      if (model_.skins[s].joints.empty())
+        throw input_error(path_, "skin " + std::to_string(s) + " lists no joints; re-export the skin");
+      for (int j : model_.skins[s].joints)
+        if (j < 0 || j >= static_cast<int>(model_.nodes.size()))
+          throw input_error(path_, "skin " + std::to_string(s) +
+                                       " names a joint node out of range; the file is corrupt");
+    }
+    const std::vector<std::vector<int>> groups = group_skins(model_);
+    int chosen = options_.character;
+    if (chosen >= static_cast<int>(groups.size()))
+      throw Error(Error::Kind::kUsage, path_, "character " + std::to_string(chosen) + " requested but the file holds " +
+                                                  std::to_string(groups.size()));
+    if (chosen < 0) {
+      chosen = 0;
+      for (size_t g = 1; g < groups.size(); ++g)
+        if (skinned_vertices(model_, groups[g]) > skinned_vertices(model_, groups[chosen])) chosen = static_cast<int>(g);
+    }
+    skins_ = groups[chosen];
+    if (groups.size() > 1)
+      asset_.warnings.push_back("the file holds " + std::to_string(groups.size()) +
+                                " characters (skins with no joint in common); imported character " +
+                                std::to_string(chosen) + " (skin '" + model_.skins[skins_[0]].name + "', " +
+                                std::to_string(skinned_vertices(model_, skins_)) +
+                                " skinned vertices); choose another with --character N");
+  }
+
+  void build_skeleton() {
+    std::set<int> joint_nodes;
+    for (int s : skins_) joint_nodes.insert(model_.skins[s].joints.begin(), model_.skins[s].joints.end());
+    joint_of_node_.assign(model_.nodes.size(), -1);
+    for (int n : tree_.preorder)
+      if (joint_nodes.count(n)) {
+        joint_of_node_[n] = static_cast<int>(joint_node_.size());
+        joint_node_.push_back(n);
+      }
+    Skeleton& skeleton = asset_.skeleton;
+    skeleton.joints.resize(joint_node_.size());
+    for (size_t j = 0; j < joint_node_.size(); ++j) {
+      const int node = joint_node_[j];
+      Joint& joint = skeleton.joints[j];
+      joint.name = node_name(model_, node);
+      const int ancestor = nearest_joint_ancestor(node);
+      joint.parent = ancestor >= 0 ? joint_of_node_[ancestor] : -1;
+      joint.pre_transform = tree_.relative(ancestor, tree_.parent[node]);
+      if (!split_transform(tree_.local[node], joint.rest)) {
+        joint.pre_transform = joint.pre_transform * tree_.local[node];
+        asset_.warnings.push_back("joint '" + joint.name + "' has a sheared matrix; kept as a static "
+                                  "transform, so animation of this joint is ignored");
+        static_joints_.insert(node);
+      }
+      for (int n = tree_.parent[node]; n != ancestor; n = tree_.parent[n]) folded_nodes_.insert(n);
+    }
+    // Inverse binds: the first skin listing a joint defines it; other skins are
+    // reconciled per mesh in bind_correction().
+    std::vector<char> set(joint_node_.size(), 0);
+    for (int s : skins_) {
+      const std::vector<glm::dmat4> ibm = inverse_binds(s);
+      for (size_t k = 0; k < model_.skins[s].joints.size(); ++k) {
+        const int j = joint_of_node_[model_.skins[s].joints[k]];
+        if (!set[j]) skeleton.joints[j].inverse_bind = ibm[k], set[j] = 1;
+      }
+    }
+  }
+
+  int nearest_joint_ancestor(int node) const {
+    for (int n = tree_.parent[node]; n >= 0; n = tree_.parent[n])
+      if (joint_of_node_[n] >= 0) return n;
+    return -1;
+  }
+
+  std::vector<glm::dmat4> inverse_binds(int s) {
+    const tg::Skin& skin = model_.skins[s];
+    std::vector<glm::dmat4> result(skin.joints.size(), glm::dmat4(1.0));
+    if (skin.inverseBindMatrices < 0) return result;
+    const AccessorData data =
+        read_accessor(model_, skin.inverseBindMatrices, {16}, path_, "inverseBindMatrices of skin " + std::to_string(s));
+    if (data.count < skin.joints.size())
+      throw input_error(path_, "skin " + std::to_string(s) + " has fewer inverse bind matrices than joints; "
+                               "the file is corrupt, re-export the skin");
+    for (size_t k = 0; k < skin.joints.size(); ++k)
+      for (int i = 0; i < 16; ++i) {
+        const double v = data.at(k, i);
+        if (!std::isfinite(v))
+          throw input_error(path_, "inverse bind matrix of joint '" + node_name(model_, skin.joints[k]) +
+                                       "' holds NaN or infinity; re-export the skin");
+        result[k][i / 4][i % 4] = v;
+      }
+    return result;
+  }
+
+  // A mesh skinned by skin s stores positions for s's inverse binds. When s and the
+  // skeleton disagree on a joint's inverse bind, the vertices are moved into the
+  // skeleton's bind space: u = B_j^-1... = inverse(IBM_j) * IBM_s_j * v.
+  glm::dmat4 bind_correction(int s, const std::string& mesh) {
+    const std::vector<glm::dmat4> ibm = inverse_binds(s);
+    const tg::Skin& skin = model_.skins[s];
+    glm::dmat4 correction(1.0);
+    bool first = true, consistent = true, needed = false;
+    for (size_t k = 0; k < skin.joints.size(); ++k) {
+      const glm::dmat4& mine = asset_.skeleton.joints[joint_of_node_[skin.joints[k]]].inverse_bind;
+      const glm::dmat4 c = glm::inverse(mine) * ibm[k];
+      if (first) correction = c, first = false;
+      for (int i = 0; i < 16; ++i) {
+        if (std::fabs(c[i / 4][i % 4] - correction[i / 4][i % 4]) > 1e-5) consistent = false;
+        if (std::fabs(c[i / 4][i % 4] - (i / 4 == i % 4 ? 1.0 : 0.0)) > 1e-9) needed = true;
+      }
+    }
+    if (needed && !consistent)
+      asset_.warnings.push_back("mesh '" + mesh + "' uses inverse bind matrices that disagree with the other "
+                                "skins of its skeleton in more than a rigid offset; its bind shape may be distorted");
+    else if (needed)
+      asset_.warnings.push_back("mesh '" + mesh + "' was moved into the shared skeleton's bind space");
+    return correction;
+  }
+
+  void read_materials() {
+    for (const tg::Material& m : model_.materials) {
+      Material out;
+      out.name = m.name;
+      const std::vector<double>& c = m.pbrMetallicRoughness.baseColorFactor;
+      if (c.size() == 4) out.base_color = glm::vec4(c[0], c[1], c[2], c[3]);
+      const int tex = m.pbrMetallicRoughness.baseColorTexture.index;
+      if (tex >= 0 && tex < static_cast<int>(model_.textures.size())) {
+        const int img = model_.textures[tex].source;
+        if (img >= 0 && img < static_cast<int>(model_.images.size())) {
+          const tg::Image& image = model_.images[img];
+          out.base_color_texture = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name
+                                                                                        : "image" + std::to_string(img);
+        }
+      }
+      asset_.materials.push_back(out);
+    }
+  }
+
+  void read_meshes() {
+    bool any_skinned = false;
+    for (int n : tree_.preorder) {
+      const tg::Node& node = model_.nodes[n];
+      if (node.mesh < 0) continue;
+      if (node.mesh >= static_cast<int>(model_.meshes.size()))
+        throw input_error(path_, "node '" + node_name(model_, n) + "' references a mesh out of range; the file is corrupt");
+      const tg::Mesh& mesh = model_.meshes[node.mesh];
+      const std::string name = mesh.name.empty() ? node_name(model_, n) : mesh.name;
+      if (node.skin >= 0) {
+        if (std::find(skins_.begin(), skins_.end(), node.skin) == skins_.end()) continue;
+        any_skinned = true;
+        const glm::dmat4 correction = bind_correction(node.skin, name);
+        for (const tg::Primitive& p : mesh.primitives) read_primitive(p, name, node.skin, correction, -1);
+      } else {
+        const int joint_node = n >= 0 && joint_of_node_[n] >= 0 ? n : nearest_joint_ancestor(n);
+        if (joint_node < 0) {
+          asset_.warnings.push_back("mesh '" + name + "' is neither skinned nor attached to the skeleton; ignored");
+          continue;
+        }
+        const int joint = joint_of_node_[joint_node];
+        // note: rigid parts move with their joint: place them where the joint is in the
+        // bind pose, v = inverse(B_j^-1) * (joint -> mesh node) * v_local.
+        const glm::dmat4 place = glm::inverse(asset_.skeleton.joints[joint].inverse_bind) *
+                                 (joint_node == n ? glm::dmat4(1.0) : tree_.relative(joint_node, n));
+        for (int m = tree_.parent[n]; m >= 0 && m != joint_node; m = tree_.parent[m]) folded_nodes_.insert(m);
+        for (const tg::Primitive& p : mesh.primitives) read_primitive(p, name, -1, place, joint);
+        ++asset_.stats.rigid_primitives;
+        asset_.warnings.push_back("mesh '" + name + "' is not skinned; bound rigidly to joint '" +
+                                  asset_.skeleton.joints[joint].name + "'");
+      }
+    }
+    if (!any_skinned && asset_.primitives.empty())
+      throw input_error(path_, "no mesh: the skeleton skins no geometry; export the character's mesh with its skin");
+  }
+
+  // skin >= 0: skinned primitive with JOINTS_n/WEIGHTS_n; otherwise rigid on joint.
+  void read_primitive(const tg::Primitive& p, const std::string& name, int skin, const glm::dmat4& to_model,
+                      int rigid_joint) {
+    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      asset_.warnings.push_back("mesh '" + name + "' has a primitive of points or lines; ignored");
+      return;
+    }
+    if (!p.targets.empty()) ++morph_meshes_;
+    auto attr = [&](const char* key) {
+      auto it = p.attributes.find(key);
+      return it == p.attributes.end() ? -1 : it->second;
+    };
+    const std::string who = "mesh '" + name + "'";
+    if (attr("POSITION") < 0) throw input_error(path_, who + " has a primitive without POSITION; re-export it");
+
+    Primitive out;
+    out.name = name;
+    out.material = p.material;
+    const AccessorData pos = read_accessor(model_, attr("POSITION"), {3}, path_, "POSITION of " + who);
+    const size_t n = pos.count;
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(to_model)));
+    out.positions.resize(n);
+    for (size_t v = 0; v < n; ++v) {
+      const glm::dvec3 x(pos.at(v, 0), pos.at(v, 1), pos.at(v, 2));
+      if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+        throw input_error(path_, who + " has a NaN or infinite vertex position (vertex " + std::to_string(v) +
+                                     "); fix the mesh in the authoring tool and re-export");
+      out.positions[v] = glm::vec3(glm::dvec3(to_model * glm::dvec4(x, 1.0)));
+    }
+    if (attr("NORMAL") >= 0) {
+      const AccessorData nrm = read_accessor(model_, attr("NORMAL"), {3}, path_, "NORMAL of " + who);
+      if (nrm.count == n) {
+        out.normals.resize(n);
+        for (size_t v = 0; v < n; ++v) {
+          glm::dvec3 d = normal_matrix * glm::dvec3(nrm.at(v, 0), nrm.at(v, 1), nrm.at(v, 2));
+          const double len = glm::length(d);
+          out.normals[v] = len > 1e-12 && std::isfinite(len) ? glm::vec3(d / len) : glm::vec3(0, 0, 1);
+        }
+      }
+    }
+    if (attr("TEXCOORD_0") >= 0) {
+      const AccessorData uv = read_accessor(model_, attr("TEXCOORD_0"), {2}, path_, "TEXCOORD_0 of " + who);
+      if (uv.count == n) {
+        out.uvs.resize(n);
+        for (size_t v = 0; v < n; ++v) {
+          const glm::vec2 t(uv.at(v, 0), uv.at(v, 1));
+          out.uvs[v] = std::isfinite(t.x) && std::isfinite(t.y) ? t : glm::vec2(0.0f);
+        }
+      }
+    }
+    read_skin_weights(p, who, skin, rigid_joint, out);
+    read_indices(p, who, mode, out);
+    asset_.primitives.push_back(std::move(out));
+  }
+
+  void read_skin_weights(const tg::Primitive& p, const std::string& who, int skin, int rigid_joint, Primitive& out) {
+    const size_t n = out.positions.size();
+    out.joints.resize(n);
+    out.weights.resize(n);
+    if (skin < 0) {
+      for (size_t v = 0; v < n; ++v) {
+        out.joints[v] = {static_cast<uint16_t>(rigid_joint), 0, 0, 0};
+        out.weights[v] = {1.0f, 0.0f, 0.0f, 0.0f};
+      }
+      return;
+    }
+    std::vector<AccessorData> joint_sets, weight_sets;
+    for (int set = 0;; ++set) {
+      auto j = p.attributes.find("JOINTS_" + std::to_string(set));
+      auto w = p.attributes.find("WEIGHTS_" + std::to_string(set));
+      if (j == p.attributes.end() || w == p.attributes.end()) break;
+      joint_sets.push_back(read_accessor(model_, j->second, {4}, path_, j->first + " of " + who));
+      weight_sets.push_back(read_accessor(model_, w->second, {4}, path_, w->first + " of " + who));
+      if (joint_sets.back().count != n || weight_sets.back().count != n)
+        throw input_error(path_, who + ": " + j->first + "/" + w->first + " count differs from POSITION; re-export it");
+    }
+    const tg::Skin& s = model_.skins[skin];
+    const int fallback = joint_of_node_[s.joints[0]];
+    std::vector<Influence> influences;
+    for (size_t v = 0; v < n; ++v) {
+      influences.clear();
+      for (size_t set = 0; set < joint_sets.size(); ++set)
+        for (int k = 0; k < 4; ++k) {
+          const double w = weight_sets[set].at(v, k);
+          if (!(w > 0.0)) continue;
+          const double local = joint_sets[set].at(v, k);
+          if (!(local >= 0.0) || local >= static_cast<double>(s.joints.size()))
+            throw input_error(path_, who + ": vertex " + std::to_string(v) + " references joint " +
+                                         std::to_string(static_cast<long long>(local)) + " but its skin has " +
+                                         std::to_string(s.joints.size()) + " joints; re-export the skin");
+          influences.push_back({joint_of_node_[s.joints[static_cast<size_t>(local)]], static_cast<float>(w)});
+        }
+      reduce_influences(influences, fallback, out.joints[v], out.weights[v], asset_.stats);
+    }
+  }
+
+  void read_indices(const tg::Primitive& p, const std::string& who, int mode, Primitive& out) {
+    const size_t n = out.positions.size();
+    std::vector<uint32_t> list;
+    if (p.indices >= 0) {
+      const AccessorData idx = read_accessor(model_, p.indices, {1}, path_, "indices of " + who);
+      list.resize(idx.count);
+      for (size_t i = 0; i < idx.count; ++i) {
+        const double v = idx.values[i];
+        if (!(v >= 0.0) || v >= static_cast<double>(n))
+          throw input_error(path_, who + " has a triangle index out of range; the file is corrupt, re-export it");
+        list[i] = static_cast<uint32_t>(v);
+      }
+    } else {
+      list.resize(n);
+      std::iota(list.begin(), list.end(), 0u);
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      list.resize(list.size() - list.size() % 3);
+      out.indices = std::move(list);
+      return;
+    }
+    for (size_t i = 2; i < list.size(); ++i) {
+      uint32_t a, b, c = list[i];
+      if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
+        a = list[0], b = list[i - 1];
+      else if (i % 2 == 0)
+        a = list[i - 2], b = list[i - 1];
+      else
+        a = list[i - 1], b = list[i - 2];  // note: odd strip triangles swap to keep winding
+      out.indices.insert(out.indices.end(), {a, b, c});
+    }
+  }
+
+  void read_clips() {
+    const size_t joints = asset_.skeleton.joints.size();
+    std::set<std::string> ignored;
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tg::Animation& anim = model_.animations[a];
+      Clip clip;
+      clip.name = anim.name.empty() ? "animation_" + std::to_string(a) : anim.name;
+      clip.channels.resize(joints);
+      for (const tg::AnimationChannel& ch : anim.channels) {
+        if (ch.target_node < 0 || ch.target_node >= static_cast<int>(model_.nodes.size())) continue;
+        if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
+          throw input_error(path_, "animation '" + clip.name + "' has a channel with a sampler out of range; "
+                                   "the file is corrupt, re-export the animation");
+        const tg::AnimationSampler& sampler = anim.samplers[ch.sampler];
+        const AccessorData times = read_accessor(model_, sampler.input, {1}, path_, "animation '" + clip.name + "' input");
+        for (double t : times.values) clip.duration = std::max(clip.duration, t);
+        const int joint = joint_of_node_[ch.target_node];
+        if (joint < 0 || static_joints_.count(ch.target_node)) {
+          if (ch.target_path == "weights") ++morph_animations_;
+          else if (folded_nodes_.count(ch.target_node) && ignored.insert(node_name(model_, ch.target_node)).second)
+            asset_.warnings.push_back("animation '" + clip.name + "' moves node '" + node_name(model_, ch.target_node) +
+                                      "', which is not a joint; that motion is ignored");
+          continue;
+        }
+        JointChannels& out = clip.channels[joint];
+        if (ch.target_path == "translation") fill_track(clip.name, sampler, times, 3, out.translation);
+        else if (ch.target_path == "scale") fill_track(clip.name, sampler, times, 3, out.scale);
+        else if (ch.target_path == "rotation") fill_track(clip.name, sampler, times, 4, out.rotation);
+        else if (ch.target_path == "weights") ++morph_animations_;
+      }
+      asset_.clips.push_back(std::move(clip));
+    }
+    if (morph_meshes_ > 0 || morph_animations_ > 0)
+      asset_.warnings.push_back("morph targets are not supported yet: " + std::to_string(morph_meshes_) +
+                                " primitives use their base shape and " + std::to_string(morph_animations_) +
+                                " morph-weight channels are ignored");
+  }
+
+  template <typename T>
+  void fill_track(const std::string& clip, const tg::AnimationSampler& sampler, const AccessorData& times,
+                  int components, Track<T>& track) {
+    const AccessorData values = read_accessor(model_, sampler.output, {components}, path_,
+                                              "animation '" + clip + "' output");
+    track.interpolation = sampler.interpolation == "STEP"          ? Interpolation::kStep
+                          : sampler.interpolation == "CUBICSPLINE" ? Interpolation::kCubicSpline
+                                                                   : Interpolation::kLinear;
+    const size_t per_key = track.interpolation == Interpolation::kCubicSpline ? 3 : 1;
+    if (values.count != times.count * per_key)
+      throw input_error(path_, "animation '" + clip + "' has " + std::to_string(values.count) + " output values for " +
+                                   std::to_string(times.count) + " keys; re-export the animation");
+    track.times = times.values;
+    track.values.resize(values.count);
+    for (size_t k = 0; k < values.count; ++k) {
+      if constexpr (std::is_same_v<T, glm::dquat>) {
+        glm::dquat q(values.at(k, 3), values.at(k, 0), values.at(k, 1), values.at(k, 2));
+        // note: tangents (cubic in/out) are not unit quaternions; only key values are normalised.
+        const bool tangent = per_key == 3 && k % 3 != 1;
+        const double len = glm::length(q);
+        if (!tangent && len > 1e-12 && std::isfinite(len)) q /= len;
+        track.values[k] = q;
+      } else {
+        track.values[k] = T(values.at(k, 0), values.at(k, 1), values.at(k, 2));
+      }
+    }
+  }
+
+  std::string path_;
+  ImportOptions options_;
+  tg::Model model_;
+  NodeTree tree_;
+  SkinnedAsset asset_;
+  std::vector<int> skins_;
+  std::vector<int> joint_of_node_;
+  std::vector<int> joint_node_;
+  std::set<int> folded_nodes_;
+  std::set<int> static_joints_;
+  int morph_meshes_ = 0;
+  int morph_animations_ = 0;
+};
+
+}  // namespace
+
+SkinnedAsset import_gltf(const std::string& path, const ImportOptions& options) {
+  return GltfImporter(path, options).run();
+}
+
 }  // namespace crowdbake

@@ -1,7 +1,9 @@
 #include "crowdbake/pipeline/import.h"
 
 #include <cerrno>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "crowdbake/pipeline/error.h"
@@ -26,6 +28,8 @@ bool looks_like_gltf(const std::string& path) {
 }  // namespace
 
 SkinnedAsset import_asset(const std::string& path, const ImportOptions& options) {
+  if (std::filesystem::is_directory(path))
+    throw input_error(path, "is a directory, not a character file; pass a .gltf, .glb or .fbx file");
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) {
@@ -37,8 +41,12 @@ SkinnedAsset import_asset(const std::string& path, const ImportOptions& options)
     }
   }
   ImporterKind kind = options.importer;
-  if (kind == ImporterKind::kAuto)
-    kind = looks_like_gltf(path) ? ImporterKind::kGltf : ImporterKind::kAssimp;
+  if (kind == ImporterKind::kAuto) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    kind = ext == ".gltf" || ext == ".glb" || looks_like_gltf(path) ? ImporterKind::kGltf
+                                                                   : ImporterKind::kAssimp;
+  }
   SkinnedAsset asset =
       kind == ImporterKind::kGltf ? import_gltf(path, options) : import_assimp(path, options);
   validate_asset(asset);
