@@ -51,6 +51,10 @@ tg::Model load_model(const std::string& path, std::vector<std::string>& warnings
   return model;
 }
 
+std::string node_name(const tg::Model& model, int n) {
+  return model.nodes[n].name.empty() ? "node" + std::to_string(n) : model.nodes[n].name;
+}
+
 glm::dmat4 node_local(const tg::Node& n) {
   if (n.matrix.size() == 16) {
     glm::dmat4 m;
@@ -86,6 +90,10 @@ NodeTree build_tree(const tg::Model& model, const std::string& path) {
   tree.local.resize(count);
   for (int n = 0; n < count; ++n) {
     tree.local[n] = node_local(model.nodes[n]);
+    for (int i = 0; i < 16; ++i)
+      if (!std::isfinite(tree.local[n][i / 4][i % 4]))
+        throw input_error(path, "node '" + node_name(model, n) + "' has a NaN or infinite transform; "
+                                "fix it in the authoring tool and re-export");
     for (int c : model.nodes[n].children) {
       if (c < 0 || c >= count)
         throw input_error(path, "node '" + model.nodes[n].name + "' has a child index out of range; "
@@ -143,10 +151,6 @@ size_t skinned_vertices(const tg::Model& model, const std::vector<int>& skins) {
     }
   }
   return total;
-}
-
-std::string node_name(const tg::Model& model, int n) {
-  return model.nodes[n].name.empty() ? "node" + std::to_string(n) : model.nodes[n].name;
 }
 
 class GltfImporter {
@@ -309,7 +313,7 @@ class GltfImporter {
 
   void read_meshes() {
     bool any_skinned = false;
-    for (int n : tree_.preorder) {
+    for (int n = 0; n < static_cast<int>(model_.nodes.size()); ++n) {
       const tg::Node& node = model_.nodes[n];
       if (node.mesh < 0) continue;
       if (node.mesh >= static_cast<int>(model_.meshes.size()))
