@@ -1,0 +1,207 @@
+#include "import/assimp_scene.h"
+
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/quaternion.hpp>
+#include <numeric>
+#include <unordered_set>
+
+#include "crowdbake/pipeline/error.h"
+
+namespace crowdbake::ai {
+
+glm::dmat4 to_glm(const aiMatrix4x4& m) {
+  glm::dmat4 out;
+  for (unsigned row = 0; row < 4; ++row)
+    for (unsigned col = 0; col < 4; ++col) out[col][row] = static_cast<double>(m[row][col]);
+  return out;
+}
+
+bool is_finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+Transform decompose(const glm::dmat4& m, double* residual) {
+  Transform t;
+  t.translation = glm::dvec3(m[3]);
+  glm::dvec3 axis[3] = {glm::dvec3(m[0]), glm::dvec3(m[1]), glm::dvec3(m[2])};
+  for (int i = 0; i < 3; ++i) t.scale[i] = glm::length(axis[i]);
+  // note: a mirroring matrix keeps a proper rotation by giving x a negative scale.
+  if (glm::determinant(glm::dmat3(m)) < 0.0) t.scale.x = -t.scale.x;
+  const double tiny =
+      1e-12 * std::max({std::fabs(t.scale.x), std::fabs(t.scale.y), std::fabs(t.scale.z), 1e-300});
+  if (std::fabs(t.scale.x) > tiny && std::fabs(t.scale.y) > tiny && std::fabs(t.scale.z) > tiny) {
+    // Gram-Schmidt keeps the rotation orthonormal when the matrix carries shear; the
+    // residual below reports what that loses.
+    glm::dvec3 x = axis[0] / t.scale.x;
+    glm::dvec3 y = axis[1] - glm::dot(axis[1], x) * x;
+    const double ly = glm::length(y);
+    if (ly > 0.0) {
+      y /= ly;
+      const glm::dvec3 z = glm::cross(x, y);
+      t.rotation = glm::normalize(glm::quat_cast(glm::dmat3(x, y, z)));
+    }
+  }
+  if (residual) {
+    const glm::dmat4 back = t.matrix();
+    double largest = 0.0, diff = 0.0;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        largest = std::max(largest, std::fabs(m[c][r]));
+        diff = std::max(diff, std::fabs(m[c][r] - back[c][r]));
+      }
+    *residual = largest > 0.0 ? diff / largest : diff;
+  }
+  return t;
+}
+
+NodeTable build_node_table(const aiScene& scene, const std::string& path) {
+  NodeTable table;
+  table.mesh_nodes.resize(scene.mNumMeshes);
+  if (!scene.mRootNode) throw input_error(path, "the scene has no node tree; re-export the file");
+  std::unordered_set<const aiNode*> seen;
+  std::vector<std::pair<const aiNode*, int>> stack{{scene.mRootNode, -1}};
+  while (!stack.empty()) {
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    if (!seen.insert(node).second)
+      throw input_error(path, "the node tree has a cycle; the file is corrupt, re-export it");
+    const int index = static_cast<int>(table.nodes.size());
+    const std::string name = node->mName.C_Str();
+    const glm::dmat4 local = to_glm(node->mTransformation);
+    const glm::dmat4 global = parent >= 0 ? table.global[parent] * local : local;
+    if (!is_finite(local) || !is_finite(global))
+      throw input_error(path, "node '" + name +
+                                  "' has a NaN or infinite transform; fix it in the authoring "
+                                  "tool and re-export");
+    table.nodes.push_back(node);
+    table.parent.push_back(parent);
+    table.local.push_back(local);
+    table.global.push_back(global);
+    table.by_name.emplace(name, index);
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const unsigned mesh = node->mMeshes[i];
+      if (mesh >= scene.mNumMeshes)
+        throw input_error(path, "node '" + name + "' refers to mesh " + std::to_string(mesh) +
+                                    " but the file has " + std::to_string(scene.mNumMeshes) +
+                                    "; the file is corrupt, re-export it");
+      table.mesh_nodes[mesh].push_back(index);
+    }
+    for (unsigned i = node->mNumChildren; i-- > 0;)
+      if (node->mChildren[i]) stack.emplace_back(node->mChildren[i], index);
+  }
+  return table;
+}
+
+namespace {
+
+struct UnionFind {
+  std::vector<int> up;
+  explicit UnionFind(size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
+  int find(int i) {
+    while (up[i] != i) i = up[i] = up[up[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) up[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
+                                const std::string& path) {
+  SceneCharacters out;
+  const int node_count = static_cast<int>(table.nodes.size());
+  std::vector<bool> is_bone(node_count, false);
+  std::vector<std::vector<int>> mesh_bone_nodes(scene.mNumMeshes);
+  std::unordered_map<std::string, int> name_count;
+  for (const aiNode* node : table.nodes) ++name_count[node->mName.C_Str()];
+  std::unordered_set<std::string> ambiguous;
+
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (!mesh)
+      throw input_error(path, "mesh " + std::to_string(m) + " is missing; the file is corrupt");
+    for (unsigned b = 0; b < mesh->mNumBones; ++b) {
+      const aiBone* bone = mesh->mBones[b];
+      if (!bone)
+        throw input_error(path, "mesh '" + std::string(mesh->mName.C_Str()) +
+                                    "' has a missing bone; the file is corrupt");
+      const std::string name = bone->mName.C_Str();
+      const auto it = table.by_name.find(name);
+      if (it == table.by_name.end())
+        throw input_error(path, "mesh '" + std::string(mesh->mName.C_Str()) + "': bone '" + name +
+                                    "' names no node in the scene; export the armature together "
+                                    "with the mesh");
+      if (name_count[name] > 1 && ambiguous.insert(name).second)
+        out.warnings.push_back(std::to_string(name_count[name]) + " nodes are named '" + name +
+                               "'; the bone of that name uses the first in the node tree");
+      is_bone[it->second] = true;
+      mesh_bone_nodes[m].push_back(it->second);
+    }
+  }
+
+  // note: one skeleton = bones joined by the hierarchy (nearest bone ancestor), root bones
+  // under one armature node (not the scene root, where unrelated characters meet), and
+  // bones that skin one mesh.
+  UnionFind groups(node_count);
+  std::unordered_map<int, int> first_root_under;
+  for (int n = 0; n < node_count; ++n) {
+    if (!is_bone[n]) continue;
+    int up = table.parent[n];
+    while (up >= 0 && !is_bone[up]) up = table.parent[up];
+    if (up >= 0) {
+      groups.unite(n, up);
+    } else if (table.parent[n] > 0) {
+      const auto [it, fresh] = first_root_under.emplace(table.parent[n], n);
+      if (!fresh) groups.unite(n, it->second);
+    }
+  }
+  for (const std::vector<int>& bones : mesh_bone_nodes)
+    for (int b : bones) groups.unite(b, bones.front());
+
+  out.joint_of_node.assign(node_count, -1);
+  std::unordered_map<int, int> character_of_group;
+  for (int n = 0; n < node_count; ++n) {
+    if (!is_bone[n]) continue;
+    const auto [it, fresh] =
+        character_of_group.emplace(groups.find(n), static_cast<int>(out.characters.size()));
+    if (fresh) out.characters.emplace_back();
+    out.characters[it->second].joint_nodes.push_back(n);
+    out.joint_of_node[n] = it->second;
+  }
+
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    if (mesh_bone_nodes[m].empty()) continue;
+    Character& c = out.characters[out.joint_of_node[mesh_bone_nodes[m].front()]];
+    c.skinned_meshes.push_back(static_cast<int>(m));
+    c.skinned_vertices += scene.mMeshes[m]->mNumVertices;
+  }
+  // Unskinned meshes, in node order: bound to the joint they hang under, if any.
+  std::vector<bool> unattached(scene.mNumMeshes, false);
+  for (int n = 0; n < node_count; ++n) {
+    const aiNode* node = table.nodes[n];
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const int m = static_cast<int>(node->mMeshes[i]);
+      if (!mesh_bone_nodes[m].empty()) continue;
+      const int joint = nearest_joint(table, n, [&](int k) { return bool(is_bone[k]); });
+      if (joint >= 0)
+        out.characters[out.joint_of_node[joint]].rigid_meshes.emplace_back(m, n);
+      else
+        unattached[m] = true;
+    }
+  }
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    if (unattached[m]) out.unattached_meshes.push_back(static_cast<int>(m));
+  return out;
+}
+
+}  // namespace crowdbake::ai
