@@ -47,6 +47,9 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path,
   if (!std::filesystem::exists(path, ignored))
     throw input_error(path, "file not found; check the path");
   importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  // note: without this, a file with a skeleton and no mesh gets a generated stick-figure
+  // mesh from Assimp, which would import as a "character".
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   if (!scene)
     throw input_error(path, std::string("Assimp cannot read the file (") +
@@ -393,9 +396,15 @@ Material convert_material(const aiScene& scene, const aiMaterial& in) {
     aiString texture;
     if (in.GetTextureCount(type) == 0 || in.GetTexture(type, 0, &texture) != AI_SUCCESS) continue;
     out.base_color_texture = texture.C_Str();
-    // Embedded images are named "*N"; prefer the file name the exporter kept, if any.
-    if (const aiTexture* embedded = scene.GetEmbeddedTexture(texture.C_Str()))
-      if (embedded->mFilename.length > 0) out.base_color_texture = embedded->mFilename.C_Str();
+    // Embedded images are named "*N": use the file name the exporter kept, else "imageN"
+    // as the glTF importer names unnamed images.
+    const auto [embedded, index] = texture.C_Str()[0] == '*'
+                                       ? scene.GetEmbeddedTextureAndIndex(texture.C_Str())
+                                       : std::pair<const aiTexture*, int>(nullptr, -1);
+    if (embedded && embedded->mFilename.length > 0)
+      out.base_color_texture = embedded->mFilename.C_Str();
+    else if (embedded && index >= 0)
+      out.base_color_texture = "image" + std::to_string(index);
     break;
   }
   return out;

@@ -426,6 +426,29 @@ TEST(AssimpImport, DisagreeingInverseBindsAreReported) {
   EXPECT_TRUE(mentions(a, "inverse bind matrices of 1 joint(s) disagree")) << a.warnings[0];
 }
 
+TEST(AssimpImport, UnskinnedMeshOutsideTheSkeletonIsLeftOut) {
+  TempDir dir;
+  DaeMesh floor = body();
+  floor.joints.clear();  // no skin, hangs under the scene root
+  const SkinnedAsset a =
+      import_assimp(write(dir, "a.dae", collada(two_joints(), {body(), floor})), {});
+  validate_asset(a);
+  EXPECT_EQ(a.primitives.size(), 1u);
+  EXPECT_EQ(a.stats.rigid_primitives, 0);
+  EXPECT_TRUE(mentions(a, "1 mesh(es) without skin that hang under no joint were left out"));
+}
+
+TEST(AssimpImport, ShearedJointIsKeptExactlyWhenNoClipMovesIt) {
+  TempDir dir;
+  std::vector<DaeJoint> joints = two_joints();
+  joints[1].matrix = "1 0.5 0 0 0 1 0 1 0 0 1 0 0 0 0 1";  // x += 0.5 y, then up 1
+  const SkinnedAsset a = import_assimp(write(dir, "a.dae", collada(joints, {body()})), {});
+  validate_asset(a);
+  EXPECT_TRUE(mentions(a, "sheared stored matrix; kept exactly"));
+  // (3,0,0) → IB_b1 → (0,-1,0) → shear → (-0.5,-1,0) → up 1 → (-0.5,0,0).
+  expect_near(skin_asset(a, nullptr, 0.0)[1], {-0.5, 0, 0});
+}
+
 TEST(AssimpImport, DisjointSkeletonsPickTheLargestAndSaySo) {
   TempDir dir;
   std::vector<DaeJoint> joints = two_joints();
@@ -513,6 +536,14 @@ TEST(AssimpImportErrors, MeshWithoutSkin) {
   const Error e = error_of(write(dir, "a.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
   EXPECT_EQ(e.kind(), Error::Kind::kInput);
   EXPECT_NE(std::string(e.what()).find("no skin"), std::string::npos) << e.what();
+}
+
+TEST(AssimpImportErrors, SkeletonWithoutMesh) {
+  TempDir dir;
+  // Assimp would build a stick-figure mesh for a mesh-less skeleton unless told not to.
+  const Error e = error_of(write(dir, "a.dae", collada(two_joints(), {})));
+  EXPECT_EQ(e.kind(), Error::Kind::kInput);
+  EXPECT_NE(std::string(e.what()).find("no meshes"), std::string::npos) << e.what();
 }
 
 TEST(AssimpImportErrors, MissingFile) {
@@ -747,6 +778,18 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
     const SkinnedAsset g = import_gltf(path, {});
     ASSERT_EQ(g.clips.size(), a.clips.size());
     ASSERT_EQ(g.vertex_count(), a.vertex_count());
+    ASSERT_EQ(g.primitives.size(), a.primitives.size());
+    for (size_t p = 0; p < a.primitives.size(); ++p) {
+      ASSERT_EQ(a.primitives[p].uvs.size(), g.primitives[p].uvs.size());
+      for (size_t v = 0; v < a.primitives[p].uvs.size(); ++v)
+        ASSERT_LT(glm::length(a.primitives[p].uvs[v] - g.primitives[p].uvs[v]), 1e-6f);
+      EXPECT_EQ(a.primitives[p].indices, g.primitives[p].indices);
+    }
+    ASSERT_EQ(g.materials.size(), a.materials.size());
+    for (size_t k = 0; k < a.materials.size(); ++k) {
+      EXPECT_EQ(a.materials[k].name, g.materials[k].name);
+      EXPECT_EQ(a.materials[k].base_color_texture, g.materials[k].base_color_texture);
+    }
     for (size_t c = 0; c < a.clips.size(); ++c)
       for (double t : sample_times(a.clips[c])) {
         const auto pa = skin_asset(a, &a.clips[c], t), pg = skin_asset(g, &g.clips[c], t);
