@@ -13,6 +13,10 @@
 // - the skinned mesh node sits at the scene root without a transform (glTF ignores both).
 // - one bufferView per accessor, 4-byte aligned, no byteStride anywhere; vertex and index
 //   views carry their target, animation and inverse-bind views none.
+// - materials carry the base colour only (metallic 0): the asset names its textures but
+//   holds no image data to embed.
+// - glTF has no clip duration, so a clip whose keys end early gets a rest-valued track
+//   reaching its duration (see with_duration_keys).
 #include "crowdbake/pipeline/gltf_export.h"
 
 #include <algorithm>
