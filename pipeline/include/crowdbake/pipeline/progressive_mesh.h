@@ -1,0 +1,69 @@
+// ProgressiveMesh: the GPU-friendly arrays of Peng & Cao's half-edge-collapse progressive
+// meshes (DESIGN.md §3.3), extended with collapse groups so seams never crack.
+//
+// Vertices and triangles are permuted so that the LoD with n vertices uses the first n
+// vertices and the first triangle_count[n] triangles; a corner index k of such a
+// triangle is resolved by `while (k >= floor) k = collapse_to[k]`, floor = group_floor(n).
+//
+// A collapse group is one position-collapse: every attribute vertex ("wedge") sharing the
+// removed position moves at once (a UV seam vertex has two or more wedges). Counts inside
+// a group are rounded *down* to the group's start, so the vertex budget is never exceeded
+// and no seam ever opens.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace crowdbake {
+
+struct ProgressiveMesh {
+  // vertex_source[i]: the original vertex (index into the concatenated primitives of the
+  // SkinnedAsset it was built from) stored at permuted index i.
+  std::vector<uint32_t> vertex_source;
+  // Permuted triangles, 3 corners each, corners in permuted vertex indices (always
+  // referring to the full-resolution vertex; collapses resolve through collapse_to).
+  std::vector<uint32_t> triangles;
+  // Primitive (material slot) of each permuted triangle.
+  std::vector<uint16_t> triangle_primitive;
+  // ECol': collapse_to[i] < i for every removable vertex, collapse_to[i] == i for
+  // vertices kept at the coarsest level (i < min_vertices).
+  std::vector<uint32_t> collapse_to;
+  // Map: triangle_count[n] for n in [0, vertex_count]; entries below min_vertices equal
+  // triangle_count[min_vertices].
+  std::vector<uint32_t> triangle_count;
+  // First index of the collapse group vertex i belongs to (== i for single-wedge groups
+  // and for vertices below min_vertices).
+  std::vector<uint32_t> group_start;
+  uint32_t min_vertices = 0;
+
+  uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_source.size()); }
+  uint32_t max_triangles() const { return static_cast<uint32_t>(triangles.size() / 3); }
+
+  // The vertex count actually used for a budget of n (clamped to [min, max], then
+  // rounded down to a collapse-group start).
+  uint32_t usable_vertices(uint32_t n) const;
+
+  // CPU reference of the GPU reconstruction: triangle list (permuted vertex indices) of
+  // the LoD with usable_vertices(n) vertices.
+  std::vector<uint32_t> reconstruct(uint32_t n) const;
+};
+
+// One step of the simplifier: all wedges of a position move onto wedges of another
+// position, and the listed triangles disappear. Indices are original (unpermuted).
+struct CollapseRecord {
+  std::vector<std::pair<uint32_t, uint32_t>> wedges;  // (removed vertex, target vertex)
+  std::vector<uint32_t> removed_triangles;
+};
+
+// Builds the permuted arrays from the original triangle list (3 indices per triangle,
+// original vertex ids), per-triangle primitive ids, and the collapse sequence in order.
+// Vertices and triangles never removed keep their original relative order.
+ProgressiveMesh build_progressive_mesh(uint32_t vertex_count, const std::vector<uint32_t>& triangles,
+                                       const std::vector<uint16_t>& triangle_primitive,
+                                       const std::vector<CollapseRecord>& collapses);
+
+// Checks every invariant for every n in [min, max]; returns an empty string when all hold,
+// otherwise a description of the first violation. Used by tests and `--verify` runs.
+std::string check_progressive_mesh(const ProgressiveMesh& pm);
+
+}  // namespace crowdbake

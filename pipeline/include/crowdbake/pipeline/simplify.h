@@ -1,0 +1,57 @@
+// Pose-aware simplification (DESIGN.md §3.2–3.3): half-edge collapses ordered by the
+// dynamic quadric error metric (DQEM), the expected QEM error over poses drawn from the
+// character's pose distribution, recorded as a ProgressiveMesh.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "crowdbake/pipeline/progressive_mesh.h"
+#include "crowdbake/pipeline/skinned_asset.h"
+
+namespace crowdbake {
+
+enum class PoseSource {
+  kSampled,  // Monte Carlo draws from per-joint roll/pitch/yaw densities
+  kClips,    // the clips' own frames (30 fps), evenly subsampled to S
+};
+
+enum class DqemForm {
+  kExact,     // one quadric per vertex per pose; cost averaged over poses (S× memory)
+  kPullback,  // each pose's face quadrics pulled back to the bind pose through the
+              // vertex's skinning transform and summed: one quadric per vertex
+};
+
+struct SimplifyOptions {
+  int samples = 64;  // S: poses, including the bind pose. S = 1 is classic QEM on the bind pose.
+  uint64_t seed = 1;
+  bool stratified = true;  // stratify each joint angle's draws (Latin hypercube)
+  PoseSource pose_source = PoseSource::kSampled;
+  DqemForm form = DqemForm::kPullback;
+  std::string ranges_file;  // optional per-joint range JSON (docs/pose-ranges.md)
+  // Check every collapse for face flips in every sampled pose, not only the bind pose.
+  bool check_flips_in_all_poses = true;
+  int threads = 0;  // 0 = hardware concurrency; the result never depends on it
+};
+
+struct SimplifyReport {
+  int poses = 0;
+  uint32_t positions = 0;       // distinct vertex positions after welding
+  uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
+  uint32_t degenerate_triangles_dropped = 0;
+  uint32_t rejected_flips = 0;
+  double seconds_poses = 0.0, seconds_quadrics = 0.0, seconds_collapse = 0.0;
+  std::vector<std::string> warnings;
+};
+
+// Simplifies as far as topology allows and returns the whole progressive sequence.
+// Throws crowdbake::Error for bad options (S < 1, unreadable ranges file, unknown joints).
+ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options,
+                         SimplifyReport* report = nullptr);
+
+// The character at LoD n (usable_vertices(n) vertices): same skeleton, clips and
+// materials, primitives holding only the kept vertices and the reconstructed triangles.
+SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n);
+
+}  // namespace crowdbake
