@@ -10,7 +10,10 @@
 #include "asset_paths.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "crowdbake/pipeline/gltf_export.h"
 #include "import_comparison.h"
+#include "spectator_character.h"
+#include "temp_dir.h"
 
 namespace crowdbake {
 namespace {
@@ -29,6 +32,13 @@ void expect_importers_agree(const std::string& path) {
   EXPECT_LE(d.max_relative, 1e-4) << "at clip " << d.worst_clip << ", t = " << d.worst_time;
   std::printf("[ cross-check ] %s: %d poses compared, max deviation %.3g of the bbox diagonal\n", path.c_str(),
               d.samples, d.max_relative);
+}
+
+TEST(CrossImporter, GeneratedSpectator) {
+  test::TempDir dir;
+  const auto path = dir / "spectator.glb";
+  export_glb(samples::make_spectator_character(), path.string());
+  expect_importers_agree(path.string());
 }
 
 TEST(CrossImporter, CesiumMan) {
