@@ -7,6 +7,7 @@
 
 #include "crowdbake/pipeline/error.h"
 #include "import/assimp_scene.h"
+#include "import/node_transform.h"
 
 namespace crowdbake::ai {
 namespace {
@@ -67,7 +68,7 @@ Track<T> convert_keys(const Key* keys, unsigned count, const std::string& node, 
 // Whether an animation channel on a node we keep static differs from the node's stored
 // transform (then ignoring it changes the result, and the user is told).
 bool moves(const aiNodeAnim& channel, const glm::dmat4& stored) {
-  const Transform rest = decompose(stored);
+  const Transform rest = decompose_transform(stored);
   const double position_tolerance = 1e-4 * std::max(1.0, glm::length(rest.translation));
   const double scale_tolerance = 1e-4 * std::max(1.0, glm::length(rest.scale));
   for (unsigned k = 0; k < channel.mNumPositionKeys; ++k)

@@ -24,6 +24,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 #include "import/assimp_scene.h"
+#include "import/node_transform.h"
 #include "import/influences.h"
 
 namespace crowdbake {
@@ -142,7 +143,7 @@ Skeleton build_skeleton(const ai::Character& character, const NodeTable& table,
     joint.parent = up >= 0 ? joint_of_node[up] : -1;
     joint.pre_transform = pre;
     double residual = 0.0;
-    joint.rest = ai::decompose(table.local[node], &residual);
+    joint.rest = decompose_transform(table.local[node], &residual);
     if (residual > 1e-5) sheared.push_back(static_cast<int>(skeleton.joints.size()));
     skeleton.joints.push_back(std::move(joint));
   }

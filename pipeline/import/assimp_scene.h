@@ -23,11 +23,6 @@ glm::dmat4 to_glm(const aiMatrix4x4& m);
 
 bool is_finite(const glm::dmat4& m);
 
-// Splits an affine matrix into translation, rotation and scale. residual is the largest
-// element-wise difference between m and the recomposed TRS (nonzero for shear), relative
-// to the largest element of m.
-Transform decompose(const glm::dmat4& m, double* residual = nullptr);
-
 // The node tree in depth-first pre-order (parents before children, siblings in file order).
 struct NodeTable {
   std::vector<const aiNode*> nodes;
