@@ -32,6 +32,11 @@ struct SimplifyOptions {
   std::string ranges_file;  // optional per-joint range JSON (docs/pose-ranges.md)
   // Check every collapse for face flips in every sampled pose, not only the bind pose.
   bool check_flips_in_all_poses = true;
+  // When no collapse passes the strict rules (seams kept, no flip in any pose), go on
+  // with relaxed ones (seams may be crossed, flips checked in the bind pose only) so
+  // coarse levels stay reachable. Levels above SimplifyReport::strict_min_vertices are
+  // unaffected.
+  bool relax_when_stuck = true;
   int threads = 0;  // 0 = hardware concurrency; the result never depends on it
 };
 
@@ -41,6 +46,7 @@ struct SimplifyReport {
   uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
   uint32_t degenerate_triangles_dropped = 0;
   uint32_t rejected_flips = 0;
+  uint32_t strict_min_vertices = 0;  // coarsest level reached under the strict rules
   double seconds_poses = 0.0, seconds_quadrics = 0.0, seconds_collapse = 0.0;
   std::vector<std::string> warnings;
 };

@@ -1,0 +1,298 @@
+#include "simplify/collapse.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace crowdbake {
+namespace {
+
+// note: a collapse may turn a face by at most ~75° in the bind pose (cos = 0.25, the
+// fold guard meshoptimizer uses); in the other sampled poses it only may not flip.
+constexpr double kMinBindNormalDot = 0.25;
+constexpr double kMinPoseNormalDot = 0.0;
+
+struct Candidate {
+  double cost;
+  uint32_t from, to;
+  uint32_t version_from, version_to;
+};
+
+// Lowest cost first; ties broken by ids so the order never depends on the heap's history.
+struct Later {
+  bool operator()(const Candidate& a, const Candidate& b) const {
+    if (a.cost != b.cost) return a.cost > b.cost;
+    if (a.from != b.from) return a.from > b.from;
+    return a.to > b.to;
+  }
+};
+
+enum class Kind { kInterior, kBorder, kLocked };
+
+class Collapser {
+ public:
+  Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses, bool all_poses,
+            DqemCost& cost, CollapseStats& stats)
+      : mesh_(mesh), posed_(posed), poses_(poses), all_poses_(all_poses), cost_(cost), stats_(stats) {
+    const uint32_t positions = mesh.position_count();
+    corner_ = mesh.triangles;
+    triangle_alive_.assign(mesh.triangle_count(), 1);
+    incident_.resize(positions);
+    for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+      for (int k = 0; k < 3; ++k) incident_[position(t, k)].push_back(t);
+    position_alive_.assign(positions, 1);
+    version_.assign(positions, 0);
+  }
+
+  std::vector<CollapseRecord> run(bool relax) {
+    for (uint32_t p = 0; p < mesh_.position_count(); ++p)
+      if (!incident_[p].empty() && kind(p) == Kind::kLocked) ++stats_.locked_positions;
+    std::vector<CollapseRecord> records;
+    push_all();
+    drain(records);
+    stats_.strict_collapses = static_cast<uint32_t>(records.size());
+    if (relax) {
+      relaxed_ = true;
+      push_all();
+      drain(records);
+    }
+    return records;
+  }
+
+ private:
+  void push_all() {
+    for (uint32_t p = 0; p < mesh_.position_count(); ++p)
+      if (position_alive_[p])
+        for (uint32_t x : neighbours(p))
+          if (x > p) push(p, x), push(x, p);
+  }
+
+  void drain(std::vector<CollapseRecord>& records) {
+    while (!queue_.empty()) {
+      const Candidate c = queue_.top();
+      queue_.pop();
+      if (!position_alive_[c.from] || !position_alive_[c.to] || version_[c.from] != c.version_from ||
+          version_[c.to] != c.version_to)
+        continue;
+      CollapseRecord record;
+      if (try_collapse(c.from, c.to, record)) records.push_back(std::move(record));
+    }
+  }
+
+  uint32_t position(uint32_t triangle, int k) const { return mesh_.position_of[corner_[3 * triangle + k]]; }
+  const glm::dvec3& at(uint32_t pose, uint32_t p) const { return posed_[size_t{pose} * mesh_.position_count() + p]; }
+
+  void push(uint32_t from, uint32_t to) {
+    queue_.push({cost_.cost(from, to), from, to, version_[from], version_[to]});
+  }
+
+  void compact(uint32_t p) {
+    std::vector<uint32_t>& list = incident_[p];
+    list.erase(std::remove_if(list.begin(), list.end(), [&](uint32_t t) { return !triangle_alive_[t]; }),
+               list.end());
+  }
+
+  std::vector<uint32_t> neighbours(uint32_t p) {
+    compact(p);
+    std::vector<uint32_t> out;
+    for (uint32_t t : incident_[p])
+      for (int k = 0; k < 3; ++k)
+        if (position(t, k) != p) out.push_back(position(t, k));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  // Interior: every edge has two faces; border: exactly two edges have one face (a simple
+  // border); anything else (non-manifold edges, several borders meeting) stays put.
+  Kind kind(uint32_t p) {
+    compact(p);
+    std::vector<std::pair<uint32_t, int>> edges;
+    for (uint32_t t : incident_[p])
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t x = position(t, k);
+        if (x == p) continue;
+        auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == x; });
+        if (it == edges.end())
+          edges.push_back({x, 1});
+        else
+          ++it->second;
+      }
+    int border = 0;
+    for (const auto& e : edges) {
+      if (e.second > 2) return Kind::kLocked;
+      border += e.second == 1;
+    }
+    return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
+  }
+
+  bool contains(uint32_t t, uint32_t p) const {
+    return position(t, 0) == p || position(t, 1) == p || position(t, 2) == p;
+  }
+
+  // Attribute class (its lowest vertex id) of triangle t's corner at position p.
+  uint32_t klass(uint32_t t, uint32_t p) const { return mesh_.class_of[corner_[3 * t + corner_of(t, p)]]; }
+
+  int corner_of(uint32_t t, uint32_t p) const {
+    for (int k = 0; k < 3; ++k)
+      if (position(t, k) == p) return k;
+    return -1;
+  }
+
+  bool reject_topology() {
+    ++stats_.rejected_topology;
+    return false;
+  }
+
+  bool try_collapse(uint32_t from, uint32_t to, CollapseRecord& record) {
+    compact(from);
+    compact(to);
+    std::vector<uint32_t> shared, moved;
+    for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
+    const Kind k = kind(from);
+    if (k == Kind::kLocked) return reject_topology();
+    if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return reject_topology();
+
+    // Link condition: the only positions next to both ends are the faces' third corners,
+    // otherwise the collapse would pinch the surface into a non-manifold edge.
+    std::vector<uint32_t> third;
+    for (uint32_t t : shared)
+      for (int c = 0; c < 3; ++c)
+        if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
+    std::sort(third.begin(), third.end());
+    std::vector<uint32_t> common;
+    const std::vector<uint32_t> nf = neighbours(from), nt = neighbours(to);
+    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
+    if (common != third) return reject_topology();
+
+    // No face may end up duplicating one that already exists around `to`.
+    for (uint32_t t : moved) {
+      uint32_t x = 0, y = 0;
+      for (int c = 0, n = 0; c < 3; ++c)
+        if (position(t, c) != from) (n++ == 0 ? x : y) = position(t, c);
+      for (uint32_t u : incident_[to])
+        if (contains(u, x) && contains(u, y)) return reject_topology();
+    }
+
+    // Wedge map, on attribute classes: each class of `from` goes to the class of `to` it
+    // shares a removed face with. A used class with no such partner sits across a seam:
+    // collapsing would tear the seam, so refuse.
+    std::vector<std::pair<uint32_t, uint32_t>> map;
+    for (uint32_t t : shared) {
+      const uint32_t v = klass(t, from), w = klass(t, to);
+      auto it = std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == v; });
+      if (it == map.end())
+        map.push_back({v, w});
+      else if (it->second != w && !relaxed_)
+        return reject_topology();
+    }
+    for (uint32_t t : moved) {
+      const uint32_t v = klass(t, from);
+      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; })) continue;
+      const int64_t w = relaxed_ ? nearest_class(to, v) : -1;
+      if (w < 0) return reject_topology();
+      map.push_back({v, static_cast<uint32_t>(w)});
+    }
+    auto target = [&](uint32_t v) -> int64_t {
+      for (const auto& m : map)
+        if (m.first == mesh_.class_of[v]) return m.second;
+      return -1;
+    };
+
+    if (flips(from, to, moved)) {
+      ++stats_.rejected_flips;
+      return false;
+    }
+
+    // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
+    for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
+      const uint32_t v = mesh_.wedges[i];
+      const int64_t w = target(v);
+      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : map.front().second});
+    }
+    record.removed_triangles = shared;
+    for (uint32_t t : shared) triangle_alive_[t] = 0;
+    for (uint32_t t : moved) {
+      uint32_t& corner = corner_[3 * t + corner_of(t, from)];
+      corner = static_cast<uint32_t>(target(corner));
+      incident_[to].push_back(t);
+    }
+    position_alive_[from] = 0;
+    incident_[from].clear();
+    cost_.merge(from, to);
+
+    // `to` has a new quadric; its neighbours have new faces whose validity may differ.
+    ++version_[to];
+    const std::vector<uint32_t> ring = neighbours(to);
+    for (uint32_t x : ring) ++version_[x];
+    for (uint32_t x : ring) {
+      push(to, x), push(x, to);
+      for (uint32_t y : neighbours(x))
+        if (y != to) push(x, y), push(y, x);
+    }
+    return true;
+  }
+
+  // The attribute class at position p in the same primitive as class v with the nearest
+  // UV (lowest id on ties), or -1 when p has none in that primitive.
+  int64_t nearest_class(uint32_t p, uint32_t v) const {
+    int64_t best = -1;
+    float best_distance = 0.0f;
+    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
+      const uint32_t w = mesh_.wedges[i];
+      if (mesh_.class_of[w] != w || mesh_.primitive[w] != mesh_.primitive[v]) continue;
+      const glm::vec2 d = mesh_.uv[w] - mesh_.uv[v];
+      const float distance = glm::dot(d, d);
+      if (best < 0 || distance < best_distance) best = w, best_distance = distance;
+    }
+    return best;
+  }
+
+  // True when moving `from` onto `to` turns a surviving face too far in the bind pose or
+  // flips it in any sampled pose.
+  bool flips(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
+    const uint32_t poses = all_poses_ && !relaxed_ ? poses_ : 1;
+    for (uint32_t s = 0; s < poses; ++s)
+      for (uint32_t t : moved) {
+        glm::dvec3 p[3], q[3];
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t x = position(t, c);
+          p[c] = at(s, x);
+          q[c] = x == from ? at(s, to) : p[c];
+        }
+        const glm::dvec3 before = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
+        const double lb = glm::length(before), la = glm::length(after);
+        // note: a face with no area has no orientation to lose.
+        if (!(lb > 0.0)) continue;
+        const double limit = s == 0 ? kMinBindNormalDot : kMinPoseNormalDot;
+        if (!(la > 0.0) || glm::dot(before, after) <= limit * lb * la) return true;
+      }
+    return false;
+  }
+
+  const SimplifyMesh& mesh_;
+  const std::vector<glm::dvec3>& posed_;
+  uint32_t poses_;
+  bool all_poses_;
+  DqemCost& cost_;
+  CollapseStats& stats_;
+
+  std::vector<uint32_t> corner_;  // current vertex of every triangle corner
+  std::vector<char> triangle_alive_;
+  std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
+  std::vector<char> position_alive_;
+  std::vector<uint32_t> version_;
+  std::priority_queue<Candidate, std::vector<Candidate>, Later> queue_;
+  bool relaxed_ = false;
+};
+
+}  // namespace
+
+std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed,
+                                         uint32_t poses, bool all_poses, bool relax, DqemCost& cost,
+                                         CollapseStats& stats) {
+  return Collapser(mesh, posed, poses, all_poses, cost, stats).run(relax);
+}
+
+}  // namespace crowdbake

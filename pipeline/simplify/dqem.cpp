@@ -1,0 +1,99 @@
+#include "simplify/dqem.h"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace crowdbake {
+namespace {
+
+struct BorderEdge {
+  uint32_t a, b, c;  // edge a-b of the triangle (a, b, c)
+};
+
+// Edges used by exactly one triangle, found on positions so seams are not borders.
+std::vector<BorderEdge> border_edges(const SimplifyMesh& mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, std::pair<int, BorderEdge>> edges;
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.position_of[mesh.triangles[3 * t + k]];
+      const uint32_t b = mesh.position_of[mesh.triangles[3 * t + (k + 1) % 3]];
+      const uint32_t c = mesh.position_of[mesh.triangles[3 * t + (k + 2) % 3]];
+      auto& e = edges[{std::min(a, b), std::max(a, b)}];
+      if (e.first++ == 0) e.second = {a, b, c};
+    }
+  std::vector<BorderEdge> out;
+  for (const auto& [key, e] : edges)
+    if (e.first == 1) out.push_back(e.second);
+  return out;
+}
+
+// Face and border quadrics of every position in one pose.
+void accumulate_pose(const SimplifyMesh& mesh, const std::vector<BorderEdge>& borders, const glm::dvec3* x,
+                     std::vector<Quadric>& acc) {
+  acc.assign(mesh.position_count(), Quadric{});
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t a = mesh.position_of[mesh.triangles[3 * t]];
+    const uint32_t b = mesh.position_of[mesh.triangles[3 * t + 1]];
+    const uint32_t c = mesh.position_of[mesh.triangles[3 * t + 2]];
+    const Quadric q = triangle_quadric(x[a], x[b], x[c]);
+    acc[a] += q, acc[b] += q, acc[c] += q;
+  }
+  for (const BorderEdge& e : borders) {
+    const glm::dvec3 edge = x[e.b] - x[e.a];
+    const glm::dvec3 n = glm::cross(edge, x[e.c] - x[e.a]);
+    const glm::dvec3 m = glm::cross(edge, n);
+    const double length = glm::length(m);
+    // note: a zero-length edge or a zero-area face has no perpendicular plane.
+    if (!(length > 0.0) || !std::isfinite(length)) continue;
+    const Quadric q = plane_quadric(m / length, x[e.a], kBorderWeight * glm::dot(edge, edge));
+    acc[e.a] += q, acc[e.b] += q;
+  }
+}
+
+}  // namespace
+
+DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh& mesh,
+                   const std::vector<std::vector<glm::dmat4>>& poses, const std::vector<glm::dvec3>& posed)
+    : form_(form),
+      poses_(static_cast<uint32_t>(poses.size())),
+      positions_(mesh.position_count()),
+      posed_(posed) {
+  const std::vector<BorderEdge> borders = border_edges(mesh);
+  quadrics_.assign(form == DqemForm::kExact ? size_t{positions_} * poses_ : positions_, Quadric{});
+  std::vector<Quadric> acc;
+  const double weight = 1.0 / poses_;
+  for (uint32_t s = 0; s < poses_; ++s) {
+    accumulate_pose(mesh, borders, posed.data() + size_t{s} * positions_, acc);
+    for (uint32_t p = 0; p < positions_; ++p) {
+      if (form == DqemForm::kExact)
+        quadrics_[size_t{p} * poses_ + s] = acc[p];
+      else
+        quadrics_[p] += pull_back(acc[p], position_transform(asset, mesh, p, poses[s])) * weight;
+    }
+  }
+}
+
+double DqemCost::cost(uint32_t from, uint32_t to) const {
+  if (form_ == DqemForm::kPullback) {
+    Quadric q = quadrics_[from];
+    q += quadrics_[to];
+    return evaluate(q, posed_[to]);
+  }
+  double sum = 0.0;
+  const Quadric* qf = &quadrics_[size_t{from} * poses_];
+  const Quadric* qt = &quadrics_[size_t{to} * poses_];
+  for (uint32_t s = 0; s < poses_; ++s) {
+    Quadric q = qf[s];
+    q += qt[s];
+    sum += evaluate(q, posed_[size_t{s} * positions_ + to]);
+  }
+  return sum / poses_;
+}
+
+void DqemCost::merge(uint32_t from, uint32_t to) {
+  const size_t n = form_ == DqemForm::kExact ? poses_ : 1;
+  for (size_t s = 0; s < n; ++s) quadrics_[size_t{to} * n + s] += quadrics_[size_t{from} * n + s];
+}
+
+}  // namespace crowdbake

@@ -1,0 +1,109 @@
+// simplify(): poses → welded mesh → DQEM quadrics → collapses → ProgressiveMesh.
+#include "crowdbake/pipeline/simplify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "crowdbake/pipeline/error.h"
+#include "simplify/collapse.h"
+#include "simplify/dqem.h"
+#include "simplify/pose_sampler.h"
+#include "simplify/simplify_mesh.h"
+
+namespace crowdbake {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options, SimplifyReport* report) {
+  if (options.samples < 1)
+    throw Error(Error::Kind::kUsage, asset.source, "samples must be at least 1 (S = 1 is classic QEM on the bind pose)");
+  SimplifyReport local;
+  SimplifyReport& r = report ? *report : local;
+
+  auto start = std::chrono::steady_clock::now();
+  PoseDistribution distribution = estimate_pose_distribution(asset);
+  if (!options.ranges_file.empty()) apply_pose_ranges(distribution, asset.skeleton, options.ranges_file);
+  const std::vector<std::vector<glm::dmat4>> poses = sample_poses(asset, distribution, options);
+  const SimplifyMesh mesh = build_simplify_mesh(asset);
+  const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
+  r.poses = static_cast<int>(poses.size());
+  r.positions = mesh.position_count();
+  r.degenerate_triangles_dropped = mesh.degenerate_triangles;
+  r.seconds_poses = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  DqemCost cost(options.form, asset, mesh, poses, posed);
+  r.seconds_quadrics = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  CollapseStats stats;
+  const std::vector<CollapseRecord> records =
+      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
+                   options.relax_when_stuck, cost, stats);
+  ProgressiveMesh pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
+  r.seconds_collapse = seconds_since(start);
+  uint32_t removed = 0;
+  for (size_t i = 0; i < stats.strict_collapses; ++i) removed += static_cast<uint32_t>(records[i].wedges.size());
+  r.strict_min_vertices = mesh.vertex_count - removed;
+
+  r.locked_vertices = stats.locked_positions;
+  r.rejected_flips = stats.rejected_flips;
+  if (mesh.degenerate_triangles > 0)
+    r.warnings.push_back(std::to_string(mesh.degenerate_triangles) +
+                         " triangles with two corners at one position were dropped");
+  if (stats.locked_positions > 0)
+    r.warnings.push_back(std::to_string(stats.locked_positions) +
+                         " vertices sit on non-manifold edges or where several borders meet; they are kept as they are");
+  return pm;
+}
+
+SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n) {
+  const uint32_t used = pm.usable_vertices(n);
+  const std::vector<uint32_t> triangles = pm.reconstruct(used);
+
+  // Original vertex id -> (primitive, index in primitive).
+  std::vector<std::pair<uint32_t, uint32_t>> origin;
+  for (uint32_t p = 0; p < asset.primitives.size(); ++p)
+    for (uint32_t v = 0; v < asset.primitives[p].vertex_count(); ++v) origin.push_back({p, v});
+
+  SkinnedAsset lod = asset;
+  std::vector<uint32_t> local(used);
+  for (Primitive& p : lod.primitives) {
+    p.positions.clear(), p.normals.clear(), p.uvs.clear(), p.joints.clear(), p.weights.clear(), p.indices.clear();
+  }
+  for (uint32_t i = 0; i < used; ++i) {
+    const auto [prim, v] = origin[pm.vertex_source[i]];
+    const Primitive& src = asset.primitives[prim];
+    Primitive& dst = lod.primitives[prim];
+    local[i] = static_cast<uint32_t>(dst.positions.size());
+    dst.positions.push_back(src.positions[v]);
+    if (!src.normals.empty()) dst.normals.push_back(src.normals[v]);
+    if (!src.uvs.empty()) dst.uvs.push_back(src.uvs[v]);
+    dst.joints.push_back(src.joints[v]);
+    dst.weights.push_back(src.weights[v]);
+  }
+  for (size_t t = 0; t < triangles.size() / 3; ++t) {
+    const uint32_t prim = pm.triangle_primitive[t];
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t i = triangles[3 * t + c];
+      // note: collapses map wedges only within shared faces, so a face's corners always
+      // stay in the face's own primitive.
+      if (origin[pm.vertex_source[i]].first != prim)
+        throw std::logic_error("extract_lod: a triangle's corner left its primitive");
+      lod.primitives[prim].indices.push_back(local[i]);
+    }
+  }
+  // note: a primitive whose faces all collapsed away is dropped; empty ones are invalid glTF.
+  lod.primitives.erase(std::remove_if(lod.primitives.begin(), lod.primitives.end(),
+                                      [](const Primitive& p) { return p.indices.empty(); }),
+                       lod.primitives.end());
+  return lod;
+}
+
+}  // namespace crowdbake
