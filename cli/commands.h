@@ -5,6 +5,7 @@
 #include <string>
 
 #include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/simplify.h"
 
 namespace crowdbake::cli {
 
@@ -15,5 +16,17 @@ struct InspectSettings {
 };
 
 int run_inspect(const InspectSettings& settings);
+
+struct LodSettings {
+  std::string input;
+  std::string output;
+  double ratio = 0.0;     // kept fraction of vertices, (0, 1]; 0 = unset
+  int64_t vertices = 0;   // or an absolute count; 0 = unset
+  bool quiet = false;
+  ImportOptions import;
+  SimplifyOptions simplify;
+};
+
+int run_lod(const LodSettings& settings);
 
 }  // namespace crowdbake::cli

@@ -37,6 +37,27 @@ int main(int argc, char** argv) {
   inspect_cmd->add_flag("--json", inspect.json, "Print one JSON object to stdout");
   add_import_options(*inspect_cmd, inspect.import);
 
+  crowdbake::cli::LodSettings lod;
+  CLI::App* lod_cmd = app.add_subcommand(
+      "lod", "Simplify a character with the pose-aware metric and write one level of detail as a skinned .glb");
+  lod_cmd->add_option("INPUT", lod.input, "Character file")->required();
+  lod_cmd->add_option("-o,--output", lod.output, "Output .glb")->required();
+  auto* ratio = lod_cmd->add_option("--ratio", lod.ratio, "Kept fraction of vertices, in (0, 1]");
+  auto* count = lod_cmd->add_option("--vertices", lod.vertices, "Kept number of vertices");
+  ratio->excludes(count);
+  count->excludes(ratio);
+  lod_cmd->add_option("--samples", lod.simplify.samples, "Poses S, bind pose included (1 = classic QEM)");
+  lod_cmd->add_option("--seed", lod.simplify.seed, "Seed of the pose sampler");
+  lod_cmd->add_option("--pose-source", lod.simplify.pose_source, "sampled or clips")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, crowdbake::PoseSource>{
+          {"sampled", crowdbake::PoseSource::kSampled}, {"clips", crowdbake::PoseSource::kClips}}));
+  lod_cmd->add_option("--form", lod.simplify.form, "DQEM form: pullback (one quadric per vertex) or exact")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, crowdbake::DqemForm>{
+          {"pullback", crowdbake::DqemForm::kPullback}, {"exact", crowdbake::DqemForm::kExact}}));
+  lod_cmd->add_option("--ranges", lod.simplify.ranges_file, "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
+  lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");
+  add_import_options(*lod_cmd, lod.import);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -50,6 +71,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
+    if (*lod_cmd) return crowdbake::cli::run_lod(lod);
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
     return e.exit_code();
