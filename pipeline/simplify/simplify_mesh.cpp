@@ -133,11 +133,17 @@ Skin skin_of(const SkinnedAsset& asset, uint32_t vertex) {
   return {};
 }
 
+// note: float weights sum to 1 only within rounding; dividing by the sum in double keeps
+// the bind pose an exact identity (so one bind pose is exactly classic QEM).
 glm::dmat4 blend(const Skin& s, const std::vector<glm::dmat4>& pose) {
   glm::dmat4 m(0.0);
+  double sum = 0.0;
   for (int k = 0; k < 4; ++k)
-    if (s.weights[k] != 0.0f) m += static_cast<double>(s.weights[k]) * pose[s.joints[k]];
-  return m;
+    if (s.weights[k] != 0.0f) {
+      m += static_cast<double>(s.weights[k]) * pose[s.joints[k]];
+      sum += s.weights[k];
+    }
+  return sum > 0.0 ? m * (1.0 / sum) : glm::dmat4(1.0);
 }
 
 }  // namespace

@@ -1,0 +1,352 @@
+// The simplifier on hard inputs (DESIGN.md §4): every case must give a valid
+// ProgressiveMesh (every invariant, every n), finite costs, finite skinned LoDs, and a
+// reconstruction equal to replaying the recorded collapses.
+#include "crowdbake/pipeline/simplify.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/pose_evaluator.h"
+#include "simplify/collapse.h"
+#include "simplify/dqem.h"
+#include "simplify/pose_sampler.h"
+#include "simplify/simplify_mesh.h"
+#include "crowdbake/pipeline/import.h"
+#include "gltf_test_builder.h"
+#include "simplify_test_meshes.h"
+#include "temp_dir.h"
+
+namespace crowdbake {
+namespace {
+
+using Triangle = std::array<uint32_t, 3>;
+
+// Canonical multiset of triangles (rotated so the smallest index leads; winding kept).
+std::vector<Triangle> canonical(const std::vector<uint32_t>& list) {
+  std::vector<Triangle> out;
+  for (size_t t = 0; t + 2 < list.size(); t += 3) {
+    Triangle tri = {list[t], list[t + 1], list[t + 2]};
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    out.push_back(tri);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Replays collapse records on the original triangle list, independently of the
+// ProgressiveMesh arrays, and compares with reconstruct() at every level.
+void expect_reconstruction_equals_replay(const SimplifyMesh& mesh, const std::vector<CollapseRecord>& records,
+                                         const ProgressiveMesh& pm) {
+  std::vector<uint32_t> current = mesh.triangles;
+  std::vector<char> alive(mesh.triangle_count(), 1);
+  std::vector<uint32_t> remap(mesh.vertex_count);
+  for (uint32_t v = 0; v < mesh.vertex_count; ++v) remap[v] = v;
+  uint32_t vertices = mesh.vertex_count;
+  auto compare = [&]() {
+    std::vector<uint32_t> replay;
+    for (uint32_t t = 0; t < alive.size(); ++t)
+      if (alive[t])
+        for (int c = 0; c < 3; ++c) replay.push_back(current[3 * t + c]);
+    std::vector<uint32_t> rebuilt = pm.reconstruct(vertices);
+    for (uint32_t& i : rebuilt) i = pm.vertex_source[i];
+    ASSERT_EQ(canonical(rebuilt), canonical(replay)) << "at " << vertices << " vertices";
+  };
+  compare();
+  for (const CollapseRecord& r : records) {
+    for (const auto& [from, to] : r.wedges)
+      for (uint32_t& c : current)
+        if (c == from) c = to;
+    for (uint32_t t : r.removed_triangles) alive[t] = 0;
+    vertices -= static_cast<uint32_t>(r.wedges.size());
+    compare();
+  }
+}
+
+struct Outcome {
+  ProgressiveMesh pm;
+  std::vector<CollapseRecord> records;
+};
+
+// Runs the stages of simplify() by hand so the records can be replayed, checking costs.
+Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
+  PoseDistribution distribution = estimate_pose_distribution(asset);
+  const auto poses = sample_poses(asset, distribution, options);
+  const SimplifyMesh mesh = build_simplify_mesh(asset);
+  const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
+  for (const glm::dvec3& x : posed) EXPECT_TRUE(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z));
+  DqemCost cost(options.form, asset, mesh, poses, posed);
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.position_of[mesh.triangles[3 * t + k]];
+      const uint32_t b = mesh.position_of[mesh.triangles[3 * t + (k + 1) % 3]];
+      const double c = cost.cost(a, b);
+      EXPECT_TRUE(std::isfinite(c) && c >= 0.0) << "cost " << c;
+    }
+  CollapseStats stats;
+  Outcome out;
+  out.records = collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
+                             options.relax_when_stuck, cost, stats);
+  out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, out.records);
+  expect_reconstruction_equals_replay(mesh, out.records, out.pm);
+  return out;
+}
+
+void expect_valid(const SkinnedAsset& asset, int samples = 16) {
+  for (DqemForm form : {DqemForm::kPullback, DqemForm::kExact}) {
+    SCOPED_TRACE(form == DqemForm::kExact ? "exact" : "pullback");
+    SimplifyOptions options;
+    options.samples = samples;
+    options.form = form;
+    const Outcome o = run_stages(asset, options);
+    EXPECT_EQ(check_progressive_mesh(o.pm), "");
+    EXPECT_EQ(o.pm.vertex_count(), asset.vertex_count());
+    EXPECT_FALSE(o.records.empty()) << "nothing was simplified";
+    // The public entry point gives the same arrays.
+    const ProgressiveMesh pm = simplify(asset, options);
+    EXPECT_EQ(pm.triangles, o.pm.triangles);
+    EXPECT_EQ(pm.collapse_to, o.pm.collapse_to);
+    // Every level skins to finite positions in the middle of the clip.
+    for (uint32_t n = pm.min_vertices; n <= pm.vertex_count(); n += std::max(1u, pm.vertex_count() / 7)) {
+      const SkinnedAsset lod = extract_lod(asset, pm, n);
+      if (lod.primitives.empty()) continue;
+      validate_asset(lod);
+      for (const glm::dvec3& p : skin_asset(lod, &lod.clips[0], 0.5))
+        ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    }
+  }
+}
+
+SkinnedAsset from(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
+  return test::bending_character(positions, indices);
+}
+
+TEST(SimplifyHardCases, BumpyGridWithBorder) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(8, 8, p, i, 0.05f);
+  expect_valid(from(p, i));
+}
+
+TEST(SimplifyHardCases, ClosedMeshWithoutBorder) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::sphere(8, 12, p, i);
+  const SkinnedAsset a = from(p, i);
+  expect_valid(a);
+  SimplifyOptions o;
+  EXPECT_LT(simplify(a, o).min_vertices, a.vertex_count() / 4);  // a closed surface simplifies far
+}
+
+TEST(SimplifyHardCases, ZeroAreaAndSliverTriangles) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i);
+  // Squash a row so its faces become zero-area, and make a sliver.
+  for (glm::vec3& v : p)
+    if (v.y > 0.49f && v.y < 0.51f) v.y = 1.0f / 3.0f;
+  p[3].x += 1e-7f;
+  expect_valid(from(p, i));
+}
+
+TEST(SimplifyHardCases, CoincidentVerticesAreWeldedAndMoveTogether) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(4, 4, p, i, 0.1f);
+  // Split the grid along x = 0.5 into two halves with duplicated vertices (a seam).
+  const size_t n = p.size();
+  std::vector<uint32_t> copy(n);
+  for (size_t v = 0; v < n; ++v) {
+    copy[v] = static_cast<uint32_t>(p.size());
+    p.push_back(p[v]);
+  }
+  for (size_t t = 0; t < i.size(); t += 3) {
+    float cx = 0;
+    for (int c = 0; c < 3; ++c) cx += p[i[t + c]].x / 3;
+    if (cx > 0.5f)
+      for (int c = 0; c < 3; ++c) i[t + c] = copy[i[t + c]];
+  }
+  SkinnedAsset a = from(p, i);
+  a.primitives[0].uvs.resize(p.size());
+  for (size_t v = 0; v < p.size(); ++v) a.primitives[0].uvs[v] = {v < n ? 0.0f : 1.0f, p[v].y};
+  expect_valid(a);
+  // Seam vertices share a position: at every level both copies are kept or both removed.
+  const ProgressiveMesh pm = simplify(a, SimplifyOptions{});
+  std::vector<uint32_t> where(pm.vertex_count());
+  for (uint32_t k = 0; k < pm.vertex_count(); ++k) where[pm.vertex_source[k]] = k;
+  for (uint32_t n_used = pm.min_vertices; n_used <= pm.vertex_count(); ++n_used) {
+    const uint32_t u = pm.usable_vertices(n_used);
+    for (size_t v = 0; v < n; ++v)
+      if (std::fabs(p[v].x - 0.5f) < 1e-6f) ASSERT_EQ(where[v] < u, where[copy[v]] < u) << "level " << u;
+  }
+}
+
+TEST(SimplifyHardCases, PerfectlyFlatRegionHasSingularQuadrics) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(10, 10, p, i, 0.0f);
+  expect_valid(from(p, i));
+}
+
+TEST(SimplifyHardCases, SingleTriangle) {
+  expect_valid(from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}));
+}
+
+TEST(SimplifyHardCases, StripThatIsAllBorder) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(1, 12, p, i, 0.02f);
+  expect_valid(from(p, i));
+}
+
+TEST(SimplifyHardCases, NonManifoldEdgeAndVertex) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(4, 4, p, i, 0.05f);
+  // A fin: a third face on an interior edge (non-manifold edge).
+  p.push_back({0.5f, 0.5f, 1.0f});
+  i.insert(i.end(), {6, 12, static_cast<uint32_t>(p.size() - 1)});
+  // A bow-tie: a separate fan touching the grid in one vertex (non-manifold vertex).
+  p.push_back({1.5f, 1.5f, 0.0f});
+  p.push_back({1.5f, 1.0f, 0.0f});
+  i.insert(i.end(), {24, static_cast<uint32_t>(p.size() - 2), static_cast<uint32_t>(p.size() - 1)});
+  const SkinnedAsset a = from(p, i);
+  expect_valid(a);
+  SimplifyReport report;
+  simplify(a, SimplifyOptions{}, &report);
+  EXPECT_GT(report.locked_vertices, 0u);
+  ASSERT_FALSE(report.warnings.empty());
+}
+
+TEST(SimplifyHardCases, DuplicatedFaces) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(4, 4, p, i, 0.05f);
+  i.insert(i.end(), i.begin(), i.begin() + 9);
+  expect_valid(from(p, i));
+}
+
+TEST(SimplifyHardCases, UnnormalisedAndAllZeroWeightsFromAFile) {
+  test::TempDir dir;
+  test::GltfBuilder b = test::two_bone_character();
+  // Vertex 0 sums to 0.2, vertex 1 to 1.7, vertex 2 has no weight at all.
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] =
+      b.floats({0.1f, 0.1f, 0, 0, 1.0f, 0.7f, 0, 0, 0, 0, 0, 0}, "VEC4");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = b.u16({0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0}, "VEC4");
+  const SkinnedAsset a = import_asset(b.write(dir / "weights.gltf").string());
+  EXPECT_EQ(a.stats.vertices_without_weights, 1);
+  expect_valid(a);
+}
+
+TEST(SimplifyHardCases, FarFromOriginHugeAndTinyScales) {
+  for (const auto& [offset, scale] : std::vector<std::pair<float, float>>{{1e6f, 1.0f}, {0.0f, 1e-6f}, {0.0f, 1e6f}}) {
+    SCOPED_TRACE(std::to_string(offset) + " " + std::to_string(scale));
+    std::vector<glm::vec3> p;
+    std::vector<uint32_t> i;
+    test::sphere(6, 10, p, i);
+    for (glm::vec3& v : p) v = v * scale + glm::vec3(offset);
+    SkinnedAsset a = from(p, i);
+    a.skeleton.joints[1].rest.translation = glm::dvec3(offset) + glm::dvec3(0, 0.0, 0);
+    a.skeleton.joints[1].inverse_bind = glm::dmat4(1.0);
+    a.skeleton.joints[1].inverse_bind[3] = glm::dvec4(-glm::dvec3(offset), 1);
+    expect_valid(a);
+  }
+}
+
+TEST(SimplifyHardCases, WeightsOnAJointWithoutAnimation) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  a.clips[0].channels[1] = JointChannels{};  // the tip never moves
+  for (auto& w : a.primitives[0].weights) w = {0.0f, 1.0f, 0.0f, 0.0f};
+  expect_valid(a);
+}
+
+TEST(SimplifyHardCases, JointsAtGimbalLock) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  // Pitch exactly ±90° (about Y) and a roll on top.
+  a.clips[0].channels[1].rotation.values = {glm::angleAxis(M_PI / 2, glm::dvec3(0, 1, 0)),
+                                            glm::angleAxis(-M_PI / 2, glm::dvec3(0, 1, 0)) *
+                                                glm::angleAxis(0.3, glm::dvec3(1, 0, 0))};
+  expect_valid(a);
+}
+
+TEST(SimplifyHardCases, SingleFrameClipsAndNoClips) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  a.clips[0].duration = 0.0;
+  a.clips[0].channels[1].rotation.times = {0.0};
+  a.clips[0].channels[1].rotation.values = {glm::angleAxis(0.5, glm::dvec3(0, 0, 1))};
+  expect_valid(a);
+  a.clips.clear();
+  SimplifyOptions o;
+  EXPECT_EQ(check_progressive_mesh(simplify(a, o)), "");
+}
+
+TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  // Split faces into two primitives sharing boundary positions (distinct vertices).
+  Primitive second = a.primitives[0];
+  second.indices.assign(a.primitives[0].indices.begin() + 36, a.primitives[0].indices.end());
+  a.primitives[0].indices.resize(36);
+  a.primitives.push_back(second);
+  expect_valid(a);
+}
+
+TEST(SimplifyOptionsErrors, ZeroSamplesIsAUsageError) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(2, 2, p, i);
+  SimplifyOptions o;
+  o.samples = 0;
+  EXPECT_THROW(simplify(from(p, i), o), Error);
+}
+
+TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::sphere(10, 14, p, i);
+  const SkinnedAsset a = from(p, i);
+  SimplifyOptions one, many;
+  one.threads = 1;
+  many.threads = 4;
+  const ProgressiveMesh x = simplify(a, one), y = simplify(a, many);
+  EXPECT_EQ(x.vertex_source, y.vertex_source);
+  EXPECT_EQ(x.triangles, y.triangles);
+  EXPECT_EQ(x.collapse_to, y.collapse_to);
+}
+
+// Random meshes (jittered grids with random holes) on random skeleton bends.
+TEST(SimplifyProperty, RandomMeshesKeepEveryInvariant) {
+  for (uint32_t seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::vector<glm::vec3> p;
+    std::vector<uint32_t> i;
+    test::grid(3 + rng() % 6, 3 + rng() % 6, p, i, 0.2f, seed);
+    std::vector<uint32_t> kept;
+    for (size_t t = 0; t < i.size(); t += 3)
+      if (rng() % 7 != 0) kept.insert(kept.end(), i.begin() + t, i.begin() + t + 3);
+    if (kept.empty()) continue;
+    SkinnedAsset a = test::bending_character(p, kept, 0.2f + 0.6f * static_cast<float>(rng() % 100) / 100.0f);
+    a.clips[0].channels[1].rotation.values[1] =
+        glm::angleAxis(3.0 * (rng() % 100) / 100.0, glm::normalize(glm::dvec3(rng() % 5, 1 + rng() % 5, rng() % 5)));
+    expect_valid(a, 1 + static_cast<int>(rng() % 32));
+  }
+}
+
+}  // namespace
+}  // namespace crowdbake
