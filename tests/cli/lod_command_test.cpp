@@ -1,0 +1,129 @@
+// `crowdbake lod`: writes a valid skinned LoD, and bad options give one clear error with
+// nothing written.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.h"
+#include "gltf_test_builder.h"
+
+namespace crowdbake {
+namespace {
+
+// A bumpy grid skinned to the two-bone chain: enough faces to simplify.
+std::filesystem::path write_grid_character(const test::TempDir& dir) {
+  test::GltfBuilder b = test::two_bone_character();
+  std::vector<float> pos;
+  std::vector<uint16_t> joints, idx;
+  std::vector<float> weights;
+  const int n = 12;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) {
+      const float fy = 2.0f * y / n;
+      pos.insert(pos.end(), {static_cast<float>(x) / n, fy, 0.02f * static_cast<float>((x * 7 + y * 3) % 5)});
+      joints.insert(joints.end(), {0, 1, 0, 0});
+      weights.insert(weights.end(), {1.0f - fy / 2.0f, fy / 2.0f, 0.0f, 0.0f});
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const uint16_t a = static_cast<uint16_t>(y * (n + 1) + x), c = static_cast<uint16_t>(a + n + 1);
+      idx.insert(idx.end(), {a, static_cast<uint16_t>(a + 1), static_cast<uint16_t>(c + 1), a,
+                             static_cast<uint16_t>(c + 1), c});
+    }
+  nlohmann::json& prim = b.doc["meshes"][0]["primitives"][0];
+  prim["attributes"]["POSITION"] = b.floats(pos, "VEC3");
+  prim["attributes"]["JOINTS_0"] = b.u16(joints, "VEC4");
+  prim["attributes"]["WEIGHTS_0"] = b.floats(weights, "VEC4");
+  prim["indices"] = b.u16(idx, "SCALAR");
+  return b.write(dir / "grid.gltf");
+}
+
+void expect_usage_error(const std::vector<std::string>& args, const std::string& fragment,
+                        const std::filesystem::path& output, int code = 2) {
+  const test::CommandResult r = test::run_crowdbake(args);
+  EXPECT_EQ(r.exit_code, code) << r.err;
+  EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(output));
+  EXPECT_FALSE(std::filesystem::exists(output.string() + ".tmp"));
+}
+
+TEST(LodCommand, WritesTheRequestedLevel) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  const auto output = dir / "lod.glb";
+  const test::CommandResult r = test::run_crowdbake({"lod", input.string(), "--ratio", "0.25", "-o", output.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("vertices   42 of 169"), std::string::npos) << r.out;
+  const test::CommandResult info = test::run_crowdbake({"inspect", output.string(), "--json"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["vertices"], 42);
+  EXPECT_EQ(j["joints"], 2);
+  EXPECT_EQ(j["clips"].size(), 1u);
+  EXPECT_LT(j["triangles"].get<int>(), 288);
+}
+
+TEST(LodCommand, SameOptionsGiveByteIdenticalFiles) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  for (const char* name : {"a.glb", "b.glb"})
+    ASSERT_EQ(test::run_crowdbake({"lod", input.string(), "--vertices", "60", "--samples", "32", "--seed", "7", "-o",
+                                   (dir / name).string(), "--quiet"})
+                  .exit_code,
+              0);
+  EXPECT_EQ(test::slurp(dir / "a.glb"), test::slurp(dir / "b.glb"));
+}
+
+TEST(LodCommandErrors, RatioOutOfRange) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error({"lod", input.string(), "--ratio", "1.5", "-o", (dir / "x.glb").string()}, "--ratio must be in (0, 1]",
+                     dir / "x.glb");
+  expect_usage_error({"lod", input.string(), "--ratio", "0", "-o", (dir / "x.glb").string()}, "--ratio", dir / "x.glb");
+}
+
+TEST(LodCommandErrors, VerticesOutOfRange) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error({"lod", input.string(), "--vertices", "5000", "-o", (dir / "x.glb").string()},
+                     "more than the character's 169 vertices", dir / "x.glb");
+  expect_usage_error({"lod", input.string(), "--vertices", "-3", "-o", (dir / "x.glb").string()},
+                     "--vertices must be at least 1", dir / "x.glb");
+}
+
+TEST(LodCommandErrors, ZeroSamples) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--samples", "0", "-o", (dir / "x.glb").string()},
+                     "--samples must be at least 1", dir / "x.glb");
+}
+
+TEST(LodCommandErrors, UnreadableRangesFile) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges", (dir / "none.json").string(), "-o",
+                      (dir / "x.glb").string()},
+                     "none.json: pose ranges: file not found", dir / "x.glb", 1);
+}
+
+TEST(LodCommandErrors, RangesNamingUnknownJoints) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  std::ofstream(dir / "ranges.json") << R"({"joints": {"tail": {"roll": [0, 10]}}})";
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges", (dir / "ranges.json").string(), "-o",
+                      (dir / "x.glb").string()},
+                     "unknown joint 'tail'", dir / "x.glb", 1);
+}
+
+TEST(LodCommandErrors, RatioAndVerticesTogether) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  const test::CommandResult r =
+      test::run_crowdbake({"lod", input.string(), "--ratio", "0.5", "--vertices", "10", "-o", (dir / "x.glb").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.glb"));
+}
+
+}  // namespace
+}  // namespace crowdbake
