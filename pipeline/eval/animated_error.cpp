@@ -1,0 +1,173 @@
+// Animated error: skin the original and every LoD with the original's skeleton at each
+// frame of each clip (30 fps), measure the symmetric surface distance, and reduce.
+#include "crowdbake/pipeline/animated_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+#include "crowdbake/pipeline/pose_evaluator.h"
+#include "eval/animated_error.h"
+
+namespace crowdbake {
+namespace {
+
+// One character's surface: all primitives concatenated, sampled at the bind pose.
+struct Surface {
+  const SkinnedAsset* asset = nullptr;
+  std::vector<glm::dvec3> bind;
+  std::vector<uint32_t> triangles;
+  SurfaceSampling plan;
+};
+
+Surface make_surface(const SkinnedAsset& asset) {
+  Surface s;
+  s.asset = &asset;
+  for (const Primitive& p : asset.primitives) {
+    const uint32_t base = static_cast<uint32_t>(s.bind.size());
+    for (const glm::vec3& v : p.positions) s.bind.emplace_back(v);
+    for (uint32_t i : p.indices) s.triangles.push_back(base + i);
+  }
+  return s;
+}
+
+void skin(const Surface& s, const std::vector<glm::dmat4>& skinning, std::vector<glm::dvec3>& out,
+          std::vector<glm::dvec3>& scratch) {
+  out.clear();
+  for (const Primitive& p : s.asset->primitives) {
+    skin_positions(p, skinning, scratch);
+    out.insert(out.end(), scratch.begin(), scratch.end());
+  }
+}
+
+double bbox_diagonal(const std::vector<glm::dvec3>& positions) {
+  if (positions.empty()) return 0.0;
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (const glm::dvec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return glm::length(hi - lo);
+}
+
+// Distance between the original and each LoD on the given skinned positions.
+std::vector<SurfaceError> measure(const Surface& original,
+                                  const std::vector<glm::dvec3>& original_at,
+                                  const std::vector<Surface>& lods,
+                                  const std::vector<std::vector<glm::dvec3>>& lods_at) {
+  const TriangleBvh original_bvh(original_at, original.triangles);
+  std::vector<SurfaceError> out(lods.size());
+  for (size_t l = 0; l < lods.size(); ++l) {
+    const Surface& lod = lods[l];
+    if (lod.triangles.empty() || original.triangles.empty()) {
+      const double inf = std::numeric_limits<double>::infinity();
+      out[l] = lod.triangles.empty() == original.triangles.empty() ? SurfaceError{}
+                                                                   : SurfaceError{inf, inf};
+      continue;
+    }
+    const TriangleBvh lod_bvh(lods_at[l], lod.triangles);
+    out[l] = combine(one_way_distance(original.plan, original_at, original.triangles, lod_bvh),
+                     one_way_distance(lod.plan, lods_at[l], lod.triangles, original_bvh));
+  }
+  return out;
+}
+
+struct Frame {
+  const Clip* clip;
+  double t;
+};
+
+}  // namespace
+
+std::vector<double> clip_frame_times(const Clip& clip, double fps, int frame_stride) {
+  const int stride = std::max(1, frame_stride);
+  const double duration = std::isfinite(clip.duration) ? std::max(0.0, clip.duration) : 0.0;
+  // note: the small tolerance keeps t = duration from appearing twice when duration·fps is
+  // an integer up to rounding.
+  const long last = static_cast<long>(std::floor(duration * fps + 1e-6));
+  std::vector<double> times;
+  for (long i = 0; i <= last; i += stride) times.push_back(std::min(duration, i / fps));
+  if (duration - times.back() > 1e-6 / fps) times.push_back(duration);
+  return times;
+}
+
+std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
+                                          const std::vector<const SkinnedAsset*>& lods,
+                                          const AnimatedErrorOptions& options) {
+  if (!(options.fps > 0.0)) throw std::invalid_argument("animated_error: fps must be positive");
+  const size_t joints = original.skeleton.joints.size();
+  Surface base = make_surface(original);
+  const double diagonal = bbox_diagonal(base.bind);
+  const double spacing = median_edge_length(base.bind, base.triangles);
+  base.plan = plan_samples(base.bind, base.triangles, spacing);
+  std::vector<Surface> surfaces;
+  for (const SkinnedAsset* lod : lods) {
+    if (lod->skeleton.joints.size() != joints)
+      throw std::invalid_argument("animated_error: a LoD's skeleton has " +
+                                  std::to_string(lod->skeleton.joints.size()) +
+                                  " joints, the original's " + std::to_string(joints));
+    surfaces.push_back(make_surface(*lod));
+    surfaces.back().plan = plan_samples(surfaces.back().bind, surfaces.back().triangles, spacing);
+  }
+
+  std::vector<AnimatedError> out(lods.size());
+  const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
+  {
+    std::vector<std::vector<glm::dvec3>> lods_bind;
+    for (const Surface& s : surfaces) lods_bind.push_back(s.bind);
+    const std::vector<SurfaceError> bind = measure(base, base.bind, surfaces, lods_bind);
+    for (size_t l = 0; l < lods.size(); ++l) {
+      out[l].diagonal = diagonal;
+      out[l].bind_rms = out[l].mean_rms = bind[l].rms * scale;
+      out[l].bind_max = out[l].max = bind[l].max * scale;
+    }
+  }
+
+  std::vector<Frame> frames;
+  for (const Clip& clip : original.clips)
+    for (double t : clip_frame_times(clip, options.fps, options.frame_stride))
+      frames.push_back({&clip, t});
+  if (frames.empty()) return out;
+
+  std::vector<std::vector<SurfaceError>> per_frame(frames.size());
+  auto work = [&](size_t first, size_t step) {
+    std::vector<Transform> local;
+    std::vector<glm::dmat4> global, skinning;
+    std::vector<glm::dvec3> original_at, scratch;
+    std::vector<std::vector<glm::dvec3>> lods_at(surfaces.size());
+    for (size_t f = first; f < frames.size(); f += step) {
+      sample_clip(original.skeleton, *frames[f].clip, frames[f].t, local);
+      local_to_global(original.skeleton, local, global);
+      skinning_matrices(original.skeleton, global, skinning);
+      skin(base, skinning, original_at, scratch);
+      for (size_t l = 0; l < surfaces.size(); ++l) skin(surfaces[l], skinning, lods_at[l], scratch);
+      per_frame[f] = measure(base, original_at, surfaces, lods_at);
+    }
+  };
+  size_t threads =
+      options.threads > 0 ? size_t(options.threads) : std::thread::hardware_concurrency();
+  threads = std::clamp<size_t>(threads, 1, frames.size());
+  std::vector<std::thread> pool;
+  for (size_t i = 1; i < threads; ++i) pool.emplace_back(work, i, threads);
+  work(0, threads);
+  for (std::thread& t : pool) t.join();
+
+  // note: reduced in frame order, so the sums do not depend on the thread count.
+  for (size_t l = 0; l < lods.size(); ++l) {
+    double sum = 0.0, max = 0.0;
+    for (const auto& errors : per_frame) {
+      sum += errors[l].rms;
+      max = std::max(max, errors[l].max);
+    }
+    out[l].mean_rms = sum / frames.size() * scale;
+    out[l].max = max * scale;
+    out[l].frames = static_cast<int>(frames.size());
+  }
+  return out;
+}
+
+AnimatedError animated_error(const SkinnedAsset& original, const SkinnedAsset& lod,
+                             const AnimatedErrorOptions& options) {
+  return animated_error(original, std::vector<const SkinnedAsset*>{&lod}, options).front();
+}
+
+}  // namespace crowdbake

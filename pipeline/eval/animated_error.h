@@ -1,0 +1,51 @@
+// Internals of the animated error (public API: crowdbake/pipeline/animated_error.h):
+// where a surface is sampled, and one direction of the surface distance.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "crowdbake/pipeline/animated_error.h"
+#include "eval/triangle_bvh.h"
+
+namespace crowdbake {
+
+// Sample points of one surface, chosen once (at the bind pose) and re-evaluated on the
+// skinned positions of every frame. A point is a barycentric combination of up to three
+// vertices; triangle t lists its points in triangle_points[offset[t], offset[t + 1]) (a
+// vertex or edge point shared by several triangles appears under each of them but is
+// one point).
+struct SurfaceSampling {
+  struct Point {
+    uint32_t v[3];
+    double b[3];
+  };
+  std::vector<Point> points;
+  std::vector<uint32_t> offset;
+  std::vector<uint32_t> triangle_points;
+};
+
+// Grid level per triangle: k = clamp(ceil(longest edge / spacing), 2, 16); points are the
+// barycentric grid (i/k, j/k) plus the centroid. Vertices are welded by exact position.
+SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
+                             const std::vector<uint32_t>& triangles, double spacing);
+
+// Median edge length (0 for no triangles).
+double median_edge_length(const std::vector<glm::dvec3>& positions,
+                          const std::vector<uint32_t>& triangles);
+
+// Σ w·d², Σ w and max d over the sample points of one surface against another surface.
+struct OneWayDistance {
+  double sum_sq = 0.0;
+  double weight = 0.0;
+  double max = 0.0;
+};
+
+OneWayDistance one_way_distance(const SurfaceSampling& plan,
+                                const std::vector<glm::dvec3>& positions,
+                                const std::vector<uint32_t>& triangles, const TriangleBvh& other);
+
+SurfaceError combine(const OneWayDistance& a, const OneWayDistance& b);
+
+}  // namespace crowdbake

@@ -1,0 +1,174 @@
+// Symmetric surface distance between two triangle surfaces: sample points on each, exact
+// closest-point distance to the other through a BVH, area-weighted and pooled.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
+
+#include "eval/animated_error.h"
+
+namespace crowdbake {
+namespace {
+
+constexpr int kMinLevel = 2;
+constexpr int kMaxLevel = 16;
+constexpr uint32_t kInteriorKey = 0xFFFFFFFFu;
+
+// Welds vertices by exact position so points shared by triangles are sampled once.
+std::vector<uint32_t> weld_by_position(const std::vector<glm::dvec3>& positions) {
+  std::map<std::tuple<double, double, double>, uint32_t> first;
+  std::vector<uint32_t> weld(positions.size());
+  for (uint32_t v = 0; v < positions.size(); ++v)
+    weld[v] = first.emplace(std::make_tuple(positions[v].x, positions[v].y, positions[v].z), v)
+                  .first->second;
+  return weld;
+}
+
+// Identifies a sample point independently of the triangle that produced it: a vertex
+// (a == b, den == 0), a point a + num/den·(b − a) on an edge (a < b, fraction reduced), or an
+// interior point (den == kInteriorKey, num = running id).
+struct PointKey {
+  uint32_t a, b, num, den;
+  bool operator==(const PointKey& o) const {
+    return a == o.a && b == o.b && num == o.num && den == o.den;
+  }
+};
+
+struct PointKeyHash {
+  size_t operator()(const PointKey& k) const {
+    uint64_t h = k.a * 0x9E3779B97F4A7C15ull;
+    h ^= (k.b + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2));
+    h ^= (uint64_t{k.num} << 32 | k.den) * 0xC2B2AE3D27D4EB4Full;
+    return static_cast<size_t>(h ^ (h >> 31));
+  }
+};
+
+double edge_length(const std::vector<glm::dvec3>& p, uint32_t a, uint32_t b) {
+  return glm::length(p[a] - p[b]);
+}
+
+}  // namespace
+
+double median_edge_length(const std::vector<glm::dvec3>& positions,
+                          const std::vector<uint32_t>& triangles) {
+  std::vector<double> lengths;
+  lengths.reserve(triangles.size());
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c)
+      lengths.push_back(edge_length(positions, triangles[t + c], triangles[t + (c + 1) % 3]));
+  if (lengths.empty()) return 0.0;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  return lengths[lengths.size() / 2];
+}
+
+SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
+                             const std::vector<uint32_t>& triangles, double spacing) {
+  const std::vector<uint32_t> weld = weld_by_position(positions);
+  SurfaceSampling plan;
+  std::unordered_map<PointKey, uint32_t, PointKeyHash> known;
+  const size_t count = triangles.size() / 3;
+  plan.offset.reserve(count + 1);
+  plan.offset.push_back(0);
+  uint32_t interior = 0;
+  auto add = [&](const PointKey& key, const SurfaceSampling::Point& point) {
+    const auto [it, fresh] = known.emplace(key, static_cast<uint32_t>(plan.points.size()));
+    if (fresh) plan.points.push_back(point);
+    plan.triangle_points.push_back(it->second);
+  };
+  for (size_t t = 0; t < count; ++t) {
+    const uint32_t v[3] = {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+    const uint32_t w[3] = {weld[v[0]], weld[v[1]], weld[v[2]]};
+    const double longest =
+        std::max({edge_length(positions, v[0], v[1]), edge_length(positions, v[1], v[2]),
+                  edge_length(positions, v[2], v[0])});
+    int k = kMinLevel;
+    if (spacing > 0.0 && std::isfinite(longest))
+      k = static_cast<int>(
+          std::clamp(std::ceil(longest / spacing), double{kMinLevel}, double{kMaxLevel}));
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; i + j <= k; ++j) {
+        const int n[3] = {k - i - j, i, j};  // barycentric numerators over k
+        const int zeros = (n[0] == 0) + (n[1] == 0) + (n[2] == 0);
+        SurfaceSampling::Point point{{v[0], v[1], v[2]},
+                                     {double(n[0]) / k, double(n[1]) / k, double(n[2]) / k}};
+        if (zeros == 2) {
+          const int c = n[0] ? 0 : (n[1] ? 1 : 2);
+          add({w[c], w[c], 0, 0}, {{v[c], v[c], v[c]}, {1.0, 0.0, 0.0}});
+        } else if (zeros == 1) {
+          int c0 = n[0] ? 0 : 1;
+          int c1 = n[2] ? 2 : 1;
+          if (w[c0] > w[c1]) std::swap(c0, c1);
+          // note: the point is c0 + n[c1]/k · (c1 − c0); reduce so neighbours with another
+          // grid level that hit the same point share it.
+          const int g = std::gcd(n[c1], k);
+          add({w[c0], w[c1], uint32_t(n[c1] / g), uint32_t(k / g)},
+              {{v[c0], v[c1], v[c1]}, {double(n[c0]) / k, double(n[c1]) / k, 0.0}});
+        } else {
+          add({0, 0, interior++, kInteriorKey}, point);
+        }
+      }
+    }
+    if (k % 3 != 0)
+      add({0, 0, interior++, kInteriorKey},
+          {{v[0], v[1], v[2]}, {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}});
+    plan.offset.push_back(static_cast<uint32_t>(plan.triangle_points.size()));
+  }
+  return plan;
+}
+
+OneWayDistance one_way_distance(const SurfaceSampling& plan,
+                                const std::vector<glm::dvec3>& positions,
+                                const std::vector<uint32_t>& triangles, const TriangleBvh& other) {
+  std::vector<double> weight(plan.points.size(), 0.0);
+  const size_t count = triangles.size() / 3;
+  for (size_t t = 0; t < count; ++t) {
+    const glm::dvec3& a = positions[triangles[3 * t]];
+    const double area = 0.5 * glm::length(glm::cross(positions[triangles[3 * t + 1]] - a,
+                                                     positions[triangles[3 * t + 2]] - a));
+    const uint32_t begin = plan.offset[t], end = plan.offset[t + 1];
+    if (end > begin && std::isfinite(area))
+      for (uint32_t i = begin; i < end; ++i)
+        weight[plan.triangle_points[i]] += area / (end - begin);
+  }
+  OneWayDistance out;
+  double max_sq = 0.0;
+  for (size_t i = 0; i < plan.points.size(); ++i) {
+    const SurfaceSampling::Point& s = plan.points[i];
+    const glm::dvec3 p =
+        positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
+    const double d_sq = other.distance_sq(p);
+    out.sum_sq += weight[i] * d_sq;
+    out.weight += weight[i];
+    max_sq = std::max(max_sq, d_sq);
+  }
+  out.max = std::sqrt(max_sq);
+  return out;
+}
+
+SurfaceError combine(const OneWayDistance& a, const OneWayDistance& b) {
+  SurfaceError e;
+  const double weight = a.weight + b.weight;
+  e.rms = weight > 0.0 ? std::sqrt((a.sum_sq + b.sum_sq) / weight) : 0.0;
+  e.max = std::max(a.max, b.max);
+  return e;
+}
+
+SurfaceError surface_distance(const TriangleSurface& a, const TriangleSurface& b, double spacing) {
+  const bool a_empty = a.triangles.size() < 3, b_empty = b.triangles.size() < 3;
+  if (a_empty && b_empty) return {};
+  if (a_empty || b_empty) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf};
+  }
+  if (!(spacing > 0.0)) spacing = median_edge_length(a.positions, a.triangles);
+  const TriangleBvh bvh_a(a.positions, a.triangles), bvh_b(b.positions, b.triangles);
+  return combine(one_way_distance(plan_samples(a.positions, a.triangles, spacing), a.positions,
+                                  a.triangles, bvh_b),
+                 one_way_distance(plan_samples(b.positions, b.triangles, spacing), b.positions,
+                                  b.triangles, bvh_a));
+}
+
+}  // namespace crowdbake

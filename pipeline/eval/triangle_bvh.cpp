@@ -1,0 +1,150 @@
+#include "eval/triangle_bvh.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+namespace crowdbake {
+namespace {
+
+constexpr uint32_t kLeafSize = 4;
+
+glm::dvec3 closest_point_on_segment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double len_sq = glm::dot(ab, ab);
+  if (!(len_sq > 0.0)) return a;
+  return a + ab * std::clamp(glm::dot(p - a, ab) / len_sq, 0.0, 1.0);
+}
+
+double box_distance_sq(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
+  const glm::dvec3 d = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
+  return glm::dot(d, d);
+}
+
+}  // namespace
+
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+  // Voronoi regions of the corners, then of the edges, then the face (Ericson §5.1.5).
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) return a + ab * (d1 / (d1 - d3));
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+
+  const double denom = va + vb + vc;
+  // note: a zero-area (or numerically flat) triangle has no face region; its closest
+  // point lies on one of its edges.
+  const double area_sq = glm::dot(glm::cross(ab, ac), glm::cross(ab, ac));
+  if (!(denom > 0.0) || !(area_sq > 1e-24 * glm::dot(ab, ab) * glm::dot(ac, ac))) {
+    const glm::dvec3 candidates[3] = {closest_point_on_segment(p, a, b),
+                                      closest_point_on_segment(p, b, c),
+                                      closest_point_on_segment(p, c, a)};
+    glm::dvec3 best = candidates[0];
+    for (const glm::dvec3& q : candidates)
+      if (glm::dot(q - p, q - p) < glm::dot(best - p, best - p)) best = q;
+    return best;
+  }
+  const double v = vb / denom, w = vc / denom;
+  return a + ab * v + ac * w;
+}
+
+TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& positions,
+                         const std::vector<uint32_t>& triangles) {
+  const uint32_t count = static_cast<uint32_t>(triangles.size() / 3);
+  if (count == 0) return;
+  std::vector<glm::dvec3> centroids(count);
+  for (uint32_t t = 0; t < count; ++t)
+    centroids[t] = (positions[triangles[3 * t]] + positions[triangles[3 * t + 1]] +
+                    positions[triangles[3 * t + 2]]) /
+                   3.0;
+  std::vector<uint32_t> order(count);
+  std::iota(order.begin(), order.end(), 0u);
+  corners_.reserve(3 * size_t{count});
+  for (uint32_t t = 0; t < count; ++t)
+    for (int c = 0; c < 3; ++c) corners_.push_back(positions[triangles[3 * t + c]]);
+  nodes_.reserve(2 * size_t{count} / kLeafSize + 2);
+  nodes_.push_back({});
+  build(0, 0, count, order, centroids);
+  // Lay the corners out in leaf order so a leaf reads one contiguous run.
+  std::vector<glm::dvec3> sorted(corners_.size());
+  for (uint32_t i = 0; i < count; ++i)
+    for (int c = 0; c < 3; ++c) sorted[3 * size_t{i} + c] = corners_[3 * size_t{order[i]} + c];
+  corners_.swap(sorted);
+}
+
+void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
+                        const std::vector<glm::dvec3>& centroids) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  glm::dvec3 clo = lo, chi = hi;
+  for (uint32_t i = begin; i < end; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      lo = glm::min(lo, corners_[3 * size_t{order[i]} + c]);
+      hi = glm::max(hi, corners_[3 * size_t{order[i]} + c]);
+    }
+    clo = glm::min(clo, centroids[order[i]]);
+    chi = glm::max(chi, centroids[order[i]]);
+  }
+  const glm::dvec3 extent = chi - clo;
+  const int axis =
+      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  if (end - begin <= kLeafSize || !(extent[axis] > 0.0)) {
+    nodes_[node] = {lo, hi, begin, end - begin};
+    return;
+  }
+  const uint32_t mid = begin + (end - begin) / 2;
+  // note: ties broken by triangle index so the tree (and every answer) is deterministic.
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                   [&](uint32_t x, uint32_t y) {
+                     return centroids[x][axis] < centroids[y][axis] ||
+                            (centroids[x][axis] == centroids[y][axis] && x < y);
+                   });
+  const uint32_t left = static_cast<uint32_t>(nodes_.size());
+  nodes_.resize(nodes_.size() + 2);
+  nodes_[node] = {lo, hi, left, 0};
+  build(left, begin, mid, order, centroids);
+  build(left + 1, mid, end, order, centroids);
+}
+
+double TriangleBvh::distance_sq(const glm::dvec3& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  uint32_t stack[96];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (box_distance_sq(p, node.lo, node.hi) >= best) continue;
+    if (node.count > 0) {
+      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const glm::dvec3* t = &corners_[3 * size_t{i}];
+        const glm::dvec3 q = closest_point_on_triangle(p, t[0], t[1], t[2]);
+        best = std::min(best, glm::dot(q - p, q - p));
+      }
+      continue;
+    }
+    const double dl = box_distance_sq(p, nodes_[node.first].lo, nodes_[node.first].hi);
+    const double dr = box_distance_sq(p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
+    // note: push the farther child first so the nearer one is searched first and
+    // tightens `best` before the farther one is tested.
+    const uint32_t near = dl <= dr ? node.first : node.first + 1;
+    const uint32_t far = dl <= dr ? node.first + 1 : node.first;
+    if (std::max(dl, dr) < best) stack[top++] = far;
+    if (std::min(dl, dr) < best) stack[top++] = near;
+  }
+  return best;
+}
+
+}  // namespace crowdbake

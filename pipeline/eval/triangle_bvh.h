@@ -1,0 +1,41 @@
+// Closest point on a triangle soup: exact point-triangle distance (Ericson, "Real-Time
+// Collision Detection" §5.1.5) under a bounding-volume hierarchy, double precision.
+// Used by the animated error (animated_error.cpp), rebuilt for every frame.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace crowdbake {
+
+// Closest point to p on triangle (a, b, c); degenerate triangles (zero area, or all three
+// corners equal) are handled: the answer is then the closest point on their edges.
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c);
+
+class TriangleBvh {
+ public:
+  // positions: the surface's vertices; triangles: 3 indices each, < positions.size().
+  // Both are copied (only what the query needs). An empty triangle list is allowed.
+  TriangleBvh(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& triangles);
+
+  bool empty() const { return nodes_.empty(); }
+
+  // Squared distance from p to the closest point of any triangle; +inf when empty.
+  double distance_sq(const glm::dvec3& p) const;
+
+ private:
+  struct Node {
+    glm::dvec3 lo, hi;
+    uint32_t first;  // leaf: first triangle in order_; inner: index of the left child
+    uint32_t count;  // triangles in a leaf; 0 for an inner node (right child = first + 1)
+  };
+  void build(uint32_t node, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
+             const std::vector<glm::dvec3>& centroids);
+
+  std::vector<Node> nodes_;
+  std::vector<glm::dvec3> corners_;  // 3 per triangle, in leaf order
+};
+
+}  // namespace crowdbake

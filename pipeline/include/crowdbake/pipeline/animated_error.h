@@ -1,0 +1,73 @@
+// Animated error of a simplified character (DESIGN.md §4: accuracy is measured on the
+// animated character, every frame of every clip). The LoD and the original are skinned
+// with the original's skeleton and clips at each frame, and the symmetric surface
+// distance between the two skinned surfaces is measured.
+//
+// Surface distance (surface_distance below): each surface is sampled on its triangles —
+// its vertices, points on its edges and inside its faces on a barycentric grid whose
+// spacing is the original's median bind-pose edge length (at least the vertices, the
+// edge midpoints and the centroid of every triangle; vertices and edge points shared by
+// triangles are sampled once, vertices welded by position). Every sample point gets the
+// distance to the closest point on the other surface's triangles (exact point-triangle
+// distance, double precision, BVH). Both directions are pooled:
+//   rms = sqrt((Σ_A w·d² + Σ_B w·d²) / (Σ_A w + Σ_B w)),  max = max over both directions,
+// where w is the sample's share of the area of the triangles it lies on (the area at
+// that frame), so rms approximates the surface integral and does not depend on how
+// finely either mesh is tessellated.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "crowdbake/pipeline/skinned_asset.h"
+
+namespace crowdbake {
+
+struct SurfaceError {
+  double rms = 0.0;  // area-weighted RMS of the symmetric distance
+  double max = 0.0;  // largest distance of any sample, both directions (sampled Hausdorff)
+};
+
+struct TriangleSurface {
+  std::vector<glm::dvec3> positions;
+  std::vector<uint32_t> triangles;  // 3 indices each
+};
+
+// Symmetric distance between two triangle surfaces, in their units. `spacing` is the
+// sampling distance (0 = the median edge length of `a`). Symmetric: swapping a and b
+// gives the same answer when the same spacing is passed. An empty surface is infinitely
+// far from a non-empty one; two empty surfaces are 0 apart.
+SurfaceError surface_distance(const TriangleSurface& a, const TriangleSurface& b,
+                              double spacing = 0.0);
+
+struct AnimatedErrorOptions {
+  double fps = 30.0;     // frames at t = 0, 1/fps, 2/fps, ... and the clip end
+  int frame_stride = 1;  // evaluate every k-th of those frames (quick runs); the end always
+  int threads = 0;       // 0 = hardware concurrency; results never depend on it
+};
+
+// All numbers but `diagonal` and `frames` are divided by `diagonal`.
+struct AnimatedError {
+  double diagonal = 0.0;                  // bind-pose bounding-box diagonal of the original
+  double bind_rms = 0.0, bind_max = 0.0;  // bind pose only (the stored positions)
+  double mean_rms = 0.0;                  // mean over all frames of all clips of the per-frame RMS
+  double max = 0.0;                       // max over all frames of the per-frame max
+  int frames = 0;                         // frames measured; 0 when the original has no clips (then
+                                          // mean_rms and max repeat the bind-pose numbers)
+};
+
+// Measures every LoD against the original. Each LoD must use the original's skeleton
+// (same joint count and order; its clips are ignored: the original's clips drive both).
+// Throws std::invalid_argument when a LoD's skeleton differs in joint count.
+std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
+                                          const std::vector<const SkinnedAsset*>& lods,
+                                          const AnimatedErrorOptions& options = {});
+
+AnimatedError animated_error(const SkinnedAsset& original, const SkinnedAsset& lod,
+                             const AnimatedErrorOptions& options = {});
+
+// The frame times the measurement uses for one clip.
+std::vector<double> clip_frame_times(const Clip& clip, double fps, int frame_stride = 1);
+
+}  // namespace crowdbake

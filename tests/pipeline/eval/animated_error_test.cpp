@@ -1,0 +1,304 @@
+#include "crowdbake/pipeline/animated_error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+
+#include "crowdbake/pipeline/pose_evaluator.h"
+#include "eval/animated_error.h"
+#include "eval/triangle_bvh.h"
+
+namespace crowdbake {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// n × n quads over [0, size]² at height z, two triangles per quad.
+TriangleSurface grid(int n, double size, double z = 0.0, double y_size = -1.0) {
+  if (y_size < 0.0) y_size = size;
+  TriangleSurface s;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) s.positions.push_back({size * i / n, y_size * j / n, z});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      s.triangles.insert(s.triangles.end(), {a, b, d, a, d, c});
+    }
+  return s;
+}
+
+// The grid as a one-primitive character skinned to a root joint that a clip rotates
+// (a full turn about Y) and translates, i.e. moves rigidly; bind = rest = identity.
+SkinnedAsset rigid_character(const TriangleSurface& s, double scale = 1.0) {
+  SkinnedAsset a;
+  a.source = "plane";
+  a.skeleton.joints = {{"root", -1, {}, glm::dmat4(1.0), glm::dmat4(1.0)}};
+  Primitive p;
+  for (const glm::dvec3& v : s.positions) {
+    p.positions.push_back(glm::vec3(v * scale));
+    p.joints.push_back({0, 0, 0, 0});
+    p.weights.push_back({1, 0, 0, 0});
+  }
+  p.indices = s.triangles;
+  a.primitives.push_back(p);
+  Clip clip;
+  clip.name = "spin";
+  clip.duration = 1.0;
+  clip.channels.resize(1);
+  for (int k = 0; k <= 4; ++k) {
+    clip.channels[0].rotation.times.push_back(k * 0.25);
+    clip.channels[0].rotation.values.push_back(glm::angleAxis(k * kPi / 2, glm::dvec3(0, 1, 0)));
+  }
+  clip.channels[0].translation.times = {0.0, 1.0};
+  clip.channels[0].translation.values = {glm::dvec3(0.0), glm::dvec3(3.0, -1.0, 2.0) * scale};
+  a.clips.push_back(clip);
+  return a;
+}
+
+// Two joints along +X; the second bends 90° about Z over the clip. Vertices beyond x = 1
+// follow the second joint, blended near the elbow.
+SkinnedAsset bending_strip(double scale, double wobble) {
+  SkinnedAsset a;
+  a.source = "strip";
+  Transform elbow_rest;
+  elbow_rest.translation = glm::dvec3(1.0 * scale, 0, 0);
+  a.skeleton.joints = {{"shoulder", -1, {}, glm::dmat4(1.0), glm::dmat4(1.0)},
+                       {"elbow", 0, elbow_rest, glm::dmat4(1.0), glm::dmat4(1.0)}};
+  a.skeleton.joints[1].inverse_bind =
+      glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0 * scale, 0, 0));
+  Primitive p;
+  const int n = 8;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= 1; ++j) {
+      const double x = 2.0 * i / n;
+      const double z = (i % 2 == 1 && j == 1) ? wobble : 0.0;
+      p.positions.push_back(glm::vec3(glm::dvec3(x, 0.2 * j, z) * scale));
+      const float w = static_cast<float>(std::clamp((x - 0.75) / 0.5, 0.0, 1.0));
+      p.joints.push_back({0, 1, 0, 0});
+      p.weights.push_back({1 - w, w, 0, 0});
+    }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t a0 = 2 * i, a1 = a0 + 1, b0 = a0 + 2, b1 = a0 + 3;
+    p.indices.insert(p.indices.end(), {a0, b0, b1, a0, b1, a1});
+  }
+  a.primitives.push_back(p);
+  Clip clip;
+  clip.name = "bend";
+  clip.duration = 0.5;
+  clip.channels.resize(2);
+  clip.channels[1].rotation.times = {0.0, 0.5};
+  clip.channels[1].rotation.values = {glm::dquat(1, 0, 0, 0),
+                                      glm::angleAxis(kPi / 2, glm::dvec3(0, 0, 1))};
+  a.clips.push_back(clip);
+  return a;
+}
+
+TEST(ClosestPoint, FaceEdgeAndCornerRegions) {
+  const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const glm::dvec3 face = closest_point_on_triangle({0.25, 0.25, 2}, a, b, c);
+  EXPECT_NEAR(glm::length(face - glm::dvec3(0.25, 0.25, 0)), 0.0, 1e-15);
+  const glm::dvec3 edge = closest_point_on_triangle({0.5, -1, 0.5}, a, b, c);
+  EXPECT_NEAR(glm::length(edge - glm::dvec3(0.5, 0, 0)), 0.0, 1e-15);
+  const glm::dvec3 hyp = closest_point_on_triangle({1, 1, 0}, a, b, c);
+  EXPECT_NEAR(glm::length(hyp - glm::dvec3(0.5, 0.5, 0)), 0.0, 1e-15);
+  const glm::dvec3 corner = closest_point_on_triangle({-1, -2, 3}, a, b, c);
+  EXPECT_EQ(corner, a);
+}
+
+TEST(ClosestPoint, DegenerateTrianglesUseTheirEdges) {
+  const glm::dvec3 a(0, 0, 0), b(2, 0, 0), mid(1, 0, 0);
+  const glm::dvec3 sliver = closest_point_on_triangle({1.5, 1, 0}, a, b, mid);
+  EXPECT_NEAR(glm::length(sliver - glm::dvec3(1.5, 0, 0)), 0.0, 1e-15);
+  const glm::dvec3 point = closest_point_on_triangle({1, 1, 1}, mid, mid, mid);
+  EXPECT_EQ(point, mid);
+}
+
+TEST(TriangleBvh, MatchesBruteForceOnARandomSoup) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<glm::dvec3> positions;
+  std::vector<uint32_t> triangles;
+  for (uint32_t t = 0; t < 300; ++t) {
+    const glm::dvec3 centre(u(rng), u(rng), u(rng));
+    for (int c = 0; c < 3; ++c) {
+      positions.push_back(centre + 0.1 * glm::dvec3(u(rng), u(rng), u(rng)));
+      triangles.push_back(3 * t + c);
+    }
+  }
+  const TriangleBvh bvh(positions, triangles);
+  for (int q = 0; q < 200; ++q) {
+    const glm::dvec3 p(2 * u(rng), 2 * u(rng), 2 * u(rng));
+    double best = INFINITY;
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+      const glm::dvec3 c =
+          closest_point_on_triangle(p, positions[t], positions[t + 1], positions[t + 2]);
+      best = std::min(best, glm::dot(c - p, c - p));
+    }
+    EXPECT_EQ(bvh.distance_sq(p), best);
+  }
+  EXPECT_TRUE(TriangleBvh({}, {}).empty());
+  EXPECT_EQ(TriangleBvh({}, {}).distance_sq({0, 0, 0}), INFINITY);
+}
+
+TEST(SurfaceDistance, TriangleAgainstItselfIsZero) {
+  TriangleSurface t;
+  t.positions = {{0, 0, 0}, {1, 0, 0}, {0.2, 0.9, 0.3}};
+  t.triangles = {0, 1, 2};
+  const SurfaceError e = surface_distance(t, t);
+  // note: sample points are interpolated corners, so they sit on the plane up to rounding.
+  EXPECT_NEAR(e.rms, 0.0, 1e-15);
+  EXPECT_NEAR(e.max, 0.0, 1e-15);
+}
+
+TEST(SurfaceDistance, DisplacedPlaneIsTheDisplacement) {
+  const double delta = 0.0375;
+  const SurfaceError e = surface_distance(grid(4, 1.0), grid(7, 1.0, delta));
+  EXPECT_NEAR(e.rms, delta, 1e-12);
+  EXPECT_NEAR(e.max, delta, 1e-12);
+}
+
+TEST(SurfaceDistance, CoarseAndFineTessellationsOfOneSquareAreZeroApart) {
+  const SurfaceError e = surface_distance(grid(8, 2.0), grid(1, 2.0));
+  EXPECT_NEAR(e.rms, 0.0, 1e-12);
+  EXPECT_NEAR(e.max, 0.0, 1e-12);
+}
+
+TEST(SurfaceDistance, HalfSquareMatchesTheSurfaceIntegral) {
+  // A = [0,1]², B = [0,1]×[0,½]. From A: d = y − ½ for y > ½, ∫ d² dA = 1/24; from B: 0.
+  // Pooled over the area 1 + ½: rms = sqrt((1/24) / (3/2)) = 1/6; max = ½ at y = 1.
+  const SurfaceError e = surface_distance(grid(16, 1.0), grid(16, 1.0, 0.0, 0.5));
+  EXPECT_NEAR(e.rms, 1.0 / 6.0, 0.01 / 6.0);
+  EXPECT_NEAR(e.max, 0.5, 1e-12);
+}
+
+TEST(SurfaceDistance, IsSymmetric) {
+  TriangleSurface a = grid(5, 1.0), b = grid(3, 1.2);
+  for (size_t i = 0; i < b.positions.size(); ++i) b.positions[i].z = 0.05 * std::sin(3.0 * i);
+  const SurfaceError ab = surface_distance(a, b, 0.1), ba = surface_distance(b, a, 0.1);
+  EXPECT_GT(ab.rms, 0.0);
+  EXPECT_EQ(ab.rms, ba.rms);
+  EXPECT_EQ(ab.max, ba.max);
+}
+
+TEST(SurfaceDistance, EmptySurfaces) {
+  EXPECT_EQ(surface_distance({}, {}).rms, 0.0);
+  EXPECT_EQ(surface_distance(grid(1, 1.0), {}).max, INFINITY);
+}
+
+TEST(SurfaceSampling, SharedPointsAreSampledOnce) {
+  // 2×2 quads: 9 vertices, 16 distinct edges (edge midpoints), 8 centroids.
+  const TriangleSurface s = grid(2, 1.0);
+  const SurfaceSampling plan = plan_samples(s.positions, s.triangles, 10.0);
+  EXPECT_EQ(plan.points.size(), 9u + 16u + 8u);
+  EXPECT_EQ(plan.offset.size(), 9u);
+  EXPECT_EQ(plan.triangle_points.size(), 8u * 7u);
+}
+
+TEST(SurfaceSampling, CornerSplitVerticesAreWelded) {
+  // Two triangles sharing an edge but stored with their own corners (as FBX exports do).
+  const std::vector<glm::dvec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},
+                                             {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const SurfaceSampling plan = plan_samples(positions, {0, 1, 2, 3, 4, 5}, 10.0);
+  EXPECT_EQ(plan.points.size(), 4u + 5u + 2u);
+}
+
+TEST(ClipFrameTimes, ThirtyFpsPlusTheEnd) {
+  Clip clip;
+  clip.duration = 1.0;
+  EXPECT_EQ(clip_frame_times(clip, 30.0).size(), 31u);
+  clip.duration = 0.05;
+  const std::vector<double> t = clip_frame_times(clip, 30.0);
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t[1], 1.0 / 30.0);
+  EXPECT_DOUBLE_EQ(t[2], 0.05);
+  clip.duration = 0.0;
+  EXPECT_EQ(clip_frame_times(clip, 30.0).size(), 1u);
+  clip.duration = 1.0;
+  const std::vector<double> strided = clip_frame_times(clip, 30.0, 4);
+  EXPECT_EQ(strided.size(), 9u);  // 0, 4/30, ..., 28/30, 1
+  EXPECT_DOUBLE_EQ(strided.back(), 1.0);
+}
+
+TEST(AnimatedError, IdenticalCharacterIsZeroInEveryFrame) {
+  const SkinnedAsset a = bending_strip(1.0, 0.0);
+  const AnimatedError e = animated_error(a, a);
+  EXPECT_EQ(e.frames, 16);
+  EXPECT_NEAR(e.bind_rms, 0.0, 1e-15);
+  EXPECT_NEAR(e.mean_rms, 0.0, 1e-15);
+  EXPECT_NEAR(e.max, 0.0, 1e-15);
+  EXPECT_NEAR(e.diagonal, std::sqrt(4.0 + 0.04), 1e-6);
+}
+
+TEST(AnimatedError, RigidMotionKeepsTheDisplacement) {
+  // The LoD is the plane lifted by δ; a rigid motion keeps every distance δ in every frame.
+  const double delta = 0.125;
+  const SkinnedAsset original = rigid_character(grid(6, 1.0));
+  const SkinnedAsset lod = rigid_character(grid(2, 1.0, delta));
+  const AnimatedError e = animated_error(original, lod);
+  const double diagonal = std::sqrt(2.0);
+  EXPECT_EQ(e.frames, 31);
+  EXPECT_NEAR(e.bind_rms, delta / diagonal, 1e-6);
+  EXPECT_NEAR(e.mean_rms, delta / diagonal, 1e-6);
+  EXPECT_NEAR(e.max, delta / diagonal, 1e-6);
+}
+
+TEST(AnimatedError, NormalisedErrorIsScaleInvariant) {
+  const AnimatedError small = animated_error(bending_strip(1.0, 0.0), bending_strip(1.0, 0.05));
+  const AnimatedError large = animated_error(bending_strip(100.0, 0.0), bending_strip(100.0, 0.05));
+  EXPECT_GT(small.mean_rms, 0.0);
+  EXPECT_NEAR(large.diagonal / small.diagonal, 100.0, 1e-5);
+  EXPECT_NEAR(large.bind_rms / small.bind_rms, 1.0, 1e-5);
+  EXPECT_NEAR(large.mean_rms / small.mean_rms, 1.0, 1e-5);
+  EXPECT_NEAR(large.max / small.max, 1.0, 1e-5);
+}
+
+TEST(AnimatedError, AnimationChangesTheErrorOfAStaticSimplification) {
+  // Bind pose: the wobble is the only difference. Bent: the wobbled vertices near the
+  // elbow carry other blends in the LoD than in the original, so the error differs.
+  SkinnedAsset original = bending_strip(1.0, 0.0);
+  SkinnedAsset lod = original;
+  for (auto& w : lod.primitives[0].weights) w = {1, 0, 0, 0};  // rigid to the shoulder
+  const AnimatedError e = animated_error(original, lod);
+  EXPECT_NEAR(e.bind_rms, 0.0, 1e-15);
+  EXPECT_GT(e.mean_rms, 0.05);
+  EXPECT_GT(e.max, e.mean_rms);
+}
+
+TEST(AnimatedError, ThreadCountDoesNotChangeTheResult) {
+  const SkinnedAsset a = bending_strip(1.0, 0.0), b = bending_strip(1.0, 0.03);
+  AnimatedErrorOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const AnimatedError x = animated_error(a, b, one), y = animated_error(a, b, two);
+  EXPECT_EQ(x.mean_rms, y.mean_rms);
+  EXPECT_EQ(x.max, y.max);
+}
+
+TEST(AnimatedError, BatchEqualsOneByOne) {
+  const SkinnedAsset a = bending_strip(1.0, 0.0), b = bending_strip(1.0, 0.03),
+                     c = bending_strip(1.0, -0.1);
+  const std::vector<AnimatedError> both = animated_error(a, {&b, &c});
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[1].mean_rms, animated_error(a, c).mean_rms);
+  EXPECT_EQ(both[0].max, animated_error(a, b).max);
+}
+
+TEST(AnimatedError, RejectsAnotherSkeleton) {
+  const SkinnedAsset a = bending_strip(1.0, 0.0);
+  const SkinnedAsset b = rigid_character(grid(1, 1.0));
+  EXPECT_THROW(animated_error(a, b), std::invalid_argument);
+}
+
+TEST(AnimatedError, WithoutClipsTheBindPoseIsTheAnswer) {
+  SkinnedAsset a = rigid_character(grid(4, 1.0)), b = rigid_character(grid(1, 1.0, 0.1));
+  a.clips.clear();
+  const AnimatedError e = animated_error(a, b);
+  EXPECT_EQ(e.frames, 0);
+  EXPECT_NEAR(e.mean_rms, 0.1 / std::sqrt(2.0), 1e-6);
+  EXPECT_EQ(e.max, e.bind_max);
+}
+
+}  // namespace
+}  // namespace crowdbake
