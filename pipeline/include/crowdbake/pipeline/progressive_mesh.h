@@ -3,15 +3,22 @@
 //
 // Vertices and triangles are permuted so that the LoD with n vertices uses the first n
 // vertices and the first triangle_count[n] triangles; a corner index k of such a
-// triangle is resolved by `while (k >= floor) k = collapse_to[k]`, floor = group_floor(n).
+// triangle is resolved by `while (k >= floor) k = collapse_to[k]`, floor = usable_vertices(n).
 //
 // A collapse group is one position-collapse: every attribute vertex ("wedge") sharing the
 // removed position moves at once (a UV seam vertex has two or more wedges). Counts inside
 // a group are rounded *down* to the group's start, so the vertex budget is never exceeded
 // and no seam ever opens.
+//
+// Permuted order: the k-th removed vertex overall (records in order, a record's wedges in
+// the order given) gets index vertex_count-1-k, so the first record's wedges take the top
+// indices and each record's wedges are consecutive; the k-th removed triangle gets
+// max_triangles-1-k. Vertices and triangles never removed fill the low indices.
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace crowdbake {
@@ -58,6 +65,10 @@ struct CollapseRecord {
 // Builds the permuted arrays from the original triangle list (3 indices per triangle,
 // original vertex ids), per-triangle primitive ids, and the collapse sequence in order.
 // Vertices and triangles never removed keep their original relative order.
+// Throws std::invalid_argument for an inconsistent sequence: an index out of range, a
+// record removing no vertex, a vertex or triangle removed twice, a target that is not
+// alive after its record (removed before or by the same record), or a triangle that
+// is (or becomes) degenerate without being removed.
 ProgressiveMesh build_progressive_mesh(uint32_t vertex_count, const std::vector<uint32_t>& triangles,
                                        const std::vector<uint16_t>& triangle_primitive,
                                        const std::vector<CollapseRecord>& collapses);
