@@ -10,9 +10,12 @@
 namespace crowdbake::cli {
 
 int run_lod(const LodSettings& settings) {
-  const auto usage = [&](const std::string& why) { return Error(Error::Kind::kUsage, settings.input, why); };
+  const auto usage = [&](const std::string& why) {
+    return Error(Error::Kind::kUsage, settings.input, why);
+  };
   if (settings.ratio == 0.0 && settings.vertices == 0)
-    throw usage("give the level of detail with --ratio R (kept fraction of vertices) or --vertices N");
+    throw usage(
+        "give the level of detail with --ratio R (kept fraction of vertices) or --vertices N");
   if (settings.vertices == 0 && !(settings.ratio > 0.0 && settings.ratio <= 1.0))
     throw usage("--ratio must be in (0, 1], the fraction of vertices to keep");
   if (settings.ratio == 0.0 && settings.vertices < 1) throw usage("--vertices must be at least 1");
@@ -22,8 +25,8 @@ int run_lod(const LodSettings& settings) {
   const SkinnedAsset asset = import_asset(settings.input, settings.import);
   const uint32_t total = static_cast<uint32_t>(asset.vertex_count());
   if (settings.vertices > static_cast<int64_t>(total))
-    throw usage("--vertices " + std::to_string(settings.vertices) + " is more than the character's " +
-                std::to_string(total) + " vertices");
+    throw usage("--vertices " + std::to_string(settings.vertices) +
+                " is more than the character's " + std::to_string(total) + " vertices");
   const uint32_t wanted = settings.vertices > 0
                               ? static_cast<uint32_t>(settings.vertices)
                               : static_cast<uint32_t>(std::lround(settings.ratio * total));
@@ -38,15 +41,19 @@ int run_lod(const LodSettings& settings) {
     std::printf("%s -> %s\n", settings.input.c_str(), settings.output.c_str());
     std::printf("  vertices   %u of %u (asked %u)\n", used, total, wanted);
     std::printf("  triangles  %zu of %u\n", lod.triangle_count(), pm.max_triangles());
-    std::printf("  poses      %d, %s, %.2f s (poses %.2f, quadrics %.2f, collapses %.2f)\n", report.poses,
+    std::printf("  poses      %d, %s, %.2f s (poses %.2f, quadrics %.2f, collapses %.2f)\n",
+                report.poses,
                 settings.simplify.form == DqemForm::kExact ? "exact DQEM" : "pull-back DQEM",
-                report.seconds_poses + report.seconds_quadrics + report.seconds_collapse, report.seconds_poses,
-                report.seconds_quadrics, report.seconds_collapse);
+                report.seconds_poses + report.seconds_quadrics + report.seconds_collapse,
+                report.seconds_poses, report.seconds_quadrics, report.seconds_collapse);
     if (used < report.strict_min_vertices)
-      std::printf("  note       below %u vertices seams may be crossed and flips are checked in the bind pose only\n",
-                  report.strict_min_vertices);
+      std::printf(
+          "  note       below %u vertices seams may be crossed and flips are checked in the bind "
+          "pose only\n",
+          report.strict_min_vertices);
     if (wanted < pm.min_vertices)
-      std::printf("  note       %u vertices is the coarsest level this mesh reaches\n", pm.min_vertices);
+      std::printf("  note       %u vertices is the coarsest level this mesh reaches\n",
+                  pm.min_vertices);
     for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
   }
   return 0;

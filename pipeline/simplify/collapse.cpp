@@ -31,9 +31,14 @@ enum class Kind { kInterior, kBorder, kLocked };
 
 class Collapser {
  public:
-  Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses, bool all_poses,
-            DqemCost& cost, CollapseStats& stats)
-      : mesh_(mesh), posed_(posed), poses_(poses), all_poses_(all_poses), cost_(cost), stats_(stats) {
+  Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
+            bool all_poses, DqemCost& cost, CollapseStats& stats)
+      : mesh_(mesh),
+        posed_(posed),
+        poses_(poses),
+        all_poses_(all_poses),
+        cost_(cost),
+        stats_(stats) {
     const uint32_t positions = mesh.position_count();
     corner_ = mesh.triangles;
     triangle_alive_.assign(mesh.triangle_count(), 1);
@@ -71,16 +76,20 @@ class Collapser {
     while (!queue_.empty()) {
       const Candidate c = queue_.top();
       queue_.pop();
-      if (!position_alive_[c.from] || !position_alive_[c.to] || version_[c.from] != c.version_from ||
-          version_[c.to] != c.version_to)
+      if (!position_alive_[c.from] || !position_alive_[c.to] ||
+          version_[c.from] != c.version_from || version_[c.to] != c.version_to)
         continue;
       CollapseRecord record;
       if (try_collapse(c.from, c.to, record)) records.push_back(std::move(record));
     }
   }
 
-  uint32_t position(uint32_t triangle, int k) const { return mesh_.position_of[corner_[3 * triangle + k]]; }
-  const glm::dvec3& at(uint32_t pose, uint32_t p) const { return posed_[size_t{pose} * mesh_.position_count() + p]; }
+  uint32_t position(uint32_t triangle, int k) const {
+    return mesh_.position_of[corner_[3 * triangle + k]];
+  }
+  const glm::dvec3& at(uint32_t pose, uint32_t p) const {
+    return posed_[size_t{pose} * mesh_.position_count() + p];
+  }
 
   void push(uint32_t from, uint32_t to) {
     queue_.push({cost_.cost(from, to), from, to, version_[from], version_[to]});
@@ -88,8 +97,9 @@ class Collapser {
 
   void compact(uint32_t p) {
     std::vector<uint32_t>& list = incident_[p];
-    list.erase(std::remove_if(list.begin(), list.end(), [&](uint32_t t) { return !triangle_alive_[t]; }),
-               list.end());
+    list.erase(
+        std::remove_if(list.begin(), list.end(), [&](uint32_t t) { return !triangle_alive_[t]; }),
+        list.end());
   }
 
   std::vector<uint32_t> neighbours(uint32_t p) {
@@ -112,7 +122,8 @@ class Collapser {
       for (int k = 0; k < 3; ++k) {
         const uint32_t x = position(t, k);
         if (x == p) continue;
-        auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == x; });
+        auto it =
+            std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == x; });
         if (it == edges.end())
           edges.push_back({x, 1});
         else
@@ -131,7 +142,9 @@ class Collapser {
   }
 
   // Attribute class (its lowest vertex id) of triangle t's corner at position p.
-  uint32_t klass(uint32_t t, uint32_t p) const { return mesh_.class_of[corner_[3 * t + corner_of(t, p)]]; }
+  uint32_t klass(uint32_t t, uint32_t p) const {
+    return mesh_.class_of[corner_[3 * t + corner_of(t, p)]];
+  }
 
   int corner_of(uint32_t t, uint32_t p) const {
     for (int k = 0; k < 3; ++k)
@@ -188,7 +201,8 @@ class Collapser {
     }
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
-      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; })) continue;
+      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; }))
+        continue;
       const int64_t w = relaxed_ ? nearest_class(to, v) : -1;
       if (w < 0) return reject_topology();
       map.push_back({v, static_cast<uint32_t>(w)});
@@ -289,8 +303,9 @@ class Collapser {
 
 }  // namespace
 
-std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed,
-                                         uint32_t poses, bool all_poses, bool relax, DqemCost& cost,
+std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
+                                         const std::vector<glm::dvec3>& posed, uint32_t poses,
+                                         bool all_poses, bool relax, DqemCost& cost,
                                          CollapseStats& stats) {
   return Collapser(mesh, posed, poses, all_poses, cost, stats).run(relax);
 }

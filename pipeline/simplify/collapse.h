@@ -26,8 +26,9 @@ struct CollapseStats {
 // 2. when relax is set and phase 1 is stuck, seams may be crossed (a moved corner takes
 //    the wedge with the nearest UV at the target) and flips are checked in the bind pose
 //    only, so coarse levels stay reachable. Levels above strict_collapses never see it.
-std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed,
-                                         uint32_t poses, bool all_poses, bool relax, DqemCost& cost,
+std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
+                                         const std::vector<glm::dvec3>& posed, uint32_t poses,
+                                         bool all_poses, bool relax, DqemCost& cost,
                                          CollapseStats& stats);
 
 }  // namespace crowdbake

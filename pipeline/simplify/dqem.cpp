@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include "core/parallel.h"
+
 namespace crowdbake {
 namespace {
 
@@ -29,8 +31,8 @@ std::vector<BorderEdge> border_edges(const SimplifyMesh& mesh) {
 }
 
 // Face and border quadrics of every position in one pose.
-void accumulate_pose(const SimplifyMesh& mesh, const std::vector<BorderEdge>& borders, const glm::dvec3* x,
-                     std::vector<Quadric>& acc) {
+void accumulate_pose(const SimplifyMesh& mesh, const std::vector<BorderEdge>& borders,
+                     const glm::dvec3* x, std::vector<Quadric>& acc) {
   acc.assign(mesh.position_count(), Quadric{});
   for (uint32_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t a = mesh.position_of[mesh.triangles[3 * t]];
@@ -54,24 +56,38 @@ void accumulate_pose(const SimplifyMesh& mesh, const std::vector<BorderEdge>& bo
 }  // namespace
 
 DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh& mesh,
-                   const std::vector<std::vector<glm::dmat4>>& poses, const std::vector<glm::dvec3>& posed)
+                   const std::vector<std::vector<glm::dmat4>>& poses,
+                   const std::vector<glm::dvec3>& posed, int threads)
     : form_(form),
       poses_(static_cast<uint32_t>(poses.size())),
       positions_(mesh.position_count()),
       posed_(posed) {
   const std::vector<BorderEdge> borders = border_edges(mesh);
-  quadrics_.assign(form == DqemForm::kExact ? size_t{positions_} * poses_ : positions_, Quadric{});
-  std::vector<Quadric> acc;
-  const double weight = 1.0 / poses_;
-  for (uint32_t s = 0; s < poses_; ++s) {
-    accumulate_pose(mesh, borders, posed.data() + size_t{s} * positions_, acc);
-    for (uint32_t p = 0; p < positions_; ++p) {
-      if (form == DqemForm::kExact)
-        quadrics_[size_t{p} * poses_ + s] = acc[p];
-      else
-        quadrics_[p] += pull_back(acc[p], position_transform(asset, mesh, p, poses[s])) * weight;
-    }
+  if (form == DqemForm::kExact) {
+    quadrics_.assign(size_t{positions_} * poses_, Quadric{});
+    parallel_for(poses_, threads, [&](size_t s) {
+      std::vector<Quadric> acc;
+      accumulate_pose(mesh, borders, posed.data() + s * positions_, acc);
+      for (uint32_t p = 0; p < positions_; ++p) quadrics_[size_t{p} * poses_ + s] = acc[p];
+    });
+    return;
   }
+  // note: poses are summed in fixed chunks, then the chunks in order, so the floating-point
+  // sums are the same whatever the thread count.
+  const size_t chunks = std::min<size_t>(poses_, 16);
+  std::vector<std::vector<Quadric>> partial(chunks, std::vector<Quadric>(positions_));
+  const double weight = 1.0 / poses_;
+  parallel_for(chunks, threads, [&](size_t c) {
+    std::vector<Quadric> acc;
+    for (size_t s = c * poses_ / chunks; s < (c + 1) * poses_ / chunks; ++s) {
+      accumulate_pose(mesh, borders, posed.data() + s * positions_, acc);
+      for (uint32_t p = 0; p < positions_; ++p)
+        partial[c][p] += pull_back(acc[p], position_transform(asset, mesh, p, poses[s])) * weight;
+    }
+  });
+  quadrics_.assign(positions_, Quadric{});
+  for (const std::vector<Quadric>& chunk : partial)
+    for (uint32_t p = 0; p < positions_; ++p) quadrics_[p] += chunk[p];
 }
 
 double DqemCost::cost(uint32_t from, uint32_t to) const {

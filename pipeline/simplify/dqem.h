@@ -18,7 +18,8 @@ class DqemCost {
  public:
   // posed: every position in every pose (pose-major, normalised), pose 0 the bind pose.
   DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh& mesh,
-           const std::vector<std::vector<glm::dmat4>>& poses, const std::vector<glm::dvec3>& posed);
+           const std::vector<std::vector<glm::dmat4>>& poses, const std::vector<glm::dvec3>& posed,
+           int threads = 0);
 
   // Expected error of moving position `from` onto position `to` (half-edge collapse).
   double cost(uint32_t from, uint32_t to) const;

@@ -40,7 +40,8 @@ Quadric triangle_quadric(const glm::dvec3& a, const glm::dvec3& b, const glm::dv
 
 double evaluate(const Quadric& q, const glm::dvec3& v) {
   const double e = v.x * (q.a00 * v.x + 2.0 * (q.a01 * v.y + q.a02 * v.z + q.b0)) +
-                   v.y * (q.a11 * v.y + 2.0 * (q.a12 * v.z + q.b1)) + v.z * (q.a22 * v.z + 2.0 * q.b2) + q.c;
+                   v.y * (q.a11 * v.y + 2.0 * (q.a12 * v.z + q.b1)) +
+                   v.z * (q.a22 * v.z + 2.0 * q.b2) + q.c;
   return std::max(e, 0.0);
 }
 

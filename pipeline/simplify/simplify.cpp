@@ -20,15 +20,18 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options, SimplifyReport* report) {
+ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options,
+                         SimplifyReport* report) {
   if (options.samples < 1)
-    throw Error(Error::Kind::kUsage, asset.source, "samples must be at least 1 (S = 1 is classic QEM on the bind pose)");
+    throw Error(Error::Kind::kUsage, asset.source,
+                "samples must be at least 1 (S = 1 is classic QEM on the bind pose)");
   SimplifyReport local;
   SimplifyReport& r = report ? *report : local;
 
   auto start = std::chrono::steady_clock::now();
   PoseDistribution distribution = estimate_pose_distribution(asset);
-  if (!options.ranges_file.empty()) apply_pose_ranges(distribution, asset.skeleton, options.ranges_file);
+  if (!options.ranges_file.empty())
+    apply_pose_ranges(distribution, asset.skeleton, options.ranges_file);
   const std::vector<std::vector<glm::dmat4>> poses = sample_poses(asset, distribution, options);
   const SimplifyMesh mesh = build_simplify_mesh(asset);
   const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
@@ -38,18 +41,20 @@ ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& optio
   r.seconds_poses = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  DqemCost cost(options.form, asset, mesh, poses, posed);
+  DqemCost cost(options.form, asset, mesh, poses, posed, options.threads);
   r.seconds_quadrics = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   CollapseStats stats;
   const std::vector<CollapseRecord> records =
-      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
-                   options.relax_when_stuck, cost, stats);
-  ProgressiveMesh pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
+      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
+                   options.check_flips_in_all_poses, options.relax_when_stuck, cost, stats);
+  ProgressiveMesh pm =
+      build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
   r.seconds_collapse = seconds_since(start);
   uint32_t removed = 0;
-  for (size_t i = 0; i < stats.strict_collapses; ++i) removed += static_cast<uint32_t>(records[i].wedges.size());
+  for (size_t i = 0; i < stats.strict_collapses; ++i)
+    removed += static_cast<uint32_t>(records[i].wedges.size());
   r.strict_min_vertices = mesh.vertex_count - removed;
 
   r.locked_vertices = stats.locked_positions;
@@ -59,7 +64,8 @@ ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& optio
                          " triangles with two corners at one position were dropped");
   if (stats.locked_positions > 0)
     r.warnings.push_back(std::to_string(stats.locked_positions) +
-                         " vertices sit on non-manifold edges or where several borders meet; they are kept as they are");
+                         " vertices sit on non-manifold edges or where several borders meet; they "
+                         "are kept as they are");
   return pm;
 }
 
@@ -75,7 +81,8 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
   SkinnedAsset lod = asset;
   std::vector<uint32_t> local(used);
   for (Primitive& p : lod.primitives) {
-    p.positions.clear(), p.normals.clear(), p.uvs.clear(), p.joints.clear(), p.weights.clear(), p.indices.clear();
+    p.positions.clear(), p.normals.clear(), p.uvs.clear(), p.joints.clear(), p.weights.clear(),
+        p.indices.clear();
   }
   for (uint32_t i = 0; i < used; ++i) {
     const auto [prim, v] = origin[pm.vertex_source[i]];

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <unordered_map>
 
@@ -33,7 +33,9 @@ struct PositionHash {
   }
 };
 struct PositionEqual {
-  bool operator()(const glm::vec3& a, const glm::vec3& b) const { return std::memcmp(&a, &b, sizeof(a)) == 0; }
+  bool operator()(const glm::vec3& a, const glm::vec3& b) const {
+    return std::memcmp(&a, &b, sizeof(a)) == 0;
+  }
 };
 
 }  // namespace
@@ -80,7 +82,8 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
       mesh.class_of[v] = v;
       for (uint32_t j = mesh.wedge_offset[p]; j < i; ++j) {
         const uint32_t w = mesh.wedges[j];
-        if (mesh.primitive[w] == mesh.primitive[v] && std::memcmp(&mesh.uv[v], &mesh.uv[w], sizeof(glm::vec2)) == 0) {
+        if (mesh.primitive[w] == mesh.primitive[v] &&
+            std::memcmp(&mesh.uv[v], &mesh.uv[w], sizeof(glm::vec2)) == 0) {
           mesh.class_of[v] = mesh.class_of[w];
           break;
         }
@@ -91,7 +94,8 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
   for (size_t prim = 0; prim < asset.primitives.size(); ++prim) {
     const Primitive& p = asset.primitives[prim];
     for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-      const uint32_t a = base + p.indices[t], b = base + p.indices[t + 1], c = base + p.indices[t + 2];
+      const uint32_t a = base + p.indices[t], b = base + p.indices[t + 1],
+                     c = base + p.indices[t + 2];
       const uint32_t pa = mesh.position_of[a], pb = mesh.position_of[b], pc = mesh.position_of[c];
       if (pa == pb || pb == pc || pa == pc) {
         ++mesh.degenerate_triangles;
@@ -127,7 +131,8 @@ struct Skin {
 
 Skin skin_of(const SkinnedAsset& asset, uint32_t vertex) {
   for (const Primitive& p : asset.primitives) {
-    if (vertex < p.vertex_count()) return {p.joints[vertex], p.weights[vertex], glm::dvec3(p.positions[vertex])};
+    if (vertex < p.vertex_count())
+      return {p.joints[vertex], p.weights[vertex], glm::dvec3(p.positions[vertex])};
     vertex -= static_cast<uint32_t>(p.vertex_count());
   }
   return {};
@@ -148,8 +153,8 @@ glm::dmat4 blend(const Skin& s, const std::vector<glm::dmat4>& pose) {
 
 }  // namespace
 
-glm::dmat4 position_transform(const SkinnedAsset& asset, const SimplifyMesh& mesh, uint32_t position,
-                              const std::vector<glm::dmat4>& pose) {
+glm::dmat4 position_transform(const SkinnedAsset& asset, const SimplifyMesh& mesh,
+                              uint32_t position, const std::vector<glm::dmat4>& pose) {
   const Skin s = skin_of(asset, mesh.representative[position]);
   // normalised posed = N · A · N⁻¹ · normalised bind, N(x) = (x - centre) * inverse_scale.
   glm::dmat4 n(mesh.inverse_scale);

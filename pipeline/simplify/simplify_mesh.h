@@ -5,29 +5,28 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "crowdbake/pipeline/skinned_asset.h"
 
 namespace crowdbake {
 
 struct SimplifyMesh {
-  uint32_t vertex_count = 0;                    // all primitives, concatenated
-  std::vector<uint32_t> position_of;            // vertex -> position
-  std::vector<uint32_t> wedge_offset;           // position p's vertices: wedges[wedge_offset[p] ..
-  std::vector<uint32_t> wedges;                 //   wedge_offset[p+1]), ascending vertex ids
-  std::vector<uint32_t> representative;         // position -> lowest vertex id (its skin weights)
+  uint32_t vertex_count = 0;             // all primitives, concatenated
+  std::vector<uint32_t> position_of;     // vertex -> position
+  std::vector<uint32_t> wedge_offset;    // position p's vertices: wedges[wedge_offset[p] ..
+  std::vector<uint32_t> wedges;          //   wedge_offset[p+1]), ascending vertex ids
+  std::vector<uint32_t> representative;  // position -> lowest vertex id (its skin weights)
   // Wedges at one position that share primitive and UV are one attribute class (they
   // differ at most in normal, as in flat-shaded exports): collapses may map them onto
   // each other. class_of[v] is the lowest vertex id of v's class.
   std::vector<uint32_t> class_of;
-  std::vector<glm::vec2> uv;            // per vertex (0,0 where the primitive has none)
-  std::vector<uint16_t> primitive;      // per vertex
-  std::vector<uint32_t> triangles;              // 3 vertex ids each, degenerate ones dropped
+  std::vector<glm::vec2> uv;        // per vertex (0,0 where the primitive has none)
+  std::vector<uint16_t> primitive;  // per vertex
+  std::vector<uint32_t> triangles;  // 3 vertex ids each, degenerate ones dropped
   std::vector<uint16_t> triangle_primitive;
-  uint32_t degenerate_triangles = 0;            // corners sharing a position: dropped
+  uint32_t degenerate_triangles = 0;  // corners sharing a position: dropped
 
   glm::dvec3 centre{0.0};  // normalised = (p - centre) * inverse_scale
   double inverse_scale = 1.0;
@@ -45,7 +44,7 @@ std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const Simplif
 
 // A position's skinning transform in pose s, in normalised coordinates: Σ w_i · S_i
 // conjugated by the normalisation, so that posed = M · bind for that position.
-glm::dmat4 position_transform(const SkinnedAsset& asset, const SimplifyMesh& mesh, uint32_t position,
-                              const std::vector<glm::dmat4>& pose);
+glm::dmat4 position_transform(const SkinnedAsset& asset, const SimplifyMesh& mesh,
+                              uint32_t position, const std::vector<glm::dmat4>& pose);
 
 }  // namespace crowdbake

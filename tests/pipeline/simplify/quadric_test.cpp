@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace crowdbake {

@@ -11,13 +11,13 @@
 #include <random>
 
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "gltf_test_builder.h"
 #include "simplify/collapse.h"
 #include "simplify/dqem.h"
 #include "simplify/pose_sampler.h"
 #include "simplify/simplify_mesh.h"
-#include "crowdbake/pipeline/import.h"
-#include "gltf_test_builder.h"
 #include "simplify_test_meshes.h"
 #include "temp_dir.h"
 
@@ -40,7 +40,8 @@ std::vector<Triangle> canonical(const std::vector<uint32_t>& list) {
 
 // Replays collapse records on the original triangle list, independently of the
 // ProgressiveMesh arrays, and compares with reconstruct() at every level.
-void expect_reconstruction_equals_replay(const SimplifyMesh& mesh, const std::vector<CollapseRecord>& records,
+void expect_reconstruction_equals_replay(const SimplifyMesh& mesh,
+                                         const std::vector<CollapseRecord>& records,
                                          const ProgressiveMesh& pm) {
   std::vector<uint32_t> current = mesh.triangles;
   std::vector<char> alive(mesh.triangle_count(), 1);
@@ -78,7 +79,8 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
   const auto poses = sample_poses(asset, distribution, options);
   const SimplifyMesh mesh = build_simplify_mesh(asset);
   const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
-  for (const glm::dvec3& x : posed) EXPECT_TRUE(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z));
+  for (const glm::dvec3& x : posed)
+    EXPECT_TRUE(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z));
   DqemCost cost(options.form, asset, mesh, poses, posed);
   for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -89,9 +91,11 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
     }
   CollapseStats stats;
   Outcome out;
-  out.records = collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
-                             options.relax_when_stuck, cost, stats);
-  out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, out.records);
+  out.records =
+      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
+                   options.check_flips_in_all_poses, options.relax_when_stuck, cost, stats);
+  out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive,
+                                  out.records);
   expect_reconstruction_equals_replay(mesh, out.records, out.pm);
   return out;
 }
@@ -111,7 +115,8 @@ void expect_valid(const SkinnedAsset& asset, int samples = 16) {
     EXPECT_EQ(pm.triangles, o.pm.triangles);
     EXPECT_EQ(pm.collapse_to, o.pm.collapse_to);
     // Every level skins to finite positions in the middle of the clip.
-    for (uint32_t n = pm.min_vertices; n <= pm.vertex_count(); n += std::max(1u, pm.vertex_count() / 7)) {
+    for (uint32_t n = pm.min_vertices; n <= pm.vertex_count();
+         n += std::max(1u, pm.vertex_count() / 7)) {
       const SkinnedAsset lod = extract_lod(asset, pm, n);
       if (lod.primitives.empty()) continue;
       validate_asset(lod);
@@ -181,7 +186,8 @@ TEST(SimplifyHardCases, CoincidentVerticesAreWeldedAndMoveTogether) {
   for (uint32_t n_used = pm.min_vertices; n_used <= pm.vertex_count(); ++n_used) {
     const uint32_t u = pm.usable_vertices(n_used);
     for (size_t v = 0; v < n; ++v)
-      if (std::fabs(p[v].x - 0.5f) < 1e-6f) ASSERT_EQ(where[v] < u, where[copy[v]] < u) << "level " << u;
+      if (std::fabs(p[v].x - 0.5f) < 1e-6f)
+        ASSERT_EQ(where[v] < u, where[copy[v]] < u) << "level " << u;
   }
 }
 
@@ -236,14 +242,16 @@ TEST(SimplifyHardCases, UnnormalisedAndAllZeroWeightsFromAFile) {
   // Vertex 0 sums to 0.2, vertex 1 to 1.7, vertex 2 has no weight at all.
   b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] =
       b.floats({0.1f, 0.1f, 0, 0, 1.0f, 0.7f, 0, 0, 0, 0, 0, 0}, "VEC4");
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = b.u16({0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0}, "VEC4");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+      b.u16({0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0}, "VEC4");
   const SkinnedAsset a = import_asset(b.write(dir / "weights.gltf").string());
   EXPECT_EQ(a.stats.vertices_without_weights, 1);
   expect_valid(a);
 }
 
 TEST(SimplifyHardCases, FarFromOriginHugeAndTinyScales) {
-  for (const auto& [offset, scale] : std::vector<std::pair<float, float>>{{1e6f, 1.0f}, {0.0f, 1e-6f}, {0.0f, 1e6f}}) {
+  for (const auto& [offset, scale] :
+       std::vector<std::pair<float, float>>{{1e6f, 1.0f}, {0.0f, 1e-6f}, {0.0f, 1e6f}}) {
     SCOPED_TRACE(std::to_string(offset) + " " + std::to_string(scale));
     std::vector<glm::vec3> p;
     std::vector<uint32_t> i;
@@ -273,9 +281,9 @@ TEST(SimplifyHardCases, JointsAtGimbalLock) {
   test::grid(6, 6, p, i, 0.05f);
   SkinnedAsset a = from(p, i);
   // Pitch exactly ±90° (about Y) and a roll on top.
-  a.clips[0].channels[1].rotation.values = {glm::angleAxis(M_PI / 2, glm::dvec3(0, 1, 0)),
-                                            glm::angleAxis(-M_PI / 2, glm::dvec3(0, 1, 0)) *
-                                                glm::angleAxis(0.3, glm::dvec3(1, 0, 0))};
+  a.clips[0].channels[1].rotation.values = {
+      glm::angleAxis(M_PI / 2, glm::dvec3(0, 1, 0)),
+      glm::angleAxis(-M_PI / 2, glm::dvec3(0, 1, 0)) * glm::angleAxis(0.3, glm::dvec3(1, 0, 0))};
   expect_valid(a);
 }
 
@@ -341,9 +349,11 @@ TEST(SimplifyProperty, RandomMeshesKeepEveryInvariant) {
     for (size_t t = 0; t < i.size(); t += 3)
       if (rng() % 7 != 0) kept.insert(kept.end(), i.begin() + t, i.begin() + t + 3);
     if (kept.empty()) continue;
-    SkinnedAsset a = test::bending_character(p, kept, 0.2f + 0.6f * static_cast<float>(rng() % 100) / 100.0f);
+    SkinnedAsset a =
+        test::bending_character(p, kept, 0.2f + 0.6f * static_cast<float>(rng() % 100) / 100.0f);
     a.clips[0].channels[1].rotation.values[1] =
-        glm::angleAxis(3.0 * (rng() % 100) / 100.0, glm::normalize(glm::dvec3(rng() % 5, 1 + rng() % 5, rng() % 5)));
+        glm::angleAxis(3.0 * (rng() % 100) / 100.0,
+                       glm::normalize(glm::dvec3(rng() % 5, 1 + rng() % 5, rng() % 5)));
     expect_valid(a, 1 + static_cast<int>(rng() % 32));
   }
 }

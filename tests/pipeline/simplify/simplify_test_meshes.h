@@ -13,7 +13,8 @@
 
 namespace crowdbake::test {
 
-inline SkinnedAsset bending_character(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+inline SkinnedAsset bending_character(const std::vector<glm::vec3>& positions,
+                                      const std::vector<uint32_t>& indices,
                                       float split_height = 0.5f) {
   SkinnedAsset a;
   a.source = "test";
@@ -40,14 +41,15 @@ inline SkinnedAsset bending_character(const std::vector<glm::vec3>& positions, c
   c.duration = 1.0;
   c.channels.resize(2);
   c.channels[1].rotation.times = {0.0, 1.0};
-  c.channels[1].rotation.values = {glm::dquat(1, 0, 0, 0), glm::angleAxis(1.4, glm::dvec3(0, 0, 1))};
+  c.channels[1].rotation.values = {glm::dquat(1, 0, 0, 0),
+                                   glm::angleAxis(1.4, glm::dvec3(0, 0, 1))};
   a.clips.push_back(c);
   return a;
 }
 
 // A (w+1) x (h+1) vertex grid in the XY plane, unit size, optionally bumped along Z.
-inline void grid(int w, int h, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices, float bump = 0.0f,
-                 uint32_t seed = 1) {
+inline void grid(int w, int h, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices,
+                 float bump = 0.0f, uint32_t seed = 1) {
   std::mt19937 rng(seed);
   const uint32_t base = static_cast<uint32_t>(positions.size());
   for (int y = 0; y <= h; ++y)
@@ -62,25 +64,30 @@ inline void grid(int w, int h, std::vector<glm::vec3>& positions, std::vector<ui
 }
 
 // A closed UV sphere (no border).
-inline void sphere(int rings, int segments, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices) {
+inline void sphere(int rings, int segments, std::vector<glm::vec3>& positions,
+                   std::vector<uint32_t>& indices) {
   positions.push_back({0, -1, 0});
   for (int r = 1; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
       const double th = M_PI * r / rings, ph = 2 * M_PI * s / segments;
-      positions.push_back({static_cast<float>(std::sin(th) * std::cos(ph)), static_cast<float>(-std::cos(th)),
+      positions.push_back({static_cast<float>(std::sin(th) * std::cos(ph)),
+                           static_cast<float>(-std::cos(th)),
                            static_cast<float>(std::sin(th) * std::sin(ph))});
     }
   positions.push_back({0, 1, 0});
   const uint32_t top = static_cast<uint32_t>(positions.size() - 1);
   auto at = [&](int r, int s) { return 1 + (r - 1) * segments + (s % segments); };
-  for (int s = 0; s < segments; ++s) indices.insert(indices.end(), {0u, static_cast<uint32_t>(at(1, s)), static_cast<uint32_t>(at(1, s + 1))});
+  for (int s = 0; s < segments; ++s)
+    indices.insert(indices.end(),
+                   {0u, static_cast<uint32_t>(at(1, s)), static_cast<uint32_t>(at(1, s + 1))});
   for (int r = 1; r < rings - 1; ++r)
     for (int s = 0; s < segments; ++s) {
       const uint32_t a = at(r, s), b = at(r, s + 1), c = at(r + 1, s), d = at(r + 1, s + 1);
       indices.insert(indices.end(), {a, c, b, b, c, d});
     }
   for (int s = 0; s < segments; ++s)
-    indices.insert(indices.end(), {top, static_cast<uint32_t>(at(rings - 1, s + 1)), static_cast<uint32_t>(at(rings - 1, s))});
+    indices.insert(indices.end(), {top, static_cast<uint32_t>(at(rings - 1, s + 1)),
+                                   static_cast<uint32_t>(at(rings - 1, s))});
 }
 
 }  // namespace crowdbake::test
