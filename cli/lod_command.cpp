@@ -46,6 +46,7 @@ int run_lod(const LodSettings& settings) {
                 settings.simplify.form == DqemForm::kExact ? "exact DQEM" : "pull-back DQEM",
                 report.seconds_poses + report.seconds_quadrics + report.seconds_collapse,
                 report.seconds_poses, report.seconds_quadrics, report.seconds_collapse);
+    std::printf("  densities  %s\n", report.pose_estimator.c_str());
     if (used < report.strict_min_vertices)
       std::printf(
           "  note       below %u vertices seams may be crossed and flips are checked in the bind "

@@ -36,6 +36,7 @@ ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& optio
   const SimplifyMesh mesh = build_simplify_mesh(asset);
   const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
   r.poses = static_cast<int>(poses.size());
+  r.pose_estimator = distribution.estimator;
   r.positions = mesh.position_count();
   r.degenerate_triangles_dropped = mesh.degenerate_triangles;
   r.seconds_poses = seconds_since(start);
