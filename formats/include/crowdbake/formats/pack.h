@@ -1,0 +1,156 @@
+// The crowdbake pack (.crowdpack): everything a runtime needs to draw one character
+// type, in one versioned, chunked, little-endian file (docs/pack-format.md).
+//
+// PackContents is the decoded, in-memory form: the pipeline fills it (pipeline/bake),
+// write_pack() serialises it deterministically, read_pack() parses and validates
+// untrusted bytes back into it. Vertex and triangle arrays are in ProgressiveMesh order
+// (DESIGN.md §3.3): the LoD with n vertices uses the first n vertices.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace crowdbake {
+
+constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
+constexpr uint16_t kPackVersionMinor = 0;  // compatible additions
+
+// How joint matrices are stored in the animation texture (docs/animation-encoding.md).
+enum class AnimationEncoding : uint32_t {
+  kFloat32 = 0,    // 3 RGBA32F texels per joint: the three rows of the 3x4 skinning matrix
+  kFloat16 = 1,    // the same rows as RGBA16F (IEEE half)
+  kQuantized = 2,  // compact: see docs/animation-encoding.md for the exact layout
+};
+
+struct PackJoint {
+  std::string name;
+  int32_t parent = -1;                 // < own index; -1 for roots
+  std::array<float, 12> inverse_bind;  // 3x4, row-major (rows of the affine matrix)
+  std::array<float, 3> rest_translation{0, 0, 0};
+  std::array<float, 4> rest_rotation{0, 0, 0, 1};  // x, y, z, w
+  std::array<float, 3> rest_scale{1, 1, 1};
+};
+
+struct PackClip {
+  std::string name;
+  uint32_t first_row = 0;    // first animation-texture row of this clip
+  uint32_t frame_count = 0;  // rows used; >= 1
+  float fps = 30.0f;         // bake rate
+  float duration = 0.0f;     // seconds
+  bool looping = true;
+  // Root motion, extracted when the bake asks for it: per frame (x, z, yaw) of the root
+  // relative to frame 0 in the model's ground plane; empty when motion stays baked in.
+  std::vector<float> root_motion;
+};
+
+struct AnimationTexture {
+  AnimationEncoding encoding = AnimationEncoding::kFloat32;
+  uint32_t joints = 0;            // joints per row
+  uint32_t texels_per_joint = 3;  // texels one joint takes in a row
+  uint32_t bytes_per_texel = 16;  // RGBA32F = 16, RGBA16F = 8, ...
+  uint32_t rows = 0;              // frames of all clips, stacked
+  std::vector<float> decode_params;  // encoding-specific constants (e.g. quantisation ranges)
+  std::vector<uint8_t> data;         // rows * joints * texels_per_joint * bytes_per_texel bytes
+
+  uint32_t width() const { return joints * texels_per_joint; }  // texels per row
+};
+
+// Region ids in the partition mask and per vertex (seed 000 Algorithm 3).
+enum class Region : uint8_t { kHead = 0, kUpperBody = 1, kTrousers = 2, kUnused = 255 };
+
+struct PartitionMask {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> texels;  // width * height Region values, row 0 = v in [0, 1/height)
+  float neck_height = 0.0f;     // bind-pose heights along up_axis, in model units
+  float waist_height = 0.0f;
+  std::array<float, 3> up_axis{0, 1, 0};
+};
+
+struct PackMaterial {
+  std::string name;
+  std::array<float, 4> base_color{1, 1, 1, 1};
+  std::string base_color_texture;  // image name or URI; empty when untextured
+};
+
+struct PackGeometry {
+  std::vector<float> positions;     // 3 per vertex, model units
+  std::vector<float> normals;       // 3 per vertex, or empty
+  std::vector<float> uvs;           // 2 per vertex, or empty
+  std::vector<uint16_t> joints;     // 4 per vertex, < joint count
+  std::vector<float> weights;       // 4 per vertex, each vertex sums to 1
+  std::vector<uint8_t> regions;     // 1 Region per vertex, or empty
+  std::vector<uint32_t> triangles;  // 3 per triangle, permuted order, < vertex count
+  std::vector<uint16_t> triangle_material;  // 1 per triangle, < material count
+
+  uint32_t vertex_count() const { return static_cast<uint32_t>(positions.size() / 3); }
+  uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
+};
+
+// ProgressiveMesh arrays (pipeline/include/crowdbake/pipeline/progressive_mesh.h).
+struct PackProgressive {
+  std::vector<uint32_t> collapse_to;     // ECol', one per vertex
+  std::vector<uint32_t> triangle_count;  // Map, vertex_count + 1 entries
+  std::vector<uint32_t> group_start;     // one per vertex
+  uint32_t min_vertices = 0;
+};
+
+struct PackBounds {
+  std::array<float, 3> min{0, 0, 0}, max{0, 0, 0};  // bind pose
+  float radius = 0.0f;  // bounding sphere over every baked frame, around the bind-box centre
+};
+
+struct PackContents {
+  std::string name;           // the character's name (input file stem)
+  std::string settings_json;  // the bake settings, verbatim (for inspect and diff)
+  std::vector<PackJoint> joints;
+  std::vector<PackClip> clips;
+  std::vector<PackMaterial> materials;
+  PackGeometry geometry;
+  PackProgressive progressive;
+  AnimationTexture animation;
+  PartitionMask partition;
+  PackBounds bounds;
+};
+
+enum class GeometryCodec : uint32_t {
+  kDraco = 0,     // Draco sequential encoding (keeps vertex and face order)
+  kMeshopt = 1,   // meshoptimizer vertex/index codecs (faster to decode)
+  kRaw = 2,       // uncompressed
+};
+
+struct PackWriteOptions {
+  GeometryCodec codec = GeometryCodec::kDraco;
+  int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
+  int normal_bits = 10;
+  int uv_bits = 12;
+};
+
+// Serialises deterministically: equal contents and options give identical bytes.
+std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options = {});
+
+struct PackChunk {
+  uint32_t tag = 0;      // four ASCII characters, little-endian ('HEAD', 'GEOM', ...)
+  uint32_t version = 0;  // per-chunk layout version
+  uint64_t offset = 0;   // from the start of the file, 16-byte aligned
+  uint64_t size = 0;     // payload bytes
+  uint32_t checksum = 0;
+};
+
+struct PackStatus {
+  bool ok = true;
+  std::string message;  // what is wrong, for the user ("chunk GEOM: checksum mismatch ...")
+  explicit operator bool() const { return ok; }
+};
+
+// Reads the header and chunk table only (cheap; for streaming and inspect).
+PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
+                            uint16_t* version_major = nullptr, uint16_t* version_minor = nullptr);
+
+// Parses and validates every size, offset, count, index and checksum. Never crashes,
+// hangs or allocates more than a small multiple of `size` on any input.
+PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out);
+
+}  // namespace crowdbake

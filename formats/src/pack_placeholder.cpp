@@ -1,0 +1,1 @@
+// placeholder until the pack reader/writer land
