@@ -420,6 +420,7 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
 
   SkinnedAsset asset;
   asset.source = path;
+  asset.files.push_back(path);
   const NodeTable table = ai::build_node_table(scene, path);
   ai::SceneCharacters found = ai::find_characters(scene, table, path);
   if (found.characters.empty())
@@ -451,6 +452,14 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
   for (unsigned index : used) {
     material_slot[index] = static_cast<int>(asset.materials.size());
     asset.materials.push_back(convert_material(scene, *scene.mMaterials[index]));
+    // note: external textures are dependencies of a bake; embedded ones ("*N") are not files.
+    aiString texture;
+    for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})
+      if (scene.mMaterials[index]->GetTexture(type, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
+          texture.C_Str()[0] != '*') {
+        asset.files.push_back((std::filesystem::path(path).parent_path() / texture.C_Str()).string());
+        break;
+      }
   }
 
   GeometryCounts counts;

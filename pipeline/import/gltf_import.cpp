@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -162,6 +163,7 @@ class GltfImporter {
   }
 
   SkinnedAsset run() {
+    list_files();
     pick_character();
     build_skeleton();
     read_materials();
@@ -172,6 +174,16 @@ class GltfImporter {
   }
 
  private:
+  void list_files() {
+    asset_.files.push_back(path_);
+    const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+    auto external = [&](const std::string& uri) {
+      if (!uri.empty() && uri.rfind("data:", 0) != 0) asset_.files.push_back((folder / uri).string());
+    };
+    for (const tg::Buffer& b : model_.buffers) external(b.uri);
+    for (const tg::Image& i : model_.images) external(i.uri);
+  }
+
   void pick_character() {
     if (model_.skins.empty())
       throw input_error(path_, "no skin: the file has no skinned mesh; crowdbake needs a character "

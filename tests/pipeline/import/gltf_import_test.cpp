@@ -389,3 +389,19 @@ TEST(GltfImportErrors, MissingFile) {
 
 }  // namespace
 }  // namespace crowdbake
+
+namespace crowdbake {
+namespace {
+
+TEST(GltfImport, ListsTheFilesItDependsOn) {
+  test::TempDir dir;
+  test::GltfBuilder b = test::two_bone_character();
+  b.doc["images"] = nlohmann::json::array({nlohmann::json{{"uri", "skin.png"}}});
+  const std::string path = b.write(dir / "asset.gltf").string();
+  const SkinnedAsset a = import_asset(path);
+  // The buffer is embedded (a data: URI), so only the file and the image are listed.
+  EXPECT_EQ(a.files, (std::vector<std::string>{path, (dir / "skin.png").string()}));
+}
+
+}  // namespace
+}  // namespace crowdbake

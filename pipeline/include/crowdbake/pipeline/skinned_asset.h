@@ -110,6 +110,9 @@ struct ImportStats {
 
 struct SkinnedAsset {
   std::string source;  // file the asset came from
+  // Every file the import read or refers to: the source, external buffers, external
+  // images (resolved against the source's folder; they may not exist). For depfiles.
+  std::vector<std::string> files;
   Skeleton skeleton;
   std::vector<Material> materials;
   std::vector<Primitive> primitives;
