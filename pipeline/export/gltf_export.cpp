@@ -18,6 +18,7 @@
 // - glTF has no clip duration, so a clip whose keys end early gets a rest-valued track
 //   reaching its duration (see with_duration_keys).
 #include "crowdbake/pipeline/gltf_export.h"
+#include "crowdbake/pipeline/output_file.h"
 
 #include <algorithm>
 #include <array>
@@ -553,31 +554,6 @@ std::vector<uint8_t> glb_bytes(const std::string& json, const std::vector<uint8_
   return out;
 }
 
-void write_atomically(const std::vector<uint8_t>& bytes, const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string tmp = path + ".tmp";
-  auto fail = [&](const std::string& what, const std::string& todo) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    return Error(Error::Kind::kOutput, path, what + "; " + todo);
-  };
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw fail("cannot create '" + tmp + "' (" + std::strerror(errno) + ")",
-                 "check that the output folder exists and is writable");
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) throw fail("writing '" + tmp + "' failed", "check the free disk space and try again");
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec)
-    throw fail("cannot rename '" + tmp + "' to the output (" + ec.message() + ")",
-               "check that the output path is not a folder and is writable");
-}
-
 }  // namespace
 
 void export_glb(const SkinnedAsset& asset, const std::string& path) {
@@ -585,7 +561,7 @@ void export_glb(const SkinnedAsset& asset, const std::string& path) {
   BinaryBuilder bin;
   const Json gltf = build_json(asset, bin);
   const std::string json = gltf.dump(-1, ' ', false, Json::error_handler_t::replace);
-  write_atomically(glb_bytes(json, bin.bin(), path), path);
+  write_file_atomically(path, glb_bytes(json, bin.bin(), path));
 }
 
 }  // namespace crowdbake
