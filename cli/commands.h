@@ -29,4 +29,18 @@ struct LodSettings {
 
 int run_lod(const LodSettings& settings);
 
+// `crowdbake bench simplify`: accuracy vs. time of DQEM settings and two peers
+// (docs/accuracy.md).
+struct BenchSettings {
+  std::string assets = "../shared/assets";  // folder with MANIFEST.json; absent: spectator only
+  std::string out = "docs/data";            // accuracy.csv, accuracy.json, accuracy-vs-time.dat
+  std::string plot = "docs/accuracy-vs-time.png";  // empty: no plot
+  std::string plot_script = "scripts/plot-accuracy.gp";
+  bool quick = false;           // fewer configurations, every 6th frame (CI smoke test)
+  bool spectator_only = false;  // skip the manifest assets
+  int threads = 0;              // 0 = hardware concurrency
+};
+
+int run_bench_simplify(const BenchSettings& settings);
+
 }  // namespace crowdbake::cli

@@ -58,6 +58,19 @@ int main(int argc, char** argv) {
   lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");
   add_import_options(*lod_cmd, lod.import);
 
+  crowdbake::cli::BenchSettings bench;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks (see docs/accuracy.md)");
+  bench_cmd->require_subcommand(1);
+  CLI::App* bench_simplify_cmd =
+      bench_cmd->add_subcommand("simplify", "Animated error vs. simplification time: DQEM settings and two peers");
+  bench_simplify_cmd->add_option("--assets", bench.assets, "Folder with MANIFEST.json (default ../shared/assets)");
+  bench_simplify_cmd->add_option("--out", bench.out, "Folder for accuracy.csv and accuracy.json (default docs/data)");
+  bench_simplify_cmd->add_option("--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
+  bench_simplify_cmd->add_option("--plot-script", bench.plot_script, "gnuplot script (default scripts/plot-accuracy.gp)");
+  bench_simplify_cmd->add_flag("--quick", bench.quick, "Fewer configurations and frames (CI smoke test)");
+  bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only, "Only the generated spectator");
+  bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -72,6 +85,7 @@ int main(int argc, char** argv) {
   try {
     if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
     if (*lod_cmd) return crowdbake::cli::run_lod(lod);
+    if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
     return e.exit_code();

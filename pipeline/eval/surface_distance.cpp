@@ -46,6 +46,44 @@ struct PointKeyHash {
   }
 };
 
+// Interleaves the low 21 bits of x, y, z (Morton / Z-order code).
+uint64_t spread(uint64_t x) {
+  x &= 0x1FFFFF;
+  x = (x | x << 32) & 0x1F00000000FFFFull;
+  x = (x | x << 16) & 0x1F0000FF0000FFull;
+  x = (x | x << 8) & 0x100F00F00F00F00Full;
+  x = (x | x << 4) & 0x10C30C30C30C30C3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+// Reorders the points along a Z-order curve of their positions (stable for equal codes).
+void sort_spatially(SurfaceSampling& plan, const std::vector<glm::dvec3>& positions) {
+  const size_t n = plan.points.size();
+  std::vector<glm::dvec3> at(n);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (size_t i = 0; i < n; ++i) {
+    const SurfaceSampling::Point& s = plan.points[i];
+    at[i] = positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
+    lo = glm::min(lo, at[i]), hi = glm::max(hi, at[i]);
+  }
+  const glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(1e-300));
+  std::vector<std::pair<uint64_t, uint32_t>> order(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3 u = glm::clamp((at[i] - lo) / extent, 0.0, 1.0) * 2097151.0;
+    const uint64_t code =
+        spread(uint64_t(u.x)) | spread(uint64_t(u.y)) << 1 | spread(uint64_t(u.z)) << 2;
+    order[i] = {std::isfinite(u.x + u.y + u.z) ? code : 0, static_cast<uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<uint32_t> rank(n);
+  std::vector<SurfaceSampling::Point> sorted(n);
+  for (size_t r = 0; r < n; ++r)
+    rank[order[r].second] = static_cast<uint32_t>(r), sorted[r] = plan.points[order[r].second];
+  plan.points.swap(sorted);
+  for (uint32_t& i : plan.triangle_points) i = rank[i];
+}
+
 double edge_length(const std::vector<glm::dvec3>& p, uint32_t a, uint32_t b) {
   return glm::length(p[a] - p[b]);
 }
@@ -116,6 +154,7 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
           {{v[0], v[1], v[2]}, {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}});
     plan.offset.push_back(static_cast<uint32_t>(plan.triangle_points.size()));
   }
+  sort_spatially(plan, positions);
   return plan;
 }
 
@@ -135,11 +174,14 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
   }
   OneWayDistance out;
   double max_sq = 0.0;
+  uint32_t hint = UINT32_MAX;
   for (size_t i = 0; i < plan.points.size(); ++i) {
     const SurfaceSampling::Point& s = plan.points[i];
     const glm::dvec3 p =
         positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
-    const double d_sq = other.distance_sq(p);
+    // note: points are in Morton order, so the previous point's closest triangle is
+    // usually close to this one's and prunes most of the tree.
+    const double d_sq = other.distance_sq(p, hint, hint);
     out.sum_sq += weight[i] * d_sq;
     out.weight += weight[i];
     max_sq = std::max(max_sq, d_sq);

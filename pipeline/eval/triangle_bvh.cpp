@@ -16,9 +16,11 @@ glm::dvec3 closest_point_on_segment(const glm::dvec3& p, const glm::dvec3& a, co
   return a + ab * std::clamp(glm::dot(p - a, ab) / len_sq, 0.0, 1.0);
 }
 
-double box_distance_sq(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
-  const glm::dvec3 d = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
-  return glm::dot(d, d);
+inline double box_distance_sq(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
+  const double dx = std::max(std::max(lo.x - p.x, p.x - hi.x), 0.0);
+  const double dy = std::max(std::max(lo.y - p.y, p.y - hi.y), 0.0);
+  const double dz = std::max(std::max(lo.z - p.z, p.z - hi.z), 0.0);
+  return dx * dx + dy * dy + dz * dz;
 }
 
 }  // namespace
@@ -44,11 +46,10 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
   if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0)
     return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
 
+  // note: denom = |ab × ac|² (Lagrange's identity); a zero-area (or numerically flat)
+  // triangle has no face region, its closest point lies on one of its edges.
   const double denom = va + vb + vc;
-  // note: a zero-area (or numerically flat) triangle has no face region; its closest
-  // point lies on one of its edges.
-  const double area_sq = glm::dot(glm::cross(ab, ac), glm::cross(ab, ac));
-  if (!(denom > 0.0) || !(area_sq > 1e-24 * glm::dot(ab, ab) * glm::dot(ac, ac))) {
+  if (!(denom > 1e-24 * glm::dot(ab, ab) * glm::dot(ac, ac))) {
     const glm::dvec3 candidates[3] = {closest_point_on_segment(p, a, b),
                                       closest_point_on_segment(p, b, c),
                                       closest_point_on_segment(p, c, a)};
@@ -119,30 +120,46 @@ void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end, std::vector
 }
 
 double TriangleBvh::distance_sq(const glm::dvec3& p) const {
+  uint32_t ignored;
+  return distance_sq(p, UINT32_MAX, ignored);
+}
+
+double TriangleBvh::distance_sq(const glm::dvec3& p, uint32_t hint, uint32_t& closest) const {
   double best = std::numeric_limits<double>::infinity();
+  closest = UINT32_MAX;
   if (nodes_.empty()) return best;
-  uint32_t stack[96];
+  auto test = [&](uint32_t i) {
+    const glm::dvec3* t = &corners_[3 * size_t{i}];
+    const glm::dvec3 q = closest_point_on_triangle(p, t[0], t[1], t[2]);
+    const double d = glm::dot(q - p, q - p);
+    if (d < best) best = d, closest = i;
+  };
+  if (hint < corners_.size() / 3) test(hint);
+  struct Entry {
+    uint32_t node;
+    double distance_sq;
+  };
+  Entry stack[96];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = {0, box_distance_sq(p, nodes_[0].lo, nodes_[0].hi)};
   while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (box_distance_sq(p, node.lo, node.hi) >= best) continue;
+    const Entry entry = stack[--top];
+    if (entry.distance_sq >= best) continue;
+    const Node& node = nodes_[entry.node];
     if (node.count > 0) {
-      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-        const glm::dvec3* t = &corners_[3 * size_t{i}];
-        const glm::dvec3 q = closest_point_on_triangle(p, t[0], t[1], t[2]);
-        best = std::min(best, glm::dot(q - p, q - p));
-      }
+      for (uint32_t i = node.first; i < node.first + node.count; ++i) test(i);
       continue;
     }
-    const double dl = box_distance_sq(p, nodes_[node.first].lo, nodes_[node.first].hi);
-    const double dr = box_distance_sq(p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
+    const Node& left = nodes_[node.first];
+    const Node& right = nodes_[node.first + 1];
+    const Entry l{node.first, box_distance_sq(p, left.lo, left.hi)};
+    const Entry r{node.first + 1, box_distance_sq(p, right.lo, right.hi)};
     // note: push the farther child first so the nearer one is searched first and
     // tightens `best` before the farther one is tested.
-    const uint32_t near = dl <= dr ? node.first : node.first + 1;
-    const uint32_t far = dl <= dr ? node.first + 1 : node.first;
-    if (std::max(dl, dr) < best) stack[top++] = far;
-    if (std::min(dl, dr) < best) stack[top++] = near;
+    const Entry& near = l.distance_sq <= r.distance_sq ? l : r;
+    const Entry& far = l.distance_sq <= r.distance_sq ? r : l;
+    if (far.distance_sq < best) stack[top++] = far;
+    if (near.distance_sq < best) stack[top++] = near;
   }
   return best;
 }

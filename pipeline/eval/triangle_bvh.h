@@ -25,6 +25,11 @@ class TriangleBvh {
   // Squared distance from p to the closest point of any triangle; +inf when empty.
   double distance_sq(const glm::dvec3& p) const;
 
+  // The same, starting from the triangle `hint` (a leaf-order id from an earlier answer,
+  // e.g. for a nearby point; out of range = none) so most of the tree is pruned at once.
+  // `closest` receives the leaf-order id of the closest triangle.
+  double distance_sq(const glm::dvec3& p, uint32_t hint, uint32_t& closest) const;
+
  private:
   struct Node {
     glm::dvec3 lo, hi;

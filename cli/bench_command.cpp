@@ -1,0 +1,308 @@
+// `crowdbake bench simplify`: what pose-aware accuracy costs in time (docs/accuracy.md).
+// For the generated spectator and every asset of the shared manifest: DQEM at S ∈ {1, 4,
+// 16, 64, 256} × {pullback, exact}, clip frames as the pose source at S = 64, and the two
+// peers (bench_peers.h), each at 50/25/10/5% kept positions; the animated error of every
+// level is measured by animated_error() with the original's clips at 30 fps.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/bench_child.h"
+#include "cli/bench_levels.h"
+#include "cli/bench_peers.h"
+#include "cli/bench_report.h"
+#include "cli/commands.h"
+#include "crowdbake/pipeline/animated_error.h"
+#include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/gltf_export.h"
+#include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/simplify.h"
+#include "spectator_character.h"
+
+namespace crowdbake::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Config {
+  std::string label;
+  int samples;
+  DqemForm form;
+  PoseSource source;
+};
+
+std::vector<Config> dqem_configs(bool quick) {
+  if (quick)
+    return {{"S=1 static QEM", 1, DqemForm::kPullback, PoseSource::kSampled},
+            {"S=16 pullback", 16, DqemForm::kPullback, PoseSource::kSampled},
+            {"S=16 exact", 16, DqemForm::kExact, PoseSource::kSampled},
+            {"S=16 clips pullback", 16, DqemForm::kPullback, PoseSource::kClips}};
+  std::vector<Config> configs = {{"S=1 static QEM", 1, DqemForm::kPullback, PoseSource::kSampled}};
+  for (int s : {4, 16, 64, 256})
+    for (DqemForm form : {DqemForm::kPullback, DqemForm::kExact})
+      configs.push_back(
+          {"S=" + std::to_string(s) + (form == DqemForm::kExact ? " exact" : " pullback"), s, form,
+           PoseSource::kSampled});
+  configs.push_back({"S=64 clips pullback", 64, DqemForm::kPullback, PoseSource::kClips});
+  return configs;
+}
+
+BenchLevel unmeasured(double target) {
+  BenchLevel level;
+  level.target = target;
+  return level;
+}
+
+struct Progress {
+  bool on = isatty(2) != 0;
+  void say(const std::string& text) const {
+    if (on) std::fprintf(stderr, "\r\033[K%s", text.c_str()), std::fflush(stderr);
+  }
+  void done() const {
+    if (on) std::fprintf(stderr, "\r\033[K"), std::fflush(stderr);
+  }
+};
+
+struct Input {
+  std::string name, source;
+  SkinnedAsset asset;
+};
+
+std::vector<Input> load_inputs(const BenchSettings& settings, const Progress& progress) {
+  std::vector<Input> inputs;
+  inputs.push_back(
+      {"spectator", "samples::make_spectator_character()", samples::make_spectator_character()});
+  if (settings.spectator_only) return inputs;
+  const fs::path manifest = fs::path(settings.assets) / "MANIFEST.json";
+  if (!fs::exists(manifest)) {
+    std::cerr << "note: " << manifest.string()
+              << " not found; benchmarking the generated spectator only\n";
+    return inputs;
+  }
+  std::ifstream in(manifest);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("assets"))
+    throw input_error(manifest.string(), "not a readable manifest");
+  for (const auto& entry : j["assets"]) {
+    const std::string path = entry.value("path", "");
+    progress.say("importing " + path);
+    inputs.push_back({fs::path(path).parent_path().string(), path,
+                      import_asset((fs::path(settings.assets) / path).string())});
+  }
+  return inputs;
+}
+
+// One DQEM configuration: simplify in a child process (time, peak memory), then the
+// level closest to each target, each as a LoD asset.
+BenchRow run_dqem(const SkinnedAsset& asset, const Config& config, const BenchSettings& settings,
+                  const std::vector<uint32_t>& position_of, uint32_t positions,
+                  const std::vector<double>& fractions, std::vector<SkinnedAsset>& lods) {
+  BenchRow row;
+  row.config = config.label;
+  row.method = "dqem";
+  row.samples = config.samples;
+  row.form =
+      config.samples == 1 ? "static" : (config.form == DqemForm::kExact ? "exact" : "pullback");
+  row.pose_source = config.source == PoseSource::kClips ? "clips" : "sampled";
+  SimplifyOptions options;
+  options.samples = config.samples;
+  options.form = config.form;
+  options.pose_source = config.source;
+  options.threads = settings.threads;
+  const ChildResult run = run_in_child([&] { return serialize(simplify(asset, options)); });
+  row.seconds = run.seconds;
+  row.peak_rss_mb = run.peak_rss_mb;
+  for (double f : fractions) row.levels.push_back(unmeasured(f));
+  if (!run.ok) {
+    row.note = "simplify failed: " + run.error;
+    return row;
+  }
+  const ProgressiveMesh pm = deserialize_progressive_mesh(run.payload);
+  for (BenchLevel& level : row.levels) {
+    const uint32_t target = static_cast<uint32_t>(std::lround(level.target * positions));
+    SkinnedAsset lod = extract_lod(asset, pm, level_for_positions(pm, position_of, target));
+    lod.clips.clear();
+    lods.push_back(std::move(lod));
+  }
+  return row;
+}
+
+BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const std::string& gltfpack,
+                  const std::string& work_dir, uint32_t positions,
+                  const std::vector<double>& fractions, std::vector<SkinnedAsset>& lods,
+                  std::vector<int>& lod_level) {
+  BenchRow row;
+  row.config = method;
+  row.method = method;
+  row.pose_source = "bind";
+  row.form = "-";
+  std::string input_glb;
+  if (method == "gltfpack") {
+    if (gltfpack.empty()) {
+      row.note = "gltfpack not found (scripts/gltfpack/install.sh BUILD/npm-gltfpack)";
+      for (double f : fractions) row.levels.push_back(unmeasured(f));
+      return row;
+    }
+    input_glb = work_dir + "/gltfpack-in.glb";
+    export_glb(asset, input_glb);
+  }
+  int trials = 0;
+  double peak = -1.0;
+  for (double f : fractions) {
+    row.levels.push_back(unmeasured(f));
+    const uint32_t target = static_cast<uint32_t>(std::lround(f * positions));
+    PeerLod peer = method == "meshopt" ? meshopt_lod(asset, target)
+                                       : gltfpack_lod(asset, gltfpack, input_glb, work_dir, target);
+    trials += peer.trials;
+    if (!peer.ok) {
+      row.note += (row.note.empty() ? "" : "; ") + peer.error;
+      continue;
+    }
+    row.seconds += peer.seconds;
+    peak = std::max(peak, peer.peak_rss_mb);
+    row.levels.back().parameter = peer.parameter;
+    lod_level.push_back(static_cast<int>(row.levels.size()) - 1);
+    lods.push_back(std::move(peer.lod));
+  }
+  row.peak_rss_mb = peak;
+  row.note += (row.note.empty() ? "" : "; ") + std::to_string(trials) + " trial runs";
+  return row;
+}
+
+BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
+                       const std::vector<double>& fractions, const std::string& gltfpack,
+                       const std::string& work_dir, const Progress& progress) {
+  const SkinnedAsset& asset = input.asset;
+  BenchAsset out;
+  out.name = input.name;
+  out.source = input.source;
+  const LodCounts counts = count_lod(asset);
+  out.vertices = static_cast<unsigned>(asset.vertex_count());
+  out.positions = counts.positions;
+  out.triangles = counts.triangles;
+  out.clips = static_cast<unsigned>(asset.clips.size());
+  const std::vector<uint32_t> position_of = position_ids(asset);
+
+  // Every LoD of every row, measured together: the original is skinned once per frame.
+  std::vector<SkinnedAsset> lods;
+  std::vector<std::pair<size_t, size_t>> owner;  // (row, level) of each LoD
+  for (const Config& config : dqem_configs(settings.quick)) {
+    progress.say(input.name + ": " + config.label);
+    const size_t before = lods.size();
+    out.rows.push_back(
+        run_dqem(asset, config, settings, position_of, counts.positions, fractions, lods));
+    for (size_t i = before; i < lods.size(); ++i)
+      owner.push_back({out.rows.size() - 1, i - before});
+  }
+  for (const std::string peer : {"meshopt", "gltfpack"}) {
+    progress.say(input.name + ": " + peer);
+    std::vector<int> level;
+    const size_t before = lods.size();
+    out.rows.push_back(
+        run_peer(peer, asset, gltfpack, work_dir, counts.positions, fractions, lods, level));
+    for (size_t i = before; i < lods.size(); ++i)
+      owner.push_back({out.rows.size() - 1, size_t(level[i - before])});
+  }
+
+  progress.say(input.name + ": animated error of " + std::to_string(lods.size()) + " levels");
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<const SkinnedAsset*> pointers;
+  for (const SkinnedAsset& lod : lods) pointers.push_back(&lod);
+  AnimatedErrorOptions options;
+  options.frame_stride = settings.quick ? 6 : 1;
+  options.threads = settings.threads;
+  const std::vector<AnimatedError> errors = animated_error(asset, pointers, options);
+  out.seconds_error =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (size_t i = 0; i < lods.size(); ++i) {
+    BenchLevel& level = out.rows[owner[i].first].levels[owner[i].second];
+    const LodCounts kept = count_lod(lods[i]);
+    level.kept_positions = double(kept.positions) / std::max(1u, counts.positions);
+    level.kept_vertices = double(kept.vertices) / std::max<size_t>(1, asset.vertex_count());
+    level.triangles = kept.triangles;
+    level.error = errors[i];
+    level.measured = true;
+    out.diagonal = errors[i].diagonal;
+    out.frames = errors[i].frames;
+  }
+  return out;
+}
+
+void draw_plot(const BenchSettings& settings, const std::string& data, const BenchResult& result) {
+  if (settings.plot.empty()) return;
+  if (!fs::exists(settings.plot_script)) {
+    std::cerr << "note: " << settings.plot_script << " not found; no plot written\n";
+    return;
+  }
+  const std::string tmp = settings.plot + ".tmp";
+  std::string names;
+  for (const BenchAsset& a : result.assets) names += (names.empty() ? "" : " ") + a.name;
+  const ChildResult run = run_program(
+      {"gnuplot", "-e", "datafile='" + data + "'; outfile='" + tmp + "'; assets='" + names + "'",
+       settings.plot_script},
+      data + ".gnuplot.log");
+  if (!run.ok || !fs::exists(tmp)) {
+    std::cerr << "note: gnuplot failed (" << run.error
+              << "); no plot written (install gnuplot-nox)\n";
+    fs::remove(tmp);
+    return;
+  }
+  fs::rename(tmp, settings.plot);
+}
+
+}  // namespace
+
+int run_bench_simplify(const BenchSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  const Progress progress;
+  BenchResult result;
+  result.quick = settings.quick;
+  result.frame_stride = settings.quick ? 6 : 1;
+  result.fractions = {0.50, 0.25, 0.10, 0.05};
+  result.gltfpack = find_gltfpack();
+  if (result.gltfpack.empty())
+    std::cerr << "note: gltfpack not found; run scripts/gltfpack/install.sh <build>/npm-gltfpack "
+                 "or set CROWDBAKE_GLTFPACK\n";
+
+  std::error_code ec;
+  fs::create_directories(settings.out, ec);
+  if (ec)
+    throw Error(Error::Kind::kOutput, settings.out,
+                "cannot create the output folder: " + ec.message());
+  const fs::path work = fs::temp_directory_path() / ("crowdbake-bench-" + std::to_string(getpid()));
+  fs::create_directories(work);
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  } cleanup{work};
+
+  for (const Input& input : load_inputs(settings, progress)) {
+    result.assets.push_back(
+        bench_asset(input, settings, result.fractions, result.gltfpack, work.string(), progress));
+    progress.done();
+    print_table(result.assets.back(), result.fractions);
+  }
+  result.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  print_summary(result);
+
+  const std::string csv = (fs::path(settings.out) / "accuracy.csv").string();
+  const std::string json = (fs::path(settings.out) / "accuracy.json").string();
+  const std::string data = (fs::path(settings.out) / "accuracy-vs-time.dat").string();
+  write_csv(result, csv);
+  write_json(result, json);
+  write_plot_data(result, data);
+  draw_plot(settings, data, result);
+  return 0;
+}
+
+}  // namespace crowdbake::cli
