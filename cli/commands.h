@@ -29,6 +29,19 @@ struct LodSettings {
 
 int run_lod(const LodSettings& settings);
 
+struct BakeCommandSettings {
+  std::string input;
+  std::string output;
+  std::string config;   // bake config JSON (docs/bake-config.md); empty = defaults
+  int jobs = 0;         // 0 = all cores; the pack never depends on it
+  std::string depfile;  // Make/Ninja depfile to write; empty = none
+  std::string report;   // JSON report to write; empty = none
+  bool quiet = false;
+  ImportOptions import;
+};
+
+int run_bake(const BakeCommandSettings& settings);
+
 // `crowdbake bench simplify`: accuracy vs. time of DQEM settings and two peers
 // (docs/accuracy.md).
 struct BenchSettings {

@@ -71,6 +71,18 @@ int main(int argc, char** argv) {
   bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only, "Only the generated spectator");
   bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
 
+  crowdbake::cli::BakeCommandSettings bake;
+  CLI::App* bake_cmd = app.add_subcommand("bake", "Bake a character into a .crowdpack (progressive mesh, animation "
+                                                  "texture, partition mask, Draco geometry)");
+  bake_cmd->add_option("INPUT", bake.input, "Character file")->required();
+  bake_cmd->add_option("-o,--output", bake.output, "Output .crowdpack")->required();
+  bake_cmd->add_option("--config", bake.config, "Bake settings (JSON, docs/bake-config.md)");
+  bake_cmd->add_option("--jobs", bake.jobs, "Threads (0 = all cores); the pack is the same for any value");
+  bake_cmd->add_option("--depfile", bake.depfile, "Write a Make/Ninja depfile listing every file read");
+  bake_cmd->add_option("--report", bake.report, "Write a JSON report (stats, timings, settings, chunk sizes)");
+  bake_cmd->add_flag("--quiet", bake.quiet, "No progress and no summary");
+  add_import_options(*bake_cmd, bake.import);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -85,6 +97,7 @@ int main(int argc, char** argv) {
   try {
     if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
     if (*lod_cmd) return crowdbake::cli::run_lod(lod);
+    if (*bake_cmd) return crowdbake::cli::run_bake(bake);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";

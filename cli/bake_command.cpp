@@ -1,0 +1,139 @@
+// crowdbake bake: import → build_pack → write_pack, written atomically, with an optional
+// depfile and JSON report. Progress goes to stderr on a terminal only.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "crowdbake/formats/pack.h"
+#include "crowdbake/pipeline/bake.h"
+#include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/output_file.h"
+
+namespace crowdbake::cli {
+namespace {
+
+std::string tag_name(uint32_t tag) {
+  std::string s(4, ' ');
+  for (int i = 0; i < 4; ++i) s[i] = static_cast<char>((tag >> (8 * i)) & 0xff);
+  return s;
+}
+
+// Make/Ninja depfile: "OUT: dep dep ..." with spaces escaped. Only files that exist are
+// listed: a missing texture path from an artist's machine would break the build tool.
+std::string depfile_text(const std::string& output, const std::vector<std::string>& files) {
+  auto escape = [](const std::string& p) {
+    std::string out;
+    for (char c : p) {
+      if (c == ' ' || c == '#') out += '\\';
+      if (c == '$') out += '$';
+      out += c;
+    }
+    return out;
+  };
+  std::string text = escape(output) + ":";
+  for (const std::string& f : files)
+    if (std::filesystem::is_regular_file(f)) text += " \\\n  " + escape(f);
+  return text + "\n";
+}
+
+class Progress {
+ public:
+  explicit Progress(bool on) : on_(on) {}
+  void say(const std::string& what) const {
+    if (on_) std::fprintf(stderr, "crowdbake: %s\n", what.c_str());
+  }
+
+ private:
+  bool on_;
+};
+
+}  // namespace
+
+int run_bake(const BakeCommandSettings& s) {
+  BakeSettings settings = s.config.empty() ? BakeSettings{} : read_bake_config(s.config);
+  settings.simplify.threads = s.jobs;
+  const Progress progress(!s.quiet && ::isatty(STDERR_FILENO));
+  const auto start = std::chrono::steady_clock::now();
+
+  progress.say("importing " + s.input);
+  const SkinnedAsset asset = import_asset(s.input, s.import);
+  progress.say("baking " + std::to_string(asset.vertex_count()) + " vertices, " +
+               std::to_string(asset.skeleton.joints.size()) + " joints, " +
+               std::to_string(asset.clips.size()) + " clips");
+  BakeReport report;
+  const PackContents pack = build_pack(asset, settings, report);
+  progress.say("writing " + s.output);
+  const auto write_start = std::chrono::steady_clock::now();
+  const std::vector<uint8_t> bytes = write_pack(pack, settings.pack);
+  write_file_atomically(s.output, bytes);
+  report.stages.push_back(
+      {"write",
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count()});
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<PackChunk> chunks;
+  read_pack_chunks(bytes.data(), bytes.size(), chunks);
+
+  if (!s.depfile.empty()) {
+    std::vector<std::string> files = asset.files;
+    if (!s.config.empty()) files.push_back(s.config);
+    if (!settings.simplify.ranges_file.empty()) files.push_back(settings.simplify.ranges_file);
+    write_file_atomically(s.depfile, depfile_text(s.output, files));
+  }
+  if (!s.report.empty()) {
+    nlohmann::ordered_json j;
+    j["input"] = {{"file", s.input},
+                  {"joints", asset.skeleton.joints.size()},
+                  {"vertices", asset.vertex_count()},
+                  {"triangles", asset.triangle_count()},
+                  {"clips", asset.clips.size()}};
+    j["output"] = {{"file", s.output}, {"bytes", bytes.size()}};
+    j["settings"] = nlohmann::ordered_json::parse(pack.settings_json);
+    j["warnings"] = report.warnings;
+    j["stages"] = nlohmann::json::array();
+    for (const BakeStage& stage : report.stages)
+      j["stages"].push_back({{"name", stage.name}, {"seconds", stage.seconds}});
+    j["seconds"] = total;
+    j["lod"] = {{"min_vertices", pack.progressive.min_vertices},
+                {"strict_min_vertices", report.simplify.strict_min_vertices},
+                {"max_vertices", pack.geometry.vertex_count()},
+                {"max_triangles", pack.geometry.triangle_count()}};
+    j["chunks"] = nlohmann::json::array();
+    for (const PackChunk& c : chunks)
+      j["chunks"].push_back({{"tag", tag_name(c.tag)}, {"bytes", c.size}});
+    j["accuracy"] = {
+        {"animation_mean_error", report.animation_mean_error},
+        {"animation_max_error", report.animation_max_error},
+        {"note",
+         "decoded animation texture vs direct evaluation at the baked frames, / bbox diagonal"}};
+    j["partition"] = {{"heights", report.partition_heights},
+                      {"neck_height", pack.partition.neck_height},
+                      {"waist_height", pack.partition.waist_height}};
+    write_file_atomically(s.report, j.dump(2) + "\n");
+  }
+
+  if (!s.quiet && ::isatty(STDOUT_FILENO)) {
+    std::printf("%s -> %s (%zu bytes, %.2f s)\n", s.input.c_str(), s.output.c_str(), bytes.size(),
+                total);
+    std::printf("  %-10s %8s\n", "stage", "seconds");
+    for (const BakeStage& stage : report.stages)
+      std::printf("  %-10s %8.3f\n", stage.name.c_str(), stage.seconds);
+    std::printf("  %-10s %8s\n", "chunk", "bytes");
+    for (const PackChunk& c : chunks)
+      std::printf("  %-10s %8llu\n", tag_name(c.tag).c_str(),
+                  static_cast<unsigned long long>(c.size));
+    std::printf("  lod        %u..%u vertices\n", pack.progressive.min_vertices,
+                pack.geometry.vertex_count());
+    std::printf("  animation  max error %.2e of the bbox diagonal\n", report.animation_max_error);
+    for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
+  }
+  return 0;
+}
+
+}  // namespace crowdbake::cli

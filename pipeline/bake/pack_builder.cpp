@@ -1,0 +1,203 @@
+// build_pack(): simplify → bake animation → bake partition → geometry in progressive
+// order → skeleton, clips, materials, bounds.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "crowdbake/formats/animation_codec.h"
+#include "crowdbake/pipeline/animation_bake.h"
+#include "crowdbake/pipeline/bake.h"
+#include "crowdbake/pipeline/pose_evaluator.h"
+#include "import/node_transform.h"
+
+namespace crowdbake {
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(BakeReport& report) : report_(report) {}
+  void done(const std::string& name) {
+    const auto now = std::chrono::steady_clock::now();
+    report_.stages.push_back({name, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  BakeReport& report_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+std::array<float, 12> rows_of(const glm::dmat4& m) {
+  std::array<float, 12> out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) out[4 * r + c] = static_cast<float>(m[c][r]);
+  return out;
+}
+
+// Vertex i of the concatenated primitives -> (primitive, index in it).
+std::vector<std::pair<uint32_t, uint32_t>> vertex_origins(const SkinnedAsset& asset) {
+  std::vector<std::pair<uint32_t, uint32_t>> origin;
+  for (uint32_t p = 0; p < asset.primitives.size(); ++p)
+    for (uint32_t v = 0; v < asset.primitives[p].vertex_count(); ++v) origin.push_back({p, v});
+  return origin;
+}
+
+void fill_geometry(const SkinnedAsset& asset, const ProgressiveMesh& pm,
+                   const std::vector<std::vector<uint8_t>>& regions,
+                   std::vector<PackMaterial>& materials, PackGeometry& g) {
+  const auto origin = vertex_origins(asset);
+  const bool normals = std::all_of(asset.primitives.begin(), asset.primitives.end(),
+                                   [](const Primitive& p) { return !p.normals.empty(); });
+  const bool uvs = std::all_of(asset.primitives.begin(), asset.primitives.end(),
+                               [](const Primitive& p) { return !p.uvs.empty(); });
+  for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+    const auto [prim, v] = origin[pm.vertex_source[i]];
+    const Primitive& p = asset.primitives[prim];
+    g.positions.insert(g.positions.end(), {p.positions[v].x, p.positions[v].y, p.positions[v].z});
+    if (normals)
+      g.normals.insert(g.normals.end(), {p.normals[v].x, p.normals[v].y, p.normals[v].z});
+    if (uvs) g.uvs.insert(g.uvs.end(), {p.uvs[v].x, p.uvs[v].y});
+    g.joints.insert(g.joints.end(), p.joints[v].begin(), p.joints[v].end());
+    g.weights.insert(g.weights.end(), p.weights[v].begin(), p.weights[v].end());
+    g.regions.push_back(regions.at(prim).at(v));
+  }
+  g.triangles = pm.triangles;
+  // note: primitives without a material share one default material at the end.
+  int default_material = -1;
+  for (uint16_t prim : pm.triangle_primitive) {
+    int m = asset.primitives[prim].material;
+    if (m < 0 || m >= static_cast<int>(materials.size())) {
+      if (default_material < 0) {
+        default_material = static_cast<int>(materials.size());
+        materials.push_back(PackMaterial{"default", {1, 1, 1, 1}, ""});
+      }
+      m = default_material;
+    }
+    g.triangle_material.push_back(static_cast<uint16_t>(m));
+  }
+}
+
+// Skins every vertex with the decoded texture rows (what the runtime draws, root motion
+// put back) and compares with direct evaluation of the clips at the same times; also the
+// radius of the bounding sphere of the in-place frames around the bind-box centre.
+void measure_animation(const SkinnedAsset& asset, const PackContents& pack, double diagonal,
+                       const glm::dvec3& centre, BakeReport& report, float& radius) {
+  std::vector<Transform> local;
+  std::vector<glm::dmat4> global, skinning, in_place(asset.skeleton.joints.size()),
+      moved(in_place.size());
+  std::vector<glm::dvec3> exact, baked, still;
+  double sum = 0.0, worst = 0.0, far = 0.0;
+  size_t count = 0;
+  auto to_mat = [](const float rows[12]) {
+    glm::dmat4 m(1.0);
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 4; ++k) m[k][r] = rows[4 * r + k];
+    return m;
+  };
+  for (size_t c = 0; c < pack.clips.size(); ++c) {
+    const PackClip& clip = pack.clips[c];
+    // note: an asset without clips bakes its rest pose as one clip.
+    const Clip* source = c < asset.clips.size() ? &asset.clips[c] : nullptr;
+    for (uint32_t f = 0; f < clip.frame_count; ++f) {
+      if (source)
+        sample_clip(asset.skeleton, *source, frame_time(*source, clip.frame_count, f), local);
+      else
+        rest_pose(asset.skeleton, local);
+      local_to_global(asset.skeleton, local, global);
+      skinning_matrices(asset.skeleton, global, skinning);
+      float motion[12], rows[12], with_motion[12];
+      const float none[3] = {0.0f, 0.0f, 0.0f};
+      root_motion_matrix(clip.root_motion.empty() ? none : &clip.root_motion[3 * f], motion);
+      for (uint32_t j = 0; j < in_place.size(); ++j) {
+        decode_joint(pack.animation, clip.first_row + f, j, rows);
+        compose_affine(motion, rows, with_motion);
+        in_place[j] = to_mat(rows);
+        moved[j] = to_mat(with_motion);
+      }
+      for (const Primitive& p : asset.primitives) {
+        skin_positions(p, skinning, exact);
+        skin_positions(p, moved, baked);
+        skin_positions(p, in_place, still);
+        for (size_t v = 0; v < exact.size(); ++v) {
+          const double e = glm::length(exact[v] - baked[v]);
+          sum += e, worst = std::max(worst, e), ++count;
+          far = std::max(far, glm::length(still[v] - centre));
+        }
+      }
+    }
+  }
+  report.animation_mean_error = count ? sum / count / diagonal : 0.0;
+  report.animation_max_error = worst / diagonal;
+  radius = static_cast<float>(far);
+}
+
+}  // namespace
+
+PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
+                        BakeReport& report) {
+  StageClock clock(report);
+  PackContents pack;
+  pack.name = std::filesystem::path(asset.source).stem().string();
+  pack.settings_json = bake_settings_json(settings);
+  report.warnings = asset.warnings;
+
+  const ProgressiveMesh pm = simplify(asset, settings.simplify, &report.simplify);
+  report.warnings.insert(report.warnings.end(), report.simplify.warnings.begin(),
+                         report.simplify.warnings.end());
+  pack.progressive = {pm.collapse_to, pm.triangle_count, pm.group_start, pm.min_vertices};
+  clock.done("simplify");
+
+  AnimationBake animation = bake_animation(asset, settings.animation);
+  pack.animation = std::move(animation.texture);
+  pack.clips = std::move(animation.clips);
+  report.warnings.insert(report.warnings.end(), animation.warnings.begin(),
+                         animation.warnings.end());
+  clock.done("animation");
+
+  PartitionBake partition = bake_partition(asset, settings.partition);
+  pack.partition = std::move(partition.mask);
+  report.partition_heights = partition.height_source;
+  report.warnings.insert(report.warnings.end(), partition.warnings.begin(),
+                         partition.warnings.end());
+  clock.done("partition");
+
+  for (const Material& m : asset.materials)
+    pack.materials.push_back({m.name,
+                              {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a},
+                              m.base_color_texture});
+  fill_geometry(asset, pm, partition.vertex_regions, pack.materials, pack.geometry);
+  for (const Joint& j : asset.skeleton.joints) {
+    PackJoint out;
+    out.name = j.name;
+    out.parent = j.parent;
+    out.inverse_bind = rows_of(j.inverse_bind);
+    // note: a pre-transform (non-joint nodes folded in) is part of the rest local matrix.
+    Transform rest = j.rest;
+    const glm::dmat4 local = j.pre_transform * j.rest.matrix();
+    if (local != j.rest.matrix()) rest = decompose_transform(local);
+    out.rest_translation = {static_cast<float>(rest.translation.x),
+                            static_cast<float>(rest.translation.y),
+                            static_cast<float>(rest.translation.z)};
+    out.rest_rotation = {static_cast<float>(rest.rotation.x), static_cast<float>(rest.rotation.y),
+                         static_cast<float>(rest.rotation.z), static_cast<float>(rest.rotation.w)};
+    out.rest_scale = {static_cast<float>(rest.scale.x), static_cast<float>(rest.scale.y),
+                      static_cast<float>(rest.scale.z)};
+    pack.joints.push_back(out);
+  }
+  clock.done("geometry");
+
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const Primitive& p : asset.primitives)
+    for (const glm::vec3& v : p.positions)
+      lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
+  for (int k = 0; k < 3; ++k)
+    pack.bounds.min[k] = static_cast<float>(lo[k]), pack.bounds.max[k] = static_cast<float>(hi[k]);
+  measure_animation(asset, pack, std::max(glm::length(hi - lo), 1e-30), 0.5 * (lo + hi), report,
+                    pack.bounds.radius);
+  clock.done("measure");
+  return pack;
+}
+
+}  // namespace crowdbake
