@@ -242,13 +242,18 @@ class GltfImporter {
       for (int n = tree_.parent[node]; n != ancestor; n = tree_.parent[n]) folded_nodes_.insert(n);
     }
     // Inverse binds: the first skin listing a joint defines it; other skins are
-    // reconciled per mesh in bind_correction().
+    // reconciled per mesh in bind_correction(). The bind shape is taken to live in the
+    // skeleton's frame (the nodes above its root, e.g. CesiumMan's Z-up -> Y-up root) and
+    // is moved into the scene's frame, B' = B · M⁻¹ and v' = M · v: skinning is unchanged,
+    // and stored positions share the rest pose's up axis, as the Assimp importer's do.
+    scene_from_bind_ = skeleton.joints.empty() ? glm::dmat4(1.0) : skeleton.joints[0].pre_transform;
+    const glm::dmat4 to_scene = glm::inverse(scene_from_bind_);
     std::vector<char> set(joint_node_.size(), 0);
     for (int s : skins_) {
       const std::vector<glm::dmat4> ibm = inverse_binds(s);
       for (size_t k = 0; k < model_.skins[s].joints.size(); ++k) {
         const int j = joint_of_node_[model_.skins[s].joints[k]];
-        if (!set[j]) skeleton.joints[j].inverse_bind = ibm[k], set[j] = 1;
+        if (!set[j]) skeleton.joints[j].inverse_bind = ibm[k] * to_scene, set[j] = 1;
       }
     }
   }
@@ -287,13 +292,14 @@ class GltfImporter {
     const tg::Skin& skin = model_.skins[s];
     glm::dmat4 correction(1.0);
     bool first = true, consistent = true, needed = false;
+    const glm::dmat4& expected = scene_from_bind_;  // see build_skeleton
     for (size_t k = 0; k < skin.joints.size(); ++k) {
       const glm::dmat4& mine = asset_.skeleton.joints[joint_of_node_[skin.joints[k]]].inverse_bind;
       const glm::dmat4 c = glm::inverse(mine) * ibm[k];
       if (first) correction = c, first = false;
       for (int i = 0; i < 16; ++i) {
         if (std::fabs(c[i / 4][i % 4] - correction[i / 4][i % 4]) > 1e-5) consistent = false;
-        if (std::fabs(c[i / 4][i % 4] - (i / 4 == i % 4 ? 1.0 : 0.0)) > 1e-9) needed = true;
+        if (std::fabs(c[i / 4][i % 4] - expected[i / 4][i % 4]) > 1e-9) needed = true;
       }
     }
     if (needed && !consistent)
@@ -565,6 +571,7 @@ class GltfImporter {
   std::vector<int> joint_node_;
   std::set<int> folded_nodes_;
   std::set<int> static_joints_;
+  glm::dmat4 scene_from_bind_{1.0};
   int morph_meshes_ = 0;
   int morph_animations_ = 0;
 };
