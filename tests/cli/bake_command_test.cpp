@@ -1,0 +1,130 @@
+// `crowdbake bake`: atomic, deterministic output; depfile; report; config errors.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.h"
+#include "crowdbake/formats/pack.h"
+#include "gltf_test_builder.h"
+
+namespace crowdbake {
+namespace {
+
+// The spectator written by the sample tests' fixture is not available here, so bake the
+// two-bone test character (with an external image reference, for the depfile).
+std::filesystem::path write_character(const test::TempDir& dir) {
+  test::GltfBuilder b = test::two_bone_character();
+  b.doc["images"] = nlohmann::json::array({nlohmann::json{{"uri", "skin tone.png"}}});
+  std::ofstream(dir / "skin tone.png") << "not really a png";
+  return b.write(dir / "character.gltf");
+}
+
+TEST(BakeCommand, WritesAPackThatReadsBack) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  const auto output = dir / "character.crowdpack";
+  const test::CommandResult r = test::run_crowdbake({"bake", input.string(), "-o", output.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "stdout is not a terminal: nothing should be printed\n" << r.out;
+  const std::string bytes = test::slurp(output);
+  PackContents pack;
+  const PackStatus status = read_pack(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), pack);
+  ASSERT_TRUE(status.ok) << status.message;
+  EXPECT_EQ(pack.joints.size(), 2u);
+  EXPECT_EQ(pack.geometry.vertex_count(), 3u);
+  ASSERT_EQ(pack.clips.size(), 1u);
+  EXPECT_EQ(pack.clips[0].name, "bend");
+}
+
+TEST(BakeCommand, SameBytesForAnyJobsAndOnRepeatedRuns) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::string first;
+  for (const char* jobs : {"1", "2", "1", "4"}) {
+    const auto output = dir / (std::string("out") + jobs + ".crowdpack");
+    ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--jobs", jobs}).exit_code, 0);
+    const std::string bytes = test::slurp(output);
+    if (first.empty())
+      first = bytes;
+    else
+      EXPECT_EQ(bytes, first) << "--jobs " << jobs;
+  }
+}
+
+TEST(BakeCommand, DepfileListsEveryFileRead) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"animation": {"encoding": "float16"}})";
+  const auto output = dir / "c.crowdpack";
+  const test::CommandResult r = test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--config",
+                                                     (dir / "config.json").string(), "--depfile", (dir / "c.d").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string dep = test::slurp(dir / "c.d");
+  EXPECT_EQ(dep.rfind(output.string() + ":", 0), 0u) << dep;
+  EXPECT_NE(dep.find(input.string()), std::string::npos) << dep;
+  EXPECT_NE(dep.find((dir / "config.json").string()), std::string::npos) << dep;
+  EXPECT_NE(dep.find("skin\\ tone.png"), std::string::npos) << "spaces are escaped for make\n" << dep;
+}
+
+TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  const auto output = dir / "c.crowdpack";
+  ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--report", (dir / "r.json").string()})
+                .exit_code,
+            0);
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  EXPECT_EQ(j["input"]["vertices"], 3);
+  EXPECT_EQ(j["output"]["bytes"], std::filesystem::file_size(output));
+  EXPECT_EQ(j["settings"]["simplify"]["samples"], 64);
+  EXPECT_FALSE(j["stages"].empty());
+  EXPECT_EQ(j["lod"]["max_vertices"], 3);
+  bool geometry = false;
+  for (const auto& c : j["chunks"]) geometry |= c["tag"] == "GEOM";
+  EXPECT_TRUE(geometry);
+  EXPECT_LT(j["accuracy"]["animation_max_error"].get<double>(), 1e-3);
+}
+
+TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"simplify": {"smaples": 4}})";
+  const test::CommandResult r = test::run_crowdbake(
+      {"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config", (dir / "config.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("key 'simplify.smaples': unknown key"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
+}
+
+TEST(BakeCommandErrors, BadConfigValue) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"animation": {"encoding": "jpeg"}})";
+  const test::CommandResult r = test::run_crowdbake(
+      {"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config", (dir / "config.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("must be one of float16, float32, quantized"), std::string::npos) << r.err;
+}
+
+TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "missing" / "x.crowdpack").string()});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("check that the output folder exists"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "missing"));
+}
+
+TEST(BakeCommandErrors, BadInputLeavesNoOutput) {
+  test::TempDir dir;
+  std::ofstream(dir / "broken.glb") << "nope";
+  const auto output = dir / "x.crowdpack";
+  const test::CommandResult r = test::run_crowdbake({"bake", (dir / "broken.glb").string(), "-o", output.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator{}), 1);
+}
+
+}  // namespace
+}  // namespace crowdbake
