@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 namespace crowdbake {
 namespace {
@@ -59,10 +60,9 @@ int to_snorm(double x, uint32_t& clamped) {
     ++clamped;
     return 0;
   }
-  if (x > 1.0 || x < -1.0) {
-    ++clamped;
-    x = std::clamp(x, -1.0, 1.0);
-  }
+  // note: unit quaternions and range ends can exceed 1 by rounding; only count real misses.
+  if (x > 1.0 + 1e-6 || x < -1.0 - 1e-6) ++clamped;
+  x = std::clamp(x, -1.0, 1.0);
   return static_cast<int>(std::lround(x * kSnormMax));
 }
 
@@ -251,11 +251,11 @@ void fit_range(double lo, double hi, float& center, float& half) {
   lo = std::clamp(lo, -kRangeLimit, kRangeLimit);
   hi = std::clamp(hi, -kRangeLimit, kRangeLimit);
   center = static_cast<float>(0.5 * lo + 0.5 * hi);
-  half = static_cast<float>(0.5 * hi - 0.5 * lo);
-  // note: float rounding of center and half may leave lo or hi just outside; widen by ulps.
-  for (int i = 0; i < 64 && (static_cast<double>(center) - half > lo ||
-                             static_cast<double>(center) + half < hi);
-       ++i)
+  // note: measured from the float-rounded center, so its rounding is covered too (it can
+  // exceed a tiny range, e.g. scales of 1 ± 1e-15).
+  const double need = std::max(hi - static_cast<double>(center), static_cast<double>(center) - lo);
+  half = static_cast<float>(need);
+  if (static_cast<double>(half) < need)
     half = std::nextafter(half, std::numeric_limits<float>::infinity());
 }
 
@@ -289,18 +289,23 @@ uint16_t double_to_half(double value) {
 uint16_t float_to_half(float value) { return double_to_half(static_cast<double>(value)); }
 
 float half_to_float(uint16_t bits) {
-  const bool negative = (bits & 0x8000) != 0;
-  const int exponent = (bits >> 10) & 0x1F;
-  const int mantissa = bits & 0x3FF;
-  float v;
-  if (exponent == 0)
-    v = std::ldexp(static_cast<float>(mantissa), -24);
-  else if (exponent == 31)
-    v = mantissa == 0 ? std::numeric_limits<float>::infinity()
-                      : std::numeric_limits<float>::quiet_NaN();
-  else
-    v = std::ldexp(static_cast<float>(mantissa + 1024), exponent - 25);
-  return negative ? -v : v;
+  const uint32_t sign = static_cast<uint32_t>(bits & 0x8000u) << 16;
+  const uint32_t exponent = (bits >> 10) & 0x1Fu;
+  const uint32_t mantissa = bits & 0x3FFu;
+  uint32_t out;
+  if (exponent == 0) {
+    // note: denormal (or zero): mantissa · 2^-24 is exact in float.
+    const float v = static_cast<float>(mantissa) * 0x1p-24f;
+    std::memcpy(&out, &v, 4);
+    out |= sign;
+  } else if (exponent == 31) {
+    out = sign | 0x7F800000u | (mantissa << 13) | (mantissa ? 0x00400000u : 0u);
+  } else {
+    out = sign | ((exponent + 112u) << 23) | (mantissa << 13);  // rebias 15 -> 127
+  }
+  float f;
+  std::memcpy(&f, &out, 4);
+  return f;
 }
 
 // ---- layout ----
@@ -407,9 +412,15 @@ void fit_similarity(const double m[12], double rotation[4], double* scale) {
 
 // ---- encoding ----
 
-AnimationTexture create_animation_texture(AnimationEncoding encoding, uint32_t joints,
-                                          uint32_t rows, const double* matrices,
-                                          size_t matrix_count) {
+namespace {
+
+struct Fit {
+  double q[4];
+  double s;
+};
+
+AnimationTexture make_texture(AnimationEncoding encoding, uint32_t joints, uint32_t rows,
+                              const double* matrices, const Fit* fits, size_t count) {
   const AnimationTextureFormat f = animation_texture_format(encoding);
   assert(f.texels_per_joint != 0 && "unknown AnimationEncoding");
   AnimationTexture t;
@@ -423,18 +434,14 @@ AnimationTexture create_animation_texture(AnimationEncoding encoding, uint32_t j
     double lo[4], hi[4];
     std::fill(lo, lo + 4, std::numeric_limits<double>::infinity());
     std::fill(hi, hi + 4, -std::numeric_limits<double>::infinity());
-    for (size_t i = 0; i < matrix_count; ++i) {
+    for (size_t i = 0; i < count; ++i) {
       const double* m = matrices + 12 * i;
-      const double v[3] = {m[3], m[7], m[11]};
-      for (int c = 0; c < 3; ++c)
+      const double v[4] = {m[3], m[7], m[11], fits[i].s};
+      for (int c = 0; c < 4; ++c)
         if (std::isfinite(v[c])) {
           lo[c] = std::min(lo[c], v[c]);
           hi[c] = std::max(hi[c], v[c]);
         }
-      double q[4], s;
-      fit_similarity(m, q, &s);
-      lo[3] = std::min(lo[3], s);
-      hi[3] = std::max(hi[3], s);
     }
     t.decode_params.assign(kQuantizedParams, 0.0f);
     for (int c = 0; c < 4; ++c) fit_range(lo[c], hi[c], t.decode_params[c], t.decode_params[4 + c]);
@@ -442,7 +449,16 @@ AnimationTexture create_animation_texture(AnimationEncoding encoding, uint32_t j
   return t;
 }
 
-uint32_t encode_joint(AnimationTexture& t, uint32_t row, uint32_t joint, const double m[12]) {
+std::vector<Fit> fit_all(AnimationEncoding encoding, const double* matrices, size_t count) {
+  std::vector<Fit> fits;
+  if (encoding != AnimationEncoding::kQuantized) return fits;
+  fits.resize(count);
+  for (size_t i = 0; i < count; ++i) fit_similarity(matrices + 12 * i, fits[i].q, &fits[i].s);
+  return fits;
+}
+
+uint32_t encode_fitted(AnimationTexture& t, uint32_t row, uint32_t joint, const double m[12],
+                       const Fit* fit) {
   assert(row < t.rows && joint < t.joints);
   uint32_t clamped = 0;
   switch (t.encoding) {
@@ -470,12 +486,15 @@ uint32_t encode_joint(AnimationTexture& t, uint32_t row, uint32_t joint, const d
       }
       break;
     case AnimationEncoding::kQuantized: {
-      double q[4], s;
-      fit_similarity(m, q, &s);
+      Fit local;
+      if (!fit) {
+        fit_similarity(m, local.q, &local.s);
+        fit = &local;
+      }
       uint8_t* a = texel_ptr(t, row, joint, 0);
       uint8_t* b = texel_ptr(t, row, joint, 1);
-      for (int c = 0; c < 4; ++c) put_i16(a + 2 * c, to_snorm(q[c], clamped));
-      const double v[4] = {m[3], m[7], m[11], s};
+      for (int c = 0; c < 4; ++c) put_i16(a + 2 * c, to_snorm(fit->q[c], clamped));
+      const double v[4] = {m[3], m[7], m[11], fit->s};
       for (int c = 0; c < 4; ++c) {
         const double center = t.decode_params[c], half = t.decode_params[4 + c];
         double x = 0.0;
@@ -493,21 +512,40 @@ uint32_t encode_joint(AnimationTexture& t, uint32_t row, uint32_t joint, const d
   return clamped;
 }
 
+}  // namespace
+
+AnimationTexture create_animation_texture(AnimationEncoding encoding, uint32_t joints,
+                                          uint32_t rows, const double* matrices,
+                                          size_t matrix_count) {
+  const std::vector<Fit> fits = fit_all(encoding, matrices, matrix_count);
+  return make_texture(encoding, joints, rows, matrices, fits.data(),
+                      fits.empty() ? 0 : matrix_count);
+}
+
+uint32_t encode_joint(AnimationTexture& t, uint32_t row, uint32_t joint, const double m[12]) {
+  return encode_fitted(t, row, joint, m, nullptr);
+}
+
 uint32_t encode_joint(AnimationTexture& t, uint32_t row, uint32_t joint, const float m[12]) {
   double d[12];
   for (int i = 0; i < 12; ++i) d[i] = m[i];
-  return encode_joint(t, row, joint, d);
+  return encode_fitted(t, row, joint, d, nullptr);
 }
 
 AnimationTexture encode_animation_texture(AnimationEncoding encoding, uint32_t joints,
                                           uint32_t rows, const double* matrices,
                                           uint32_t* clamped) {
   const size_t count = static_cast<size_t>(rows) * joints;
-  AnimationTexture t = create_animation_texture(encoding, joints, rows, matrices, count);
+  // note: the quantised encoding needs each fit twice (ranges, then texels): fit once.
+  const std::vector<Fit> fits = fit_all(encoding, matrices, count);
+  AnimationTexture t =
+      make_texture(encoding, joints, rows, matrices, fits.data(), fits.empty() ? 0 : count);
   uint32_t total = 0;
   for (uint32_t r = 0; r < rows; ++r)
-    for (uint32_t j = 0; j < joints; ++j)
-      total += encode_joint(t, r, j, matrices + 12 * (static_cast<size_t>(r) * joints + j));
+    for (uint32_t j = 0; j < joints; ++j) {
+      const size_t i = static_cast<size_t>(r) * joints + j;
+      total += encode_fitted(t, r, j, matrices + 12 * i, fits.empty() ? nullptr : &fits[i]);
+    }
   if (clamped) *clamped = total;
   return t;
 }

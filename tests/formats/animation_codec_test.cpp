@@ -348,6 +348,22 @@ TEST(AnimationCodec, QuantizedIdentityAndConstantRangesAreExact) {
   EXPECT_EQ(max_abs_diff(out, id.data()), 0.0);
 }
 
+TEST(AnimationCodec, QuantizedTinyRangesDoNotClamp) {
+  // Scales of 1 ± 1e-15 and translations that differ below float precision: the float
+  // range must cover its own rounding.
+  std::vector<double> all;
+  for (int i = 0; i < 8; ++i) {
+    const double tiny = (i - 4) * 1e-15;
+    const Matrix m = similarity(1, 0, 0, 0.1 * i, 1.0 + tiny, 0.1 + tiny, 1e4 + 1e-9 * i, tiny);
+    all.insert(all.end(), m.begin(), m.end());
+  }
+  uint32_t clamped = 7;
+  const AnimationTexture t =
+      encode_animation_texture(AnimationEncoding::kQuantized, 4, 2, all.data(), &clamped);
+  EXPECT_EQ(clamped, 0u);
+  for (uint32_t i = 0; i < 8; ++i) expect_quantized_close(t, i / 4, i % 4, &all[12 * i], 1.0);
+}
+
 TEST(AnimationCodec, QuantizedMirroredJoint) {
   Matrix m = similarity(1, 2, 3, 0.7, 1.0, 0.1, 0.2, 0.3);
   for (int c = 0; c < 3; ++c) m[c] = -m[c];  // reflect: det < 0
