@@ -71,6 +71,32 @@ std::vector<SurfaceError> measure(const Surface& original,
   return out;
 }
 
+// Same geometry and skinning (what the measurement reads); clips and names do not matter.
+bool same_surface(const SkinnedAsset& a, const SkinnedAsset& b) {
+  if (a.primitives.size() != b.primitives.size()) return false;
+  for (size_t p = 0; p < a.primitives.size(); ++p) {
+    const Primitive& x = a.primitives[p];
+    const Primitive& y = b.primitives[p];
+    if (x.positions != y.positions || x.indices != y.indices || x.joints != y.joints ||
+        x.weights != y.weights)
+      return false;
+  }
+  return true;
+}
+
+uint64_t surface_hash(const SkinnedAsset& a) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* data, size_t size) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  for (const Primitive& p : a.primitives) {
+    mix(p.indices.data(), p.indices.size() * sizeof(uint32_t));
+    mix(p.positions.data(), p.positions.size() * sizeof(glm::vec3));
+  }
+  return h;
+}
+
 struct Frame {
   const Clip* clip;
   double t;
@@ -97,36 +123,54 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   const size_t joints = original.skeleton.joints.size();
   Surface base = make_surface(original);
   const double diagonal = bbox_diagonal(base.bind);
-  const double spacing = median_edge_length(base.bind, base.triangles);
+  const double spacing = default_spacing(base.bind, base.triangles);
   base.plan = plan_samples(base.bind, base.triangles, spacing);
+  // note: identical LoDs (several settings often give the same level) are measured once.
   std::vector<Surface> surfaces;
-  for (const SkinnedAsset* lod : lods) {
+  std::vector<size_t> surface_of(lods.size());
+  std::vector<uint64_t> hashes;
+  std::vector<const SkinnedAsset*> distinct;
+  for (size_t l = 0; l < lods.size(); ++l) {
+    const SkinnedAsset* lod = lods[l];
     if (lod->skeleton.joints.size() != joints)
       throw std::invalid_argument("animated_error: a LoD's skeleton has " +
                                   std::to_string(lod->skeleton.joints.size()) +
                                   " joints, the original's " + std::to_string(joints));
+    const uint64_t hash = surface_hash(*lod);
+    size_t found = distinct.size();
+    for (size_t d = 0; d < distinct.size() && found == distinct.size(); ++d)
+      if (hashes[d] == hash && same_surface(*distinct[d], *lod)) found = d;
+    surface_of[l] = found;
+    if (found < distinct.size()) continue;
+    distinct.push_back(lod);
+    hashes.push_back(hash);
     surfaces.push_back(make_surface(*lod));
     surfaces.back().plan = plan_samples(surfaces.back().bind, surfaces.back().triangles, spacing);
   }
 
-  std::vector<AnimatedError> out(lods.size());
+  std::vector<AnimatedError> unique(surfaces.size());
   const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
   {
     std::vector<std::vector<glm::dvec3>> lods_bind;
     for (const Surface& s : surfaces) lods_bind.push_back(s.bind);
     const std::vector<SurfaceError> bind = measure(base, base.bind, surfaces, lods_bind);
-    for (size_t l = 0; l < lods.size(); ++l) {
-      out[l].diagonal = diagonal;
-      out[l].bind_rms = out[l].mean_rms = bind[l].rms * scale;
-      out[l].bind_max = out[l].max = bind[l].max * scale;
+    for (size_t l = 0; l < surfaces.size(); ++l) {
+      unique[l].diagonal = diagonal;
+      unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
+      unique[l].bind_max = unique[l].max = bind[l].max * scale;
     }
   }
+  auto expand = [&] {
+    std::vector<AnimatedError> out(lods.size());
+    for (size_t l = 0; l < lods.size(); ++l) out[l] = unique[surface_of[l]];
+    return out;
+  };
 
   std::vector<Frame> frames;
   for (const Clip& clip : original.clips)
     for (double t : clip_frame_times(clip, options.fps, options.frame_stride))
       frames.push_back({&clip, t});
-  if (frames.empty()) return out;
+  if (frames.empty()) return expand();
 
   std::vector<std::vector<SurfaceError>> per_frame(frames.size());
   auto work = [&](size_t first, size_t step) {
@@ -152,17 +196,17 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   for (std::thread& t : pool) t.join();
 
   // note: reduced in frame order, so the sums do not depend on the thread count.
-  for (size_t l = 0; l < lods.size(); ++l) {
+  for (size_t l = 0; l < surfaces.size(); ++l) {
     double sum = 0.0, max = 0.0;
     for (const auto& errors : per_frame) {
       sum += errors[l].rms;
       max = std::max(max, errors[l].max);
     }
-    out[l].mean_rms = sum / frames.size() * scale;
-    out[l].max = max * scale;
-    out[l].frames = static_cast<int>(frames.size());
+    unique[l].mean_rms = sum / frames.size() * scale;
+    unique[l].max = max * scale;
+    unique[l].frames = static_cast<int>(frames.size());
   }
-  return out;
+  return expand();
 }
 
 AnimatedError animated_error(const SkinnedAsset& original, const SkinnedAsset& lod,

@@ -26,14 +26,23 @@ struct SurfaceSampling {
   std::vector<uint32_t> triangle_points;
 };
 
-// Grid level per triangle: k = clamp(ceil(longest edge / spacing), 2, 16); points are the
-// barycentric grid (i/k, j/k) plus the centroid. Vertices are welded by exact position.
+// Grid level per triangle: k = clamp(ceil(longest edge / spacing), 1, 16); points are the
+// barycentric grid (i/k, j/k) plus the centroid: a triangle no longer than `spacing` gives
+// its corners and centroid, a longer one also points on its edges and inside. Vertices are
+// welded by exact position; points are stored in Z-order of their positions.
 SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
                              const std::vector<uint32_t>& triangles, double spacing);
 
 // Median edge length (0 for no triangles).
 double median_edge_length(const std::vector<glm::dvec3>& positions,
                           const std::vector<uint32_t>& triangles);
+
+// The sampling distance the animated error uses: 1.5 × the median edge length, so a
+// typical triangle of the original gives its vertices and centroid and the larger
+// triangles of a coarse LoD are sampled at about the original's density.
+constexpr double kSpacingPerMedianEdge = 1.5;
+double default_spacing(const std::vector<glm::dvec3>& positions,
+                       const std::vector<uint32_t>& triangles);
 
 // Σ w·d², Σ w and max d over the sample points of one surface against another surface.
 struct OneWayDistance {

@@ -13,7 +13,7 @@
 namespace crowdbake {
 namespace {
 
-constexpr int kMinLevel = 2;
+constexpr int kMinLevel = 1;
 constexpr int kMaxLevel = 16;
 constexpr uint32_t kInteriorKey = 0xFFFFFFFFu;
 
@@ -89,6 +89,11 @@ double edge_length(const std::vector<glm::dvec3>& p, uint32_t a, uint32_t b) {
 }
 
 }  // namespace
+
+double default_spacing(const std::vector<glm::dvec3>& positions,
+                       const std::vector<uint32_t>& triangles) {
+  return kSpacingPerMedianEdge * median_edge_length(positions, triangles);
+}
 
 double median_edge_length(const std::vector<glm::dvec3>& positions,
                           const std::vector<uint32_t>& triangles) {
@@ -205,7 +210,7 @@ SurfaceError surface_distance(const TriangleSurface& a, const TriangleSurface& b
     const double inf = std::numeric_limits<double>::infinity();
     return {inf, inf};
   }
-  if (!(spacing > 0.0)) spacing = median_edge_length(a.positions, a.triangles);
+  if (!(spacing > 0.0)) spacing = default_spacing(a.positions, a.triangles);
   const TriangleBvh bvh_a(a.positions, a.triangles), bvh_b(b.positions, b.triangles);
   return combine(one_way_distance(plan_samples(a.positions, a.triangles, spacing), a.positions,
                                   a.triangles, bvh_b),

@@ -187,20 +187,36 @@ TEST(SurfaceDistance, EmptySurfaces) {
   EXPECT_EQ(surface_distance(grid(1, 1.0), {}).max, INFINITY);
 }
 
-TEST(SurfaceSampling, SharedPointsAreSampledOnce) {
-  // 2×2 quads: 9 vertices, 16 distinct edges (edge midpoints), 8 centroids.
+TEST(SurfaceSampling, SmallTrianglesGiveVerticesAndCentroids) {
+  // 2×2 quads, every triangle shorter than the spacing: 9 vertices, 8 centroids.
   const TriangleSurface s = grid(2, 1.0);
   const SurfaceSampling plan = plan_samples(s.positions, s.triangles, 10.0);
-  EXPECT_EQ(plan.points.size(), 9u + 16u + 8u);
+  EXPECT_EQ(plan.points.size(), 9u + 8u);
   EXPECT_EQ(plan.offset.size(), 9u);
+  EXPECT_EQ(plan.triangle_points.size(), 8u * 4u);
+}
+
+TEST(SurfaceSampling, SharedEdgePointsAreSampledOnce) {
+  // Same grid, spacing between the legs (0.5) and the diagonals (0.71): level 2 everywhere,
+  // so 16 distinct edges add one midpoint each.
+  const TriangleSurface s = grid(2, 1.0);
+  const SurfaceSampling plan = plan_samples(s.positions, s.triangles, 0.6);
+  EXPECT_EQ(plan.points.size(), 9u + 16u + 8u);
   EXPECT_EQ(plan.triangle_points.size(), 8u * 7u);
+}
+
+TEST(SurfaceSampling, LongTrianglesGetAGrid) {
+  // One right triangle with legs 1 at spacing 0.25: level ceil(1.41 / 0.25) = 6, a grid of
+  // 28 points that contains the centroid.
+  const SurfaceSampling plan = plan_samples({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, 0.25);
+  EXPECT_EQ(plan.points.size(), 28u);
 }
 
 TEST(SurfaceSampling, CornerSplitVerticesAreWelded) {
   // Two triangles sharing an edge but stored with their own corners (as FBX exports do).
   const std::vector<glm::dvec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},
                                              {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  const SurfaceSampling plan = plan_samples(positions, {0, 1, 2, 3, 4, 5}, 10.0);
+  const SurfaceSampling plan = plan_samples(positions, {0, 1, 2, 3, 4, 5}, 1.2);
   EXPECT_EQ(plan.points.size(), 4u + 5u + 2u);
 }
 

@@ -4,12 +4,13 @@
 // distance between the two skinned surfaces is measured.
 //
 // Surface distance (surface_distance below): each surface is sampled on its triangles —
-// its vertices, points on its edges and inside its faces on a barycentric grid whose
-// spacing is the original's median bind-pose edge length (at least the vertices, the
-// edge midpoints and the centroid of every triangle; vertices and edge points shared by
-// triangles are sampled once, vertices welded by position). Every sample point gets the
-// distance to the closest point on the other surface's triangles (exact point-triangle
-// distance, double precision, BVH). Both directions are pooled:
+// every vertex and every triangle's centroid, and on triangles longer than the sampling
+// distance (1.5 × the original's median bind-pose edge length) a barycentric grid at about
+// that spacing: points on the edges and inside. So a coarse LoD is sampled about as densely
+// as the original. Vertices are welded by position and points shared by triangles are
+// sampled once. Every sample point gets the distance to the closest point on the other
+// surface's triangles (exact point-triangle distance, double precision, BVH). Both
+// directions are pooled:
 //   rms = sqrt((Σ_A w·d² + Σ_B w·d²) / (Σ_A w + Σ_B w)),  max = max over both directions,
 // where w is the sample's share of the area of the triangles it lies on (the area at
 // that frame), so rms approximates the surface integral and does not depend on how
@@ -35,7 +36,7 @@ struct TriangleSurface {
 };
 
 // Symmetric distance between two triangle surfaces, in their units. `spacing` is the
-// sampling distance (0 = the median edge length of `a`). Symmetric: swapping a and b
+// sampling distance (0 = 1.5 × the median edge length of `a`). Symmetric: swapping a and b
 // gives the same answer when the same spacing is passed. An empty surface is infinitely
 // far from a non-empty one; two empty surfaces are 0 apart.
 SurfaceError surface_distance(const TriangleSurface& a, const TriangleSurface& b,
