@@ -13,10 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace crowdbake {
+#include "crowdbake/formats/pack_format.h"  // kPackVersionMajor/Minor, tags, limits
 
-constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-constexpr uint16_t kPackVersionMinor = 0;  // compatible additions
+namespace crowdbake {
 
 // How joint matrices are stored in the animation texture (docs/animation-encoding.md).
 enum class AnimationEncoding : uint32_t {
@@ -28,7 +27,7 @@ enum class AnimationEncoding : uint32_t {
 struct PackJoint {
   std::string name;
   int32_t parent = -1;                 // < own index; -1 for roots
-  std::array<float, 12> inverse_bind;  // 3x4, row-major (rows of the affine matrix)
+  std::array<float, 12> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // 3x4 row-major rows
   std::array<float, 3> rest_translation{0, 0, 0};
   std::array<float, 4> rest_rotation{0, 0, 0, 1};  // x, y, z, w
   std::array<float, 3> rest_scale{1, 1, 1};
@@ -42,7 +41,8 @@ struct PackClip {
   float duration = 0.0f;     // seconds
   bool looping = true;
   // Root motion, extracted when the bake asks for it: per frame (x, z, yaw) of the root
-  // relative to frame 0 in the model's ground plane; empty when motion stays baked in.
+  // relative to frame 0 in the model's ground plane; empty when motion stays baked in,
+  // otherwise exactly 3 * frame_count floats.
   std::vector<float> root_motion;
 };
 
@@ -115,12 +115,24 @@ struct PackContents {
   PackBounds bounds;
 };
 
+struct PackStatus {
+  bool ok = true;
+  std::string message;  // what is wrong, for the user ("chunk GEOM: checksum mismatch ...")
+  explicit operator bool() const { return ok; }
+};
+
 enum class GeometryCodec : uint32_t {
   kDraco = 0,     // Draco sequential encoding (keeps vertex and face order)
   kMeshopt = 1,   // meshoptimizer vertex/index codecs (faster to decode)
   kRaw = 2,       // uncompressed
 };
 
+// Quantisation bits apply to kDraco and kMeshopt; kRaw always stores exact floats.
+// Each is 0 (store the float exactly) or 1..24 (pack_format::kMaxQuantizationBits);
+// normal_bits must be 0 or >= 2 (Draco's octahedral normals need two). Positions and UVs
+// are quantised on a grid over their bounding cube: per component the error is at most
+// extent / (2 * (2^bits - 1)) (docs/pack-format.md gives the measured figures).
+// Joints, weights, regions and triangle materials are always stored exactly.
 struct PackWriteOptions {
   GeometryCodec codec = GeometryCodec::kDraco;
   int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
@@ -128,29 +140,45 @@ struct PackWriteOptions {
   int uv_bits = 12;
 };
 
+// The rules every pack obeys (counts consistent between parts, indices in range, no NaN,
+// ProgressiveMesh structure): what write_pack() requires and read_pack() guarantees.
+// docs/pack-format.md "Validity rules" lists them.
+PackStatus validate_pack_contents(const PackContents& contents);
+
 // Serialises deterministically: equal contents and options give identical bytes.
+// Throws std::invalid_argument when validate_pack_contents() fails or an option is out
+// of range (the message names the rule), std::runtime_error if a codec fails.
 std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options = {});
 
 struct PackChunk {
-  uint32_t tag = 0;      // four ASCII characters, little-endian ('HEAD', 'GEOM', ...)
+  uint32_t tag = 0;      // four ASCII characters, little-endian (pack_format::kTagGeom, ...)
   uint32_t version = 0;  // per-chunk layout version
   uint64_t offset = 0;   // from the start of the file, 16-byte aligned
   uint64_t size = 0;     // payload bytes
   uint32_t checksum = 0;
 };
 
-struct PackStatus {
-  bool ok = true;
-  std::string message;  // what is wrong, for the user ("chunk GEOM: checksum mismatch ...")
-  explicit operator bool() const { return ok; }
-};
-
-// Reads the header and chunk table only (cheap; for streaming and inspect).
+// Reads the header and chunk table only (cheap; for streaming and inspect). `size` may
+// be just the front of the file (at least the header and table): chunk offsets and sizes
+// are checked against the file size the header records, the header/table checksum is
+// verified, nothing else. Chunks are returned in file order, unknown tags included.
 PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
                             uint16_t* version_major = nullptr, uint16_t* version_minor = nullptr);
 
+// Verifies one chunk's checksum and decodes it into its part of `out` (HEAD: name and
+// settings; SKEL: joints; ...). `payload` points at the chunk's `chunk.size` bytes. Checks
+// everything inside the chunk; rules that span chunks (joint indices < joint count, clip
+// rows < texture rows, ...) are checked by read_pack() or validate_pack_contents().
+// Unknown tags are accepted and ignored. For streaming GEOM, ANIM and PART separately.
+PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out);
+
 // Parses and validates every size, offset, count, index and checksum. Never crashes,
-// hangs or allocates more than a small multiple of `size` on any input.
+// hangs or allocates more than a small multiple of `size` on any input (a compressed
+// GEOM chunk decodes to at most pack_format::kGeomExpansionRatio times its size plus
+// pack_format::kGeomExpansionSlack). On failure `out` holds partial contents.
 PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out);
+
+// Short names for reports: "draco", "meshopt", "raw".
+const char* geometry_codec_name(GeometryCodec codec);
 
 }  // namespace crowdbake

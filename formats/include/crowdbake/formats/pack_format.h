@@ -1,0 +1,81 @@
+// The one place for the pack's version numbers, magic, chunk tags, chunk versions and
+// reader limits (docs/pack-format.md). Bumping kPackVersionMajor or any chunk version
+// means old packs must be re-baked: say so in docs/CHANGES.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace crowdbake {
+
+constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
+constexpr uint16_t kPackVersionMinor = 0;  // compatible additions (new optional chunks)
+
+namespace pack_format {
+
+// "\x89CROWD\r\n": the high byte catches 7-bit transfers, CR LF catches newline translation.
+constexpr std::array<uint8_t, 8> kMagic = {0x89, 'C', 'R', 'O', 'W', 'D', '\r', '\n'};
+constexpr size_t kHeaderSize = 48;
+constexpr size_t kChunkEntrySize = 32;
+constexpr size_t kAlignment = 16;  // every chunk starts at a multiple of this
+
+constexpr uint32_t make_tag(char a, char b, char c, char d) {
+  return static_cast<uint32_t>(static_cast<uint8_t>(a)) |
+         static_cast<uint32_t>(static_cast<uint8_t>(b)) << 8 |
+         static_cast<uint32_t>(static_cast<uint8_t>(c)) << 16 |
+         static_cast<uint32_t>(static_cast<uint8_t>(d)) << 24;
+}
+
+// Chunks in the order the writer stores them: small tables first, bulky data last, so a
+// runtime can read the front of the file and stream GEOM, ANIM and PART on demand.
+constexpr uint32_t kTagHead = make_tag('H', 'E', 'A', 'D');  // name, settings, counts
+constexpr uint32_t kTagSkel = make_tag('S', 'K', 'E', 'L');  // joints
+constexpr uint32_t kTagClip = make_tag('C', 'L', 'I', 'P');  // clip table, root motion
+constexpr uint32_t kTagMatl = make_tag('M', 'A', 'T', 'L');  // materials
+constexpr uint32_t kTagBnds = make_tag('B', 'N', 'D', 'S');  // bounds
+constexpr uint32_t kTagProg = make_tag('P', 'R', 'O', 'G');  // ProgressiveMesh arrays
+constexpr uint32_t kTagGeom = make_tag('G', 'E', 'O', 'M');  // vertices and triangles
+constexpr uint32_t kTagAnim = make_tag('A', 'N', 'I', 'M');  // animation texture
+constexpr uint32_t kTagPart = make_tag('P', 'A', 'R', 'T');  // partition mask
+
+// Layout version of each chunk's payload this build writes and reads (it reads exactly
+// these; any other version of a known chunk is rejected).
+constexpr uint32_t kHeadVersion = 1;
+constexpr uint32_t kSkelVersion = 1;
+constexpr uint32_t kClipVersion = 1;
+constexpr uint32_t kMatlVersion = 1;
+constexpr uint32_t kBndsVersion = 1;
+constexpr uint32_t kProgVersion = 1;
+constexpr uint32_t kGeomVersion = 1;
+constexpr uint32_t kAnimVersion = 1;
+constexpr uint32_t kPartVersion = 1;
+
+// Header flags: bits 0-15 are required features (a reader rejects a pack with a bit it
+// does not know), bits 16-31 optional hints (ignored when unknown). v1.0 defines none.
+constexpr uint32_t kRequiredFlagsMask = 0x0000ffffu;
+
+// Reader limits (docs/pack-format.md "Limits"). Counts above these are rejected before
+// anything is allocated.
+constexpr uint32_t kMaxChunks = 256;
+constexpr uint32_t kMaxStringBytes = 65536;           // names, texture references
+constexpr uint32_t kMaxSettingsBytes = 16u << 20;     // HEAD settings_json
+constexpr uint32_t kMaxJoints = 65535;                // joint indices are uint16
+constexpr uint32_t kMaxClips = 65535;
+constexpr uint32_t kMaxMaterials = 65535;             // material indices are uint16
+constexpr uint32_t kMaxVertices = 1u << 24;
+constexpr uint32_t kMaxTriangles = 1u << 25;
+constexpr uint32_t kMaxDecodeParams = 4096;
+constexpr uint32_t kMaxTextureSide = 16384;           // partition mask width/height
+constexpr uint32_t kMaxQuantizationBits = 24;         // 0 = unquantised float
+// A compressed GEOM chunk may not decode to more than this many bytes of arrays plus
+// kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
+constexpr uint64_t kGeomExpansionSlack = 1u << 20;
+constexpr uint64_t kGeomExpansionRatio = 512;
+
+// "GEOM" for printable tags, "0x1234abcd" otherwise.
+std::string tag_name(uint32_t tag);
+
+}  // namespace pack_format
+}  // namespace crowdbake

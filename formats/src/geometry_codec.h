@@ -1,0 +1,55 @@
+// The GEOM chunk's codecs (docs/pack-format.md "GEOM"): one encode/decode pair per
+// GeometryCodec, each in its own .cpp (only geometry_codec_draco.cpp sees Draco headers).
+//
+// The GEOM header (GeometryLayout) is read and checked by pack_reader.cpp before a
+// decoder runs: counts within the limits, the decoded size within the expansion bound.
+// A decoder reads the rest of the chunk through `in`, fills every array of `out` that
+// `layout` announces with exactly the announced sizes, and consumes the whole payload.
+// Index ranges and value rules are checked afterwards (validate_geometry), so decoders
+// need not; they must only never read or write out of bounds, whatever the bytes.
+#pragma once
+
+#include <cstdint>
+
+#include "byte_reader.h"
+#include "byte_writer.h"
+#include "crowdbake/formats/pack.h"
+
+namespace crowdbake::pack_io {
+
+// GEOM attribute bits (positions are always present).
+enum GeometryAttribute : uint32_t {
+  kAttrNormals = 1u << 0,
+  kAttrUvs = 1u << 1,
+  kAttrSkin = 1u << 2,              // joints (uint16 x4) and weights (float x4)
+  kAttrRegions = 1u << 3,           // uint8 per vertex
+  kAttrTriangleMaterial = 1u << 4,  // uint16 per triangle
+  kAttrKnown = (1u << 5) - 1,
+};
+
+struct GeometryLayout {
+  GeometryCodec codec = GeometryCodec::kRaw;
+  uint32_t vertex_count = 0;
+  uint32_t triangle_count = 0;
+  uint32_t attributes = 0;  // GeometryAttribute bits
+  uint8_t position_bits = 0, normal_bits = 0, uv_bits = 0;  // 0 = float
+
+  bool has(uint32_t attribute) const { return (attributes & attribute) != 0; }
+  // Bytes of the decoded arrays (what a decoder allocates).
+  uint64_t decoded_bytes() const;
+};
+
+// The layout write_pack stores for `g` (bits forced to 0 for the raw codec).
+GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOptions& options);
+
+void encode_geometry_raw(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);
+bool decode_geometry_raw(ByteReader& in, const GeometryLayout& layout, PackGeometry& out);
+
+void encode_geometry_meshopt(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);
+bool decode_geometry_meshopt(ByteReader& in, const GeometryLayout& layout, PackGeometry& out);
+
+// Throws std::runtime_error when Draco refuses the mesh.
+void encode_geometry_draco(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);
+bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeometry& out);
+
+}  // namespace crowdbake::pack_io

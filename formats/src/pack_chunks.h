@@ -1,0 +1,49 @@
+// Payload of each chunk (docs/pack-format.md, one section per chunk): an encoder that
+// appends it to a ByteWriter and a decoder that parses it from a ByteReader spanning
+// exactly the chunk, checks everything local to the chunk, and fills its part of
+// PackContents. Decoders return false with the reader's message set.
+#pragma once
+
+#include <cstdint>
+
+#include "byte_reader.h"
+#include "byte_writer.h"
+#include "crowdbake/formats/pack.h"
+
+namespace crowdbake::pack_io {
+
+// HEAD's summary counts, so a streaming runtime can size buffers before the bulky
+// chunks arrive; read_pack checks they match the other chunks.
+struct HeadCounts {
+  uint32_t joints = 0, clips = 0, materials = 0, vertices = 0, triangles = 0, animation_rows = 0;
+};
+HeadCounts head_counts(const PackContents& contents);
+
+void encode_head(const PackContents& c, ByteWriter& out);
+bool decode_head(ByteReader& in, PackContents& out, HeadCounts& counts);
+
+void encode_skeleton(const std::vector<PackJoint>& joints, ByteWriter& out);
+bool decode_skeleton(ByteReader& in, std::vector<PackJoint>& out);
+
+void encode_clips(const std::vector<PackClip>& clips, ByteWriter& out);
+bool decode_clips(ByteReader& in, std::vector<PackClip>& out);
+
+void encode_materials(const std::vector<PackMaterial>& materials, ByteWriter& out);
+bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out);
+
+void encode_bounds(const PackBounds& bounds, ByteWriter& out);
+bool decode_bounds(ByteReader& in, PackBounds& out);
+
+void encode_progressive(const PackProgressive& progressive, ByteWriter& out);
+bool decode_progressive(ByteReader& in, PackProgressive& out);
+
+void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options, ByteWriter& out);
+bool decode_geometry(ByteReader& in, PackGeometry& out);
+
+void encode_animation(const AnimationTexture& animation, ByteWriter& out);
+bool decode_animation(ByteReader& in, AnimationTexture& out);
+
+void encode_partition(const PartitionMask& partition, ByteWriter& out);
+bool decode_partition(ByteReader& in, PartitionMask& out);
+
+}  // namespace crowdbake::pack_io

@@ -1,0 +1,258 @@
+// read_pack_chunks / read_pack_chunk / read_pack: the bytes are hostile. Every field goes
+// through a bounds-checked ByteReader; every count is checked against the bytes left
+// before anything is allocated; every failure is a PackStatus naming the chunk and field.
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "byte_reader.h"
+#include "crc32c.h"
+#include "crowdbake/formats/pack.h"
+#include "pack_chunks.h"
+#include "pack_validate.h"
+
+namespace crowdbake {
+namespace {
+
+using namespace pack_format;
+using pack_io::ByteReader;
+
+PackStatus error(std::string message) { return {false, std::move(message)}; }
+
+// note: fuzzing builds ignore checksum mismatches so the fuzzer reaches the chunk
+// decoders (the usual FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION convention).
+bool checksum_matches(uint32_t stored, uint32_t computed) {
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+  (void)stored, (void)computed;
+  return true;
+#else
+  return stored == computed;
+#endif
+}
+
+std::string hex(uint32_t v) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "0x%08x", v);
+  return buffer;
+}
+
+struct KnownChunk {
+  uint32_t tag;
+  uint32_t version;
+};
+constexpr KnownChunk kKnownChunks[] = {
+    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion}, {kTagClip, kClipVersion},
+    {kTagMatl, kMatlVersion}, {kTagBnds, kBndsVersion}, {kTagProg, kProgVersion},
+    {kTagGeom, kGeomVersion}, {kTagAnim, kAnimVersion}, {kTagPart, kPartVersion},
+};
+
+const KnownChunk* find_known(uint32_t tag) {
+  for (const KnownChunk& k : kKnownChunks)
+    if (k.tag == tag) return &k;
+  return nullptr;
+}
+
+// Header fields read_pack needs besides the chunk list.
+struct Header {
+  uint16_t major = 0, minor = 0;
+  uint64_t table_offset = 0, file_size = 0;
+  uint32_t chunk_count = 0;
+};
+
+PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h, std::vector<PackChunk>& chunks) {
+  chunks.clear();
+  if (data == nullptr && size != 0) return error("no data");
+  if (size < kMagic.size() || std::memcmp(data, kMagic.data(), kMagic.size()) != 0)
+    return error("not a crowdbake pack (bad magic; expected \\x89CROWD\\r\\n)");
+  ByteReader in(data, size, "header");
+  in.skip(kMagic.size(), "magic");
+  in.u16(h.major, "version major");
+  in.u16(h.minor, "version minor");
+  if (!in.ok()) return error("truncated pack: " + in.error());
+  if (h.major != kPackVersionMajor) {
+    if (h.major > kPackVersionMajor)
+      return error("unsupported pack version " + std::to_string(h.major) + " (this build reads <= " +
+                   std::to_string(kPackVersionMajor) + "); update crowdbake");
+    return error("unsupported pack version " + std::to_string(h.major) + " (this build reads " +
+                 std::to_string(kPackVersionMajor) + "); re-bake the pack");
+  }
+  uint32_t flags = 0, reserved = 0, checksum = 0, reserved2 = 0;
+  in.u32(flags, "flags");
+  in.u32(h.chunk_count, "chunk count");
+  in.u32(reserved, "reserved");
+  in.u64(h.table_offset, "chunk table offset");
+  in.u64(h.file_size, "file size");
+  in.u32(checksum, "header checksum");
+  in.u32(reserved2, "reserved");
+  if (!in.ok()) return error("truncated pack: " + in.error());
+  if (flags & kRequiredFlagsMask)
+    return error("header: unsupported required feature flags " + hex(flags & kRequiredFlagsMask) +
+                 " (this build knows none)");
+  if (reserved || reserved2) return error("header: reserved fields are not zero");
+  if (h.chunk_count > kMaxChunks)
+    return error("header: " + std::to_string(h.chunk_count) + " chunks exceed the limit of " +
+                 std::to_string(kMaxChunks));
+  if (h.table_offset < kHeaderSize || h.table_offset % kAlignment != 0)
+    return error("header: chunk table offset " + std::to_string(h.table_offset) +
+                 " is not a 16-byte aligned offset after the header");
+  const uint64_t table_end = h.table_offset + uint64_t{h.chunk_count} * kChunkEntrySize;  // no overflow: < 2^64
+  if (table_end > h.file_size)
+    return error("header: chunk table ends at " + std::to_string(table_end) + ", past the file size " +
+                 std::to_string(h.file_size));
+  if (size > h.file_size)
+    return error("pack has " + std::to_string(size - h.file_size) + " trailing bytes after its recorded size " +
+                 std::to_string(h.file_size));
+  if (size < table_end)
+    return error("truncated pack: " + std::to_string(size) + " bytes, the chunk table ends at " +
+                 std::to_string(table_end) + " (file size " + std::to_string(h.file_size) + ")");
+  const uint8_t* table = data + h.table_offset;
+  uint32_t crc = pack_io::crc32c(data, 40);
+  crc = pack_io::crc32c(table, size_t{h.chunk_count} * kChunkEntrySize, crc);
+  if (!checksum_matches(checksum, crc))
+    return error("header: checksum mismatch (stored " + hex(checksum) + ", computed " + hex(crc) +
+                 "): the header or chunk table is corrupt");
+
+  ByteReader t(table, size_t{h.chunk_count} * kChunkEntrySize, "chunk table");
+  uint64_t previous_end = table_end;
+  chunks.resize(h.chunk_count);
+  for (uint32_t i = 0; i < h.chunk_count; ++i) {
+    PackChunk& c = chunks[i];
+    uint32_t entry_reserved = 0;
+    t.set_item("entry", i);
+    t.u32(c.tag, "tag");
+    t.u32(c.version, "version");
+    t.u64(c.offset, "offset");
+    t.u64(c.size, "size");
+    t.u32(c.checksum, "checksum");
+    t.u32(entry_reserved, "reserved");
+    if (!t.ok()) return error(t.error());
+    const std::string name = "chunk " + tag_name(c.tag);
+    if (entry_reserved) return error(name + ": reserved table field is not zero");
+    if (c.offset % kAlignment != 0) return error(name + ": offset " + std::to_string(c.offset) + " is not 16-byte aligned");
+    if (c.offset < previous_end)
+      return error(name + ": offset " + std::to_string(c.offset) +
+                   " overlaps the chunk table or the previous chunk (chunks must be in file order)");
+    if (c.size > h.file_size - c.offset)
+      return error(name + ": " + std::to_string(c.size) + " bytes at offset " + std::to_string(c.offset) +
+                   " run past the file size " + std::to_string(h.file_size));
+    previous_end = c.offset + c.size;
+    for (uint32_t k = 0; k < i; ++k)
+      if (chunks[k].tag == c.tag) return error(name + ": appears twice in the chunk table");
+  }
+  return {};
+}
+
+// Decodes one chunk whose payload bytes are [payload, payload + chunk.size).
+PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
+                        pack_io::HeadCounts* counts) {
+  const std::string name = "chunk " + tag_name(chunk.tag);
+  const uint32_t crc = pack_io::crc32c(payload, static_cast<size_t>(chunk.size));
+  if (!checksum_matches(chunk.checksum, crc))
+    return error(name + ": checksum mismatch (stored " + hex(chunk.checksum) + ", computed " + hex(crc) +
+                 "): the chunk is corrupt");
+  const KnownChunk* known = find_known(chunk.tag);
+  if (!known) return {};  // note: unknown chunks are skipped (newer minor versions add them)
+  if (chunk.version != known->version)
+    return error("unsupported " + name + " version " + std::to_string(chunk.version) + " (this build reads <= " +
+                 std::to_string(known->version) + ")");
+  ByteReader in(payload, static_cast<size_t>(chunk.size), name);
+  pack_io::HeadCounts ignored;
+  bool ok = false;
+  switch (chunk.tag) {
+    case kTagHead: ok = pack_io::decode_head(in, out, counts ? *counts : ignored); break;
+    case kTagSkel: ok = pack_io::decode_skeleton(in, out.joints); break;
+    case kTagClip: ok = pack_io::decode_clips(in, out.clips); break;
+    case kTagMatl: ok = pack_io::decode_materials(in, out.materials); break;
+    case kTagBnds: ok = pack_io::decode_bounds(in, out.bounds); break;
+    case kTagProg: ok = pack_io::decode_progressive(in, out.progressive); break;
+    case kTagGeom: ok = pack_io::decode_geometry(in, out.geometry); break;
+    case kTagAnim: ok = pack_io::decode_animation(in, out.animation); break;
+    case kTagPart: ok = pack_io::decode_partition(in, out.partition); break;
+  }
+  if (!ok) return error(in.ok() ? name + ": invalid" : in.error());
+  return {};
+}
+
+PackStatus check_head_counts(const pack_io::HeadCounts& h, const PackContents& c) {
+  const pack_io::HeadCounts actual = pack_io::head_counts(c);
+  const struct {
+    const char* what;
+    uint32_t head, actual;
+  } pairs[] = {
+      {"joints", h.joints, actual.joints},           {"clips", h.clips, actual.clips},
+      {"materials", h.materials, actual.materials}, {"vertices", h.vertices, actual.vertices},
+      {"triangles", h.triangles, actual.triangles}, {"animation rows", h.animation_rows, actual.animation_rows},
+  };
+  for (const auto& p : pairs)
+    if (p.head != p.actual)
+      return error("chunk HEAD: says " + std::to_string(p.head) + " " + p.what + ", the pack holds " +
+                   std::to_string(p.actual));
+  return {};
+}
+
+}  // namespace
+
+namespace pack_format {
+std::string tag_name(uint32_t tag) {
+  char c[4];
+  for (int i = 0; i < 4; ++i) c[i] = static_cast<char>((tag >> (8 * i)) & 0xff);
+  for (char ch : c)
+    if (ch < 0x20 || ch > 0x7e) return hex(tag);
+  return std::string(c, 4);
+}
+}  // namespace pack_format
+
+PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
+                            uint16_t* version_major, uint16_t* version_minor) {
+  Header h;
+  PackStatus status = read_header_and_table(data, size, h, chunks);
+  if (version_major) *version_major = h.major;
+  if (version_minor) *version_minor = h.minor;
+  if (!status) chunks.clear();
+  return status;
+}
+
+PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out) {
+  if (payload == nullptr && chunk.size != 0) return error("chunk " + tag_name(chunk.tag) + ": no data");
+  return decode_chunk(chunk, payload, out, nullptr);
+}
+
+PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
+  out = PackContents{};
+  Header h;
+  std::vector<PackChunk> chunks;
+  PackStatus status = read_header_and_table(data, size, h, chunks);
+  if (!status) return status;
+  if (size != h.file_size)
+    return error("truncated pack: " + std::to_string(size) + " bytes, the header records " +
+                 std::to_string(h.file_size));
+  // Every byte outside the header, the table and the chunks must be zero padding, so a
+  // corrupted byte anywhere in the file is detected.
+  uint64_t at = h.table_offset + uint64_t{h.chunk_count} * kChunkEntrySize;
+  const auto zero_gap = [&](uint64_t from, uint64_t to) -> PackStatus {
+    for (uint64_t i = from; i < to; ++i)
+      if (data[i] != 0) return error("padding byte at offset " + std::to_string(i) + " is not zero");
+    return {};
+  };
+  if (!(status = zero_gap(kHeaderSize, h.table_offset))) return status;
+  for (const PackChunk& c : chunks) {
+    if (!(status = zero_gap(at, c.offset))) return status;
+    at = c.offset + c.size;
+  }
+  if (!(status = zero_gap(at, h.file_size))) return status;
+
+  pack_io::HeadCounts counts;
+  for (const KnownChunk& k : kKnownChunks) {
+    const auto it = std::find_if(chunks.begin(), chunks.end(), [&](const PackChunk& c) { return c.tag == k.tag; });
+    if (it == chunks.end()) return error("missing chunk " + tag_name(k.tag));
+  }
+  for (const PackChunk& c : chunks) {
+    status = decode_chunk(c, data + c.offset, out, &counts);
+    if (!status) return status;
+  }
+  const std::string cross = pack_io::check_cross_references(out);
+  if (!cross.empty()) return error("chunk " + cross);
+  return check_head_counts(counts, out);
+}
+
+}  // namespace crowdbake

@@ -1,0 +1,216 @@
+#include "pack_validate.h"
+
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "crowdbake/formats/animation_codec.h"
+#include "crowdbake/formats/pack_format.h"
+
+namespace crowdbake::pack_io {
+namespace {
+
+using namespace pack_format;
+
+template <typename Container>
+bool all_finite(const Container& values) {
+  for (float v : values)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+bool valid_region(uint8_t r) { return r <= 2 || r == 255; }
+
+std::string too_many(const char* what, size_t count, uint32_t limit) {
+  return std::to_string(count) + " " + what + " exceed the limit of " + std::to_string(limit);
+}
+
+}  // namespace
+
+std::string check_joints(const std::vector<PackJoint>& joints) {
+  if (joints.size() > kMaxJoints) return too_many("joints", joints.size(), kMaxJoints);
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const PackJoint& j = joints[i];
+    std::ostringstream out;
+    if (j.name.size() > kMaxStringBytes) out << "name is " << j.name.size() << " bytes";
+    else if (j.parent < -1 || j.parent >= static_cast<int64_t>(i))
+      out << "parent " << j.parent << " is not -1 or below the joint's own index";
+    else if (!all_finite(j.inverse_bind) || !all_finite(j.rest_translation) || !all_finite(j.rest_rotation) ||
+             !all_finite(j.rest_scale))
+      out << "has a non-finite matrix or rest transform";
+    if (!out.str().empty()) return "joint " + std::to_string(i) + ": " + out.str();
+  }
+  return "";
+}
+
+std::string check_clips(const std::vector<PackClip>& clips) {
+  if (clips.size() > kMaxClips) return too_many("clips", clips.size(), kMaxClips);
+  for (size_t i = 0; i < clips.size(); ++i) {
+    const PackClip& c = clips[i];
+    std::ostringstream out;
+    if (c.name.size() > kMaxStringBytes) out << "name is " << c.name.size() << " bytes";
+    else if (c.frame_count == 0) out << "has no frames";
+    else if (!std::isfinite(c.fps) || !(c.fps > 0.0f)) out << "fps " << c.fps << " is not positive";
+    else if (!std::isfinite(c.duration) || c.duration < 0.0f) out << "duration " << c.duration << " is negative";
+    else if (!c.root_motion.empty() && c.root_motion.size() != 3 * size_t{c.frame_count})
+      out << "root motion has " << c.root_motion.size() << " floats, expected 0 or " << 3 * size_t{c.frame_count};
+    else if (!all_finite(c.root_motion)) out << "root motion is not finite";
+    if (!out.str().empty()) return "clip " + std::to_string(i) + " (" + c.name.substr(0, 64) + "): " + out.str();
+  }
+  return "";
+}
+
+std::string check_materials(const std::vector<PackMaterial>& materials) {
+  if (materials.size() > kMaxMaterials) return too_many("materials", materials.size(), kMaxMaterials);
+  for (size_t i = 0; i < materials.size(); ++i) {
+    const PackMaterial& m = materials[i];
+    if (m.name.size() > kMaxStringBytes || m.base_color_texture.size() > kMaxStringBytes)
+      return "material " + std::to_string(i) + ": name or texture reference exceeds " +
+             std::to_string(kMaxStringBytes) + " bytes";
+    if (!all_finite(m.base_color)) return "material " + std::to_string(i) + ": base colour is not finite";
+  }
+  return "";
+}
+
+std::string check_bounds(const PackBounds& b) {
+  if (!all_finite(b.min) || !all_finite(b.max) || !std::isfinite(b.radius)) return "bounds are not finite";
+  if (b.radius < 0.0f) return "bounding radius " + std::to_string(b.radius) + " is negative";
+  return "";
+}
+
+std::string check_progressive(const PackProgressive& p) {
+  const size_t v = p.collapse_to.size();
+  std::ostringstream out;
+  if (v == 0) {
+    if (!p.group_start.empty() || !p.triangle_count.empty() || p.min_vertices != 0)
+      out << "collapse_to is empty but group_start/triangle_count/min_vertices are not";
+    return out.str();
+  }
+  if (v > kMaxVertices) return too_many("progressive vertices", v, kMaxVertices);
+  if (p.group_start.size() != v || p.triangle_count.size() != v + 1) {
+    out << "collapse_to/group_start/triangle_count have " << v << "/" << p.group_start.size() << "/"
+        << p.triangle_count.size() << " entries, expected n/n/n+1";
+    return out.str();
+  }
+  if (p.min_vertices > v) {
+    out << "min_vertices " << p.min_vertices << " exceeds the vertex count " << v;
+    return out.str();
+  }
+  for (uint32_t i = 0; i < v; ++i) {
+    const uint32_t to = p.collapse_to[i], start = p.group_start[i];
+    if (i < p.min_vertices) {
+      if (to != i) out << "kept vertex " << i << " has collapse_to " << to;
+      else if (start != i) out << "kept vertex " << i << " has group_start " << start;
+    } else {
+      if (to >= i) out << "removed vertex " << i << " has collapse_to " << to << " (must be below " << i << ")";
+      else if (start < p.min_vertices || start > i || (start != i && p.group_start[i - 1] != start))
+        out << "vertex " << i << " has inconsistent group_start " << start;
+    }
+    if (!out.str().empty()) return out.str();
+  }
+  for (size_t n = 0; n < v; ++n) {
+    if (p.triangle_count[n] > p.triangle_count[n + 1]) {
+      out << "triangle_count is not monotone at n=" << n;
+      return out.str();
+    }
+    if (n < p.min_vertices && p.triangle_count[n] != p.triangle_count[p.min_vertices]) {
+      out << "triangle_count[" << n << "] differs from triangle_count[min_vertices]";
+      return out.str();
+    }
+  }
+  return "";
+}
+
+std::string check_geometry(const PackGeometry& g) {
+  std::ostringstream out;
+  if (g.positions.size() % 3 != 0) return "positions are not 3 floats per vertex";
+  if (g.triangles.size() % 3 != 0) return "triangles are not 3 indices each";
+  const size_t v = g.positions.size() / 3, t = g.triangles.size() / 3;
+  if (v > kMaxVertices) return too_many("vertices", v, kMaxVertices);
+  if (t > kMaxTriangles) return too_many("triangles", t, kMaxTriangles);
+  if (!g.normals.empty() && g.normals.size() != 3 * v) out << g.normals.size() << " normal floats for " << v << " vertices";
+  else if (!g.uvs.empty() && g.uvs.size() != 2 * v) out << g.uvs.size() << " uv floats for " << v << " vertices";
+  else if (g.joints.size() != g.weights.size() || (!g.joints.empty() && g.joints.size() != 4 * v))
+    out << g.joints.size() << " joint indices and " << g.weights.size() << " weights for " << v
+        << " vertices (expected 4 each per vertex, or none)";
+  else if (!g.regions.empty() && g.regions.size() != v) out << g.regions.size() << " regions for " << v << " vertices";
+  else if (!g.triangle_material.empty() && g.triangle_material.size() != t)
+    out << g.triangle_material.size() << " triangle materials for " << t << " triangles";
+  if (!out.str().empty()) return out.str();
+  if (!all_finite(g.positions) || !all_finite(g.normals) || !all_finite(g.uvs) || !all_finite(g.weights))
+    return "a position, normal, uv or weight is not finite";
+  for (size_t i = 0; i < g.weights.size(); ++i)
+    if (g.weights[i] < 0.0f) return "vertex " + std::to_string(i / 4) + " has a negative weight";
+  for (size_t i = 0; i < g.regions.size(); ++i)
+    if (!valid_region(g.regions[i]))
+      return "vertex " + std::to_string(i) + " has unknown region " + std::to_string(g.regions[i]);
+  for (size_t c = 0; c < g.triangles.size(); ++c)
+    if (g.triangles[c] >= v)
+      return "triangle " + std::to_string(c / 3) + " uses vertex " + std::to_string(g.triangles[c]) +
+             ", vertex count is " + std::to_string(v);
+  return "";
+}
+
+std::string check_animation(const AnimationTexture& a) {
+  std::ostringstream out;
+  // note: the format's limits first (they bound every size), then the codec's own rules
+  // (animation_codec.h: layout per encoding, data size, finite values).
+  if (a.joints > kMaxJoints) out << too_many("joints per row", a.joints, kMaxJoints);
+  else if (a.decode_params.size() > kMaxDecodeParams)
+    out << too_many("decode parameters", a.decode_params.size(), kMaxDecodeParams);
+  if (!out.str().empty()) return out.str();
+  std::string why;
+  if (!check_animation_texture(a, &why)) return why.empty() ? "invalid animation texture" : why;
+  return "";
+}
+
+std::string check_partition(const PartitionMask& p) {
+  std::ostringstream out;
+  if (p.width > kMaxTextureSide || p.height > kMaxTextureSide)
+    out << "mask " << p.width << "x" << p.height << " exceeds " << kMaxTextureSide << " texels a side";
+  else if (p.texels.size() != size_t{p.width} * p.height)
+    out << p.texels.size() << " texels for a " << p.width << "x" << p.height << " mask";
+  else if (!std::isfinite(p.neck_height) || !std::isfinite(p.waist_height) || !all_finite(p.up_axis))
+    out << "heights or up axis not finite";
+  if (!out.str().empty()) return out.str();
+  for (size_t i = 0; i < p.texels.size(); ++i)
+    if (!valid_region(p.texels[i]))
+      return "texel " + std::to_string(i) + " has unknown region " + std::to_string(p.texels[i]);
+  return "";
+}
+
+std::string check_cross_references(const PackContents& c) {
+  const PackGeometry& g = c.geometry;
+  std::ostringstream out;
+  if (!g.joints.empty() && c.joints.empty()) return "GEOM: vertices are skinned but the skeleton is empty";
+  for (size_t i = 0; i < g.joints.size(); ++i)
+    if (g.joints[i] >= c.joints.size())
+      return "GEOM: vertex " + std::to_string(i / 4) + " uses joint " + std::to_string(g.joints[i]) +
+             ", the skeleton has " + std::to_string(c.joints.size());
+  for (size_t t = 0; t < g.triangle_material.size(); ++t)
+    if (g.triangle_material[t] >= c.materials.size())
+      return "GEOM: triangle " + std::to_string(t) + " uses material " + std::to_string(g.triangle_material[t]) +
+             ", there are " + std::to_string(c.materials.size());
+  const PackProgressive& p = c.progressive;
+  if (!p.collapse_to.empty()) {
+    if (p.collapse_to.size() != g.vertex_count())
+      out << "PROG: " << p.collapse_to.size() << " vertices, GEOM has " << g.vertex_count();
+    else if (p.triangle_count.back() != g.triangle_count())
+      out << "PROG: triangle_count[" << g.vertex_count() << "] = " << p.triangle_count.back() << ", GEOM has "
+          << g.triangle_count() << " triangles";
+    if (!out.str().empty()) return out.str();
+  }
+  for (size_t i = 0; i < c.clips.size(); ++i) {
+    const PackClip& clip = c.clips[i];
+    if (uint64_t{clip.first_row} + clip.frame_count > c.animation.rows)
+      return "CLIP: clip " + std::to_string(i) + " uses rows " + std::to_string(clip.first_row) + ".." +
+             std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) + ", the texture has " +
+             std::to_string(c.animation.rows);
+  }
+  if (c.animation.rows > 0 && c.animation.joints != c.joints.size())
+    return "ANIM: " + std::to_string(c.animation.joints) + " joints per row, the skeleton has " +
+           std::to_string(c.joints.size());
+  return "";
+}
+
+}  // namespace crowdbake::pack_io

@@ -1,0 +1,23 @@
+// The validity rules of pack contents (docs/pack-format.md "Validity rules"), one
+// function per part so the reader can check each chunk as it decodes it. Each returns an
+// empty string when the part is valid, otherwise what is wrong (first problem only).
+#pragma once
+
+#include <string>
+
+#include "crowdbake/formats/pack.h"
+
+namespace crowdbake::pack_io {
+
+std::string check_joints(const std::vector<PackJoint>& joints);
+std::string check_clips(const std::vector<PackClip>& clips);
+std::string check_materials(const std::vector<PackMaterial>& materials);
+std::string check_bounds(const PackBounds& bounds);
+std::string check_progressive(const PackProgressive& progressive);
+std::string check_geometry(const PackGeometry& geometry);
+std::string check_animation(const AnimationTexture& animation);
+std::string check_partition(const PartitionMask& partition);
+// Rules between parts: joint and material indices, clip rows, progressive sizes.
+std::string check_cross_references(const PackContents& contents);
+
+}  // namespace crowdbake::pack_io

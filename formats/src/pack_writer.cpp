@@ -1,0 +1,126 @@
+// write_pack(): validate, encode each chunk, then lay the file out as header, chunk table
+// and 16-byte-aligned chunks in the fixed order of pack_format.h (docs/pack-format.md).
+#include <stdexcept>
+
+#include "byte_writer.h"
+#include "crc32c.h"
+#include "crowdbake/formats/pack.h"
+#include "pack_chunks.h"
+#include "pack_validate.h"
+
+namespace crowdbake {
+namespace {
+
+using namespace pack_format;
+using pack_io::ByteWriter;
+
+struct EncodedChunk {
+  uint32_t tag;
+  uint32_t version;
+  ByteWriter payload;
+};
+
+void check_options(const PackWriteOptions& o) {
+  const auto bits_ok = [](int bits, int min) {
+    return bits == 0 || (bits >= min && bits <= static_cast<int>(kMaxQuantizationBits));
+  };
+  if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kRaw))
+    throw std::invalid_argument("write_pack: unknown geometry codec " + std::to_string(static_cast<uint32_t>(o.codec)));
+  if (!bits_ok(o.position_bits, 1) || !bits_ok(o.uv_bits, 1) || !bits_ok(o.normal_bits, 2))
+    throw std::invalid_argument("write_pack: quantisation bits must be 0 or 1.." + std::to_string(kMaxQuantizationBits) +
+                                " (normals 2.." + std::to_string(kMaxQuantizationBits) + "), got position " +
+                                std::to_string(o.position_bits) + ", normal " + std::to_string(o.normal_bits) +
+                                ", uv " + std::to_string(o.uv_bits));
+}
+
+}  // namespace
+
+const char* geometry_codec_name(GeometryCodec codec) {
+  switch (codec) {
+    case GeometryCodec::kDraco: return "draco";
+    case GeometryCodec::kMeshopt: return "meshopt";
+    case GeometryCodec::kRaw: return "raw";
+  }
+  return "unknown";
+}
+
+PackStatus validate_pack_contents(const PackContents& c) {
+  using namespace pack_io;
+  const std::pair<const char*, std::string> checks[] = {
+      {"HEAD", c.name.size() > kMaxStringBytes || c.settings_json.size() > kMaxSettingsBytes
+                   ? "name or settings_json exceeds its length limit"
+                   : ""},
+      {"SKEL", check_joints(c.joints)},
+      {"CLIP", check_clips(c.clips)},
+      {"MATL", check_materials(c.materials)},
+      {"BNDS", check_bounds(c.bounds)},
+      {"PROG", check_progressive(c.progressive)},
+      {"GEOM", check_geometry(c.geometry)},
+      {"ANIM", check_animation(c.animation)},
+      {"PART", check_partition(c.partition)},
+  };
+  for (const auto& [tag, problem] : checks)
+    if (!problem.empty()) return {false, std::string("chunk ") + tag + ": " + problem};
+  const std::string cross = check_cross_references(c);
+  if (!cross.empty()) return {false, "chunk " + cross};
+  return {};
+}
+
+std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options) {
+  check_options(options);
+  const PackStatus valid = validate_pack_contents(contents);
+  if (!valid) throw std::invalid_argument("write_pack: invalid pack contents: " + valid.message);
+
+  std::vector<EncodedChunk> chunks;
+  const auto add = [&](uint32_t tag, uint32_t version) -> ByteWriter& {
+    chunks.push_back({tag, version, ByteWriter{}});
+    return chunks.back().payload;
+  };
+  pack_io::encode_head(contents, add(kTagHead, kHeadVersion));
+  pack_io::encode_skeleton(contents.joints, add(kTagSkel, kSkelVersion));
+  pack_io::encode_clips(contents.clips, add(kTagClip, kClipVersion));
+  pack_io::encode_materials(contents.materials, add(kTagMatl, kMatlVersion));
+  pack_io::encode_bounds(contents.bounds, add(kTagBnds, kBndsVersion));
+  pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
+  pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
+  pack_io::encode_animation(contents.animation, add(kTagAnim, kAnimVersion));
+  pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
+
+  ByteWriter file;
+  file.raw(kMagic.data(), kMagic.size());
+  file.u16(kPackVersionMajor);
+  file.u16(kPackVersionMinor);
+  file.u32(0);  // flags
+  file.u32(static_cast<uint32_t>(chunks.size()));
+  file.u32(0);  // reserved
+  file.u64(kHeaderSize);  // chunk table right after the header
+  const size_t file_size_at = file.size();
+  file.u64(0);  // file size, patched below
+  const size_t checksum_at = file.size();
+  file.u32(0);  // header + table checksum, patched below
+  file.u32(0);  // reserved
+  const size_t table_at = file.size();
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    for (int k = 0; k < 4; ++k) file.u64(0);  // patched below
+  }
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    file.zero_pad(kAlignment);
+    const std::vector<uint8_t>& payload = chunks[i].payload.bytes();
+    const size_t entry = table_at + i * kChunkEntrySize;
+    file.patch_u32(entry + 0, chunks[i].tag);
+    file.patch_u32(entry + 4, chunks[i].version);
+    file.patch_u64(entry + 8, file.size());
+    file.patch_u64(entry + 16, payload.size());
+    file.patch_u32(entry + 24, pack_io::crc32c(payload.data(), payload.size()));
+    file.patch_u32(entry + 28, 0);
+    file.raw(payload.data(), payload.size());
+  }
+  file.zero_pad(kAlignment);
+  file.patch_u64(file_size_at, file.size());
+  uint32_t crc = pack_io::crc32c(file.bytes().data(), checksum_at);
+  crc = pack_io::crc32c(file.bytes().data() + table_at, chunks.size() * kChunkEntrySize, crc);
+  file.patch_u32(checksum_at, crc);
+  return std::move(file.bytes());
+}
+
+}  // namespace crowdbake

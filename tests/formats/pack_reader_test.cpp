@@ -1,0 +1,374 @@
+// read_pack on hostile bytes: every truncation (each in a fresh allocation of exactly
+// that size, so ASAN sees any overread), every single-byte flip, flips re-sealed with
+// valid checksums so the chunk decoders (Draco and meshoptimizer included) see them,
+// appended bytes, bad magic and versions, unknown/missing/duplicate chunks, random
+// garbage, and counts that would allocate huge amounts of memory.
+#include <algorithm>
+#include <memory>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "allocation_tracker.h"
+#include "crowdbake/formats/pack.h"
+#include "pack_compare.h"
+#include "pack_surgery.h"
+#include "pack_test_contents.h"
+
+namespace crowdbake {
+namespace {
+
+using namespace pack_format;
+using test::RawChunk;
+
+// Largest single allocation made while reading `bytes`.
+size_t largest_allocation_reading(const std::vector<uint8_t>& bytes, PackStatus& status) {
+  PackContents out;
+  test::start_tracking_allocations();
+  status = read_pack(bytes.data(), bytes.size(), out);
+  return test::stop_tracking_allocations();
+}
+
+PackStatus read_copy(const uint8_t* data, size_t size) {
+  // note: a fresh heap block of exactly `size` bytes, so ASAN reports any overread.
+  std::unique_ptr<uint8_t[]> copy(new uint8_t[size]);
+  if (size) std::memcpy(copy.get(), data, size);
+  PackContents out;
+  return read_pack(copy.get(), size, out);
+}
+
+PackStatus read(const std::vector<uint8_t>& bytes) { return read_copy(bytes.data(), bytes.size()); }
+
+PackStatus read(const std::vector<uint8_t>& bytes, PackContents& out) {
+  return read_pack(bytes.data(), bytes.size(), out);
+}
+
+void expect_error(const PackStatus& s, const std::string& needle) {
+  EXPECT_FALSE(s.ok) << "accepted; expected an error containing '" << needle << "'";
+  EXPECT_NE(s.message.find(needle), std::string::npos) << s.message;
+}
+
+std::vector<uint8_t> small_pack(GeometryCodec codec) {
+  return write_pack(test::make_test_contents(4, 21), {codec});
+}
+
+class Hostile : public ::testing::TestWithParam<GeometryCodec> {};
+
+TEST_P(Hostile, GoodPackReads) {
+  const PackStatus s = read(small_pack(GetParam()));
+  EXPECT_TRUE(s.ok) << s.message;
+}
+
+TEST_P(Hostile, EveryTruncatedPrefixIsACleanError) {
+  const std::vector<uint8_t> bytes = small_pack(GetParam());
+  std::vector<PackChunk> chunks;
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks));
+  const size_t table_end = kHeaderSize + kChunkEntrySize * chunks.size();
+  for (size_t size = 0; size < bytes.size(); ++size) {
+    const PackStatus s = read_copy(bytes.data(), size);
+    ASSERT_FALSE(s.ok) << "prefix of " << size << " bytes accepted";
+    ASSERT_FALSE(s.message.empty());
+    if (size < 8) ASSERT_NE(s.message.find("not a crowdbake pack"), std::string::npos) << s.message;
+    else ASSERT_NE(s.message.find("truncated"), std::string::npos) << size << ": " << s.message;
+    // The front of a file is enough for the chunk table (streaming).
+    std::unique_ptr<uint8_t[]> copy(new uint8_t[size]);
+    if (size) std::memcpy(copy.get(), bytes.data(), size);
+    std::vector<PackChunk> listed;
+    EXPECT_EQ(read_pack_chunks(copy.get(), size, listed).ok, size >= table_end) << size;
+  }
+}
+
+TEST_P(Hostile, EverySingleByteFlipIsDetected) {
+  // note: every byte is under a checksum, a version/magic/size check, or must be zero
+  // padding, so no flip can go unnoticed.
+  const std::vector<uint8_t> bytes = small_pack(GetParam());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    for (uint8_t mask : {0x01, 0x80, 0xff}) {
+      std::vector<uint8_t> bad = bytes;
+      bad[i] ^= mask;
+      const PackStatus s = read(bad);
+      ASSERT_FALSE(s.ok) << "flip 0x" << std::hex << int{mask} << " at byte " << std::dec << i << " accepted";
+      ASSERT_FALSE(s.message.empty());
+    }
+  }
+}
+
+TEST_P(Hostile, ResealedFlipsInEveryChunkNeverCrash) {
+  // The checksums are recomputed after each flip, so the chunk decoders (and Draco or
+  // meshoptimizer behind GEOM) parse the corrupted bytes. Any outcome but a crash is
+  // fine; an accepted pack must still satisfy every validity rule.
+  const std::vector<uint8_t> bytes = small_pack(GetParam());
+  std::vector<PackChunk> chunks;
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks));
+  size_t accepted = 0, total = 0;
+  for (const PackChunk& c : chunks) {
+    for (size_t i = c.offset; i < c.offset + c.size; ++i) {
+      for (uint8_t mask : {0x01, 0x10, 0xff}) {
+        std::vector<uint8_t> bad = bytes;
+        bad[i] ^= mask;
+        test::reseal(bad);
+        PackContents out;
+        const PackStatus s = read(bad, out);
+        ++total;
+        if (s.ok) {
+          ++accepted;
+          const PackStatus valid = validate_pack_contents(out);
+          ASSERT_TRUE(valid.ok) << "accepted invalid contents: " << valid.message;
+        } else {
+          ASSERT_EQ(s.message.rfind("chunk ", 0), 0u) << s.message;
+        }
+      }
+    }
+  }
+  RecordProperty("accepted", static_cast<int>(accepted));
+  EXPECT_LT(accepted, total);
+}
+
+TEST_P(Hostile, AppendedBytesRejected) {
+  for (const std::vector<uint8_t>& tail : {std::vector<uint8_t>{0}, std::vector<uint8_t>(16, 0), std::vector<uint8_t>{0xff}}) {
+    std::vector<uint8_t> bytes = small_pack(GetParam());
+    bytes.insert(bytes.end(), tail.begin(), tail.end());
+    expect_error(read(bytes), "trailing bytes");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, Hostile,
+                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt, GeometryCodec::kRaw),
+                         [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
+
+TEST(PackReader, WrongMagic) {
+  const std::vector<uint8_t> good = small_pack(GeometryCodec::kRaw);
+  for (size_t i = 0; i < 8; ++i) {
+    std::vector<uint8_t> bytes = good;
+    bytes[i] ^= 0x20;
+    expect_error(read(bytes), "not a crowdbake pack (bad magic");
+  }
+  expect_error(read(std::vector<uint8_t>{}), "not a crowdbake pack");
+  expect_error(read_copy(nullptr, 0), "not a crowdbake pack");
+}
+
+TEST(PackReader, UnsupportedMajorVersionMessage) {
+  const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  PackStatus s = read(test::assemble_pack(chunks, 2, 0));
+  EXPECT_FALSE(s.ok);
+  EXPECT_EQ(s.message, "unsupported pack version 2 (this build reads <= 1); update crowdbake");
+  s = read(test::assemble_pack(chunks, 0, 3));
+  EXPECT_EQ(s.message, "unsupported pack version 0 (this build reads 1); re-bake the pack");
+  // note: the version is checked before anything else past the magic, so even a header
+  // too short for v1 gets the version message.
+  std::vector<uint8_t> front = test::assemble_pack(chunks, 65535, 0);
+  front.resize(12);
+  expect_error(read(front), "unsupported pack version 65535");
+}
+
+TEST(PackReader, NewerMinorVersionStillReads) {
+  const PackContents in = test::make_test_contents(4, 22);
+  PackContents out;
+  const PackStatus s = read(test::assemble_pack(test::split_pack(write_pack(in)), 1, 9), out);
+  ASSERT_TRUE(s.ok) << s.message;
+  test::expect_same_contents(in, out, {1e-3, 1e-2, 1e-3});
+}
+
+TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
+  const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  expect_error(read(test::assemble_pack(chunks, 1, 0, 0x4)), "unsupported required feature flags 0x00000004");
+  const PackStatus s = read(test::assemble_pack(chunks, 1, 0, 0x10000));
+  EXPECT_TRUE(s.ok) << s.message;
+}
+
+TEST(PackReader, UnknownChunksAreSkipped) {
+  const PackContents in = test::make_test_contents(4, 23);
+  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kRaw}));
+  chunks.insert(chunks.begin() + 4, RawChunk{make_tag('X', 'T', 'R', 'A'), 7, std::vector<uint8_t>(37, 0xab)});
+  chunks.push_back(RawChunk{0xdeadbeef, 1, {}});
+  PackContents out;
+  const PackStatus s = read(test::assemble_pack(chunks), out);
+  ASSERT_TRUE(s.ok) << s.message;
+  test::expect_same_contents(in, out);
+  std::vector<PackChunk> listed;
+  const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), listed));
+  EXPECT_EQ(tag_name(listed[4].tag), "XTRA");
+  EXPECT_EQ(tag_name(listed.back().tag), "0xdeadbeef");
+}
+
+TEST(PackReader, UnknownChunkVersionRejected) {
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  for (RawChunk& c : chunks) {
+    const uint32_t saved = c.version;
+    c.version = 2;
+    expect_error(read(test::assemble_pack(chunks)),
+                 "unsupported chunk " + tag_name(c.tag) + " version 2 (this build reads <= 1)");
+    c.version = saved;
+  }
+}
+
+TEST(PackReader, MissingOrDuplicateChunksRejected) {
+  const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    auto fewer = chunks;
+    fewer.erase(fewer.begin() + static_cast<ptrdiff_t>(i));
+    expect_error(read(test::assemble_pack(fewer)), "missing chunk " + tag_name(chunks[i].tag));
+    auto more = chunks;
+    more.push_back(chunks[i]);
+    expect_error(read(test::assemble_pack(more)), "appears twice");
+  }
+}
+
+TEST(PackReader, ChunksInAnyFileOrderRead) {
+  const PackContents in = test::make_test_contents(4, 24);
+  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0}));
+  std::reverse(chunks.begin(), chunks.end());
+  PackContents out;
+  const PackStatus s = read(test::assemble_pack(chunks), out);
+  ASSERT_TRUE(s.ok) << s.message;
+  test::expect_same_contents(in, out);
+}
+
+TEST(PackReader, BadTableEntriesRejected) {
+  const std::vector<uint8_t> good = small_pack(GeometryCodec::kRaw);
+  const auto entry = [](int i) { return kHeaderSize + kChunkEntrySize * i; };
+  std::vector<uint8_t> b = good;
+  test::put64(b, entry(2) + 8, test::get32(b, entry(2) + 8) + 8);  // misaligned
+  test::reseal_header(b);
+  expect_error(read(b), "is not 16-byte aligned");
+  b = good;
+  test::put64(b, entry(2) + 8, test::get32(b, entry(1) + 8));  // overlaps chunk 1
+  test::reseal_header(b);
+  expect_error(read(b), "overlaps");
+  b = good;
+  test::put64(b, entry(8) + 16, uint64_t{1} << 62);  // runs past the end
+  test::reseal_header(b);
+  expect_error(read(b), "run past the file size");
+  b = good;
+  test::put32(b, 16, 100000);  // chunk count (checked before the checksum)
+  expect_error(read(b), "exceed the limit of 256");
+  b = good;
+  test::put64(b, 24, 32);  // table inside the header
+  test::reseal_header(b);
+  expect_error(read(b), "chunk table offset 32");
+}
+
+TEST(PackReader, NonZeroPaddingRejected) {
+  std::vector<uint8_t> b = small_pack(GeometryCodec::kRaw);
+  const PackChunk head = test::find_chunk(b, kTagHead);
+  ASSERT_NE(head.size % 16, 0u) << "test needs padding after HEAD";
+  b[head.offset + head.size] = 1;
+  expect_error(read(b), "padding byte at offset " + std::to_string(head.offset + head.size));
+}
+
+TEST(PackReader, HeadCountsMustMatch) {
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  std::vector<uint8_t>& head = chunks[0].payload;
+  const size_t vertices_at = head.size() - 3 * 4;
+  test::put32(head, vertices_at, test::get32(head, vertices_at) + 1);
+  expect_error(read(test::assemble_pack(chunks)), "chunk HEAD: says 17 vertices, the pack holds 16");
+}
+
+TEST(PackReader, MessagesNameChunkItemAndField) {
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  chunks[1].payload.resize(chunks[1].payload.size() - 20);  // SKEL: cut into the last joint
+  expect_error(read(test::assemble_pack(chunks)), "chunk SKEL: joint 4 ");
+  chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  std::vector<uint8_t>& bounds = chunks[4].payload;  // BNDS: radius NaN
+  const uint32_t nan_bits = 0x7fc00000;
+  test::put32(bounds, 24, nan_bits);
+  expect_error(read(test::assemble_pack(chunks)), "chunk BNDS: radius: not a finite number");
+}
+
+TEST(PackReader, RandomGarbageIsRejected) {
+  for (uint32_t seed = 1; seed <= 300; ++seed) {
+    std::mt19937 rng(seed);
+    std::vector<uint8_t> bytes(rng() % 8192);
+    for (uint8_t& b : bytes) b = static_cast<uint8_t>(rng());
+    ASSERT_FALSE(read(bytes).ok) << "seed " << seed;
+    // Garbage behind a valid magic and version goes further into the header checks.
+    if (bytes.size() >= 12) {
+      const std::vector<uint8_t> good = small_pack(GeometryCodec::kRaw);
+      std::copy(good.begin(), good.begin() + 12, bytes.begin());
+      ASSERT_FALSE(read(bytes).ok) << "seed " << seed;
+    }
+  }
+}
+
+TEST(PackReader, GarbageChunkPayloadsAreRejected) {
+  // Valid framing and checksums around random payloads of every known chunk.
+  const auto good = test::split_pack(small_pack(GeometryCodec::kDraco));
+  for (uint32_t seed = 1; seed <= 60; ++seed) {
+    std::mt19937 rng(seed);
+    for (size_t i = 0; i < good.size(); ++i) {
+      auto chunks = good;
+      std::vector<uint8_t>& p = chunks[i].payload;
+      p.resize(rng() % 600);
+      for (uint8_t& b : p) b = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
+      const PackStatus s = read(test::assemble_pack(chunks));
+      ASSERT_FALSE(s.ok) << "seed " << seed << " chunk " << i;
+      ASSERT_EQ(s.message.rfind("chunk ", 0), 0u) << s.message;
+    }
+  }
+}
+
+// Replaces chunk `tag`'s payload and expects an error containing `needle` with no
+// allocation above 1 MiB while reading.
+void expect_cheap_rejection(uint32_t tag, const std::vector<uint8_t>& payload, const std::string& needle) {
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  for (RawChunk& c : chunks)
+    if (c.tag == tag) c.payload = payload;
+  const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
+  PackStatus s;
+  const size_t largest = largest_allocation_reading(bytes, s);
+  expect_error(s, needle);
+  EXPECT_LT(largest, size_t{1} << 20) << "for " << needle;
+}
+
+std::vector<uint8_t> words(std::initializer_list<uint32_t> values) {
+  std::vector<uint8_t> out;
+  for (uint32_t v : values)
+    for (int k = 0; k < 4; ++k) out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+  return out;
+}
+
+TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
+  expect_cheap_rejection(kTagSkel, words({65535}), "chunk SKEL: joints: count 65535 needs at least 96 bytes each");
+  expect_cheap_rejection(kTagSkel, words({0xffffffff}), "joint count 4294967295 exceeds the limit");
+  expect_cheap_rejection(kTagClip, words({1, 0xfffffff0, 0, 0, 0, 0, 0, 0}), "chunk CLIP: clip 0 name: length 4294967280 exceeds");
+  expect_cheap_rejection(kTagMatl, words({60000}), "chunk MATL: materials: count 60000");
+  expect_cheap_rejection(kTagProg, words({1u << 24, 0, 0}), "chunk PROG: progressive arrays: count 50331649");
+  // GEOM: raw arrays must be present; compressed ones obey the expansion limit.
+  expect_cheap_rejection(kTagGeom, words({2, 1u << 24, 0, 0, 0, 0, 0, 0}), "chunk GEOM: positions: count 50331648");
+  expect_cheap_rejection(kTagGeom, words({0, 1u << 24, 1u << 25, 31, 0, 0, 0, 0, 0}),
+                         "more than the format's expansion limit");
+  expect_cheap_rejection(kTagGeom, words({1, 1u << 20, 0, 0, 0, 0, 0, 0, 0}),
+                         "more than the format's expansion limit");
+  expect_cheap_rejection(kTagGeom, words({1, (1u << 24) + 1, 0, 0, 0, 0, 0, 0}), "exceed the limits");
+  // ANIM: a 1 TiB texture in a few bytes.
+  std::vector<uint8_t> anim = words({0, 5, 3, 16, 1u << 20, 0});
+  const std::vector<uint8_t> huge = words({0, 1u << 8});
+  anim.insert(anim.end(), huge.begin(), huge.end());
+  expect_cheap_rejection(kTagAnim, anim, "chunk ANIM: texture data: count 1099511627776");
+  // PART: 16384 x 16384 run-length mask from two runs.
+  std::vector<uint8_t> part = words({16384, 16384, 0, 0, 0, 0x3f800000, 0, 1, 4});
+  part.insert(part.end(), {255, 0, 255, 1});
+  expect_cheap_rejection(kTagPart, part, "2 runs cannot cover 268435456 texels");
+  expect_cheap_rejection(kTagPart, words({16385, 1, 0, 0, 0, 0x3f800000, 0, 0, 16385}), "exceeds the limit");
+}
+
+TEST(PackReader, ReadOneChunkForStreaming) {
+  const PackContents in = test::make_test_contents(5, 25);
+  const std::vector<uint8_t> bytes = write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0});
+  const PackChunk geom = test::find_chunk(bytes, kTagGeom);
+  PackContents out;
+  PackStatus s = read_pack_chunk(geom, bytes.data() + geom.offset, out);
+  ASSERT_TRUE(s.ok) << s.message;
+  EXPECT_EQ(out.geometry.triangles, in.geometry.triangles);
+  EXPECT_TRUE(test::same_bits(out.geometry.positions, in.geometry.positions));
+  PackChunk corrupt = geom;
+  corrupt.checksum ^= 1;
+  expect_error(read_pack_chunk(corrupt, bytes.data() + geom.offset, out), "chunk GEOM: checksum mismatch");
+  PackChunk unknown = geom;
+  unknown.tag = make_tag('Z', 'Z', 'Z', 'Z');
+  EXPECT_TRUE(read_pack_chunk(unknown, bytes.data() + geom.offset, out).ok);
+}
+
+}  // namespace
+}  // namespace crowdbake

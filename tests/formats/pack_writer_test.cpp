@@ -1,0 +1,226 @@
+// write_pack → read_pack round trips for every codec: exact where the format promises
+// exactness, within the documented tolerance for quantised positions/normals/UVs; order
+// of vertices and triangles preserved; deterministic bytes; invalid contents refused.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "crowdbake/formats/pack.h"
+#include "pack_compare.h"
+#include "pack_test_contents.h"
+
+namespace crowdbake {
+namespace {
+
+using test::expect_same_contents;
+using test::make_test_contents;
+
+PackContents round_trip(const PackContents& in, const PackWriteOptions& options) {
+  const std::vector<uint8_t> bytes = write_pack(in, options);
+  PackContents out;
+  const PackStatus status = read_pack(bytes.data(), bytes.size(), out);
+  EXPECT_TRUE(status.ok) << status.message;
+  return out;
+}
+
+// Documented tolerance of a codec/bit setting on these contents. Normals: Draco's
+// octahedral quantisation of unit normals stays within 2.5 / (2^bits - 1) per component
+// plus float rounding (measured: about 2.06 / (2^bits - 1)), meshopt's grid within half a
+// step of the normals' extent.
+test::Tolerance tolerance_for(const PackContents& c, const PackWriteOptions& o) {
+  test::Tolerance tol;
+  if (o.codec == GeometryCodec::kRaw) return tol;
+  tol.positions = test::grid_tolerance(test::extent(c.geometry.positions, 3), o.position_bits);
+  tol.uvs = test::grid_tolerance(test::extent(c.geometry.uvs, 2), o.uv_bits);
+  if (o.normal_bits)
+    tol.normals = o.codec == GeometryCodec::kDraco ? 2.5 / ((1u << o.normal_bits) - 1) + 1e-6
+                                                   : test::grid_tolerance(test::extent(c.geometry.normals, 3), o.normal_bits);
+  return tol;
+}
+
+class RoundTrip : public ::testing::TestWithParam<GeometryCodec> {};
+
+TEST_P(RoundTrip, UnquantisedIsExact) {
+  const PackContents in = make_test_contents(9, 3);
+  const PackWriteOptions options{GetParam(), 0, 0, 0};
+  expect_same_contents(in, round_trip(in, options));
+}
+
+TEST_P(RoundTrip, DefaultQuantisationWithinToleranceOtherFieldsExact) {
+  const PackContents in = make_test_contents(9, 4);
+  const PackWriteOptions options{GetParam()};
+  expect_same_contents(in, round_trip(in, options), tolerance_for(in, options));
+}
+
+TEST_P(RoundTrip, ErrorStaysWithinBoundForEveryBitCount) {
+  const PackContents in = make_test_contents(12, 5);
+  for (int bits : {1, 2, 4, 8, 11, 14, 16, 17, 20, 24}) {
+    PackWriteOptions options{GetParam(), bits, std::max(bits, 2), bits};
+    SCOPED_TRACE("bits " + std::to_string(bits));
+    expect_same_contents(in, round_trip(in, options), tolerance_for(in, options));
+  }
+}
+
+TEST_P(RoundTrip, VertexAndTriangleOrderSurviveOnLargeMeshes) {
+  // note: 300 x 300 = 90000 vertices: past Draco's 16-bit index width and meshopt's
+  // 64k-vertex blocks; triangles shuffled and corners rotated by make_test_contents.
+  const PackContents in = make_test_contents(300, 6);
+  const PackContents out = round_trip(in, {GetParam(), 0, 0, 0});
+  EXPECT_EQ(out.geometry.triangles, in.geometry.triangles);
+  EXPECT_TRUE(test::same_bits(out.geometry.positions, in.geometry.positions));
+  EXPECT_EQ(out.geometry.joints, in.geometry.joints);
+  EXPECT_TRUE(test::same_bits(out.geometry.weights, in.geometry.weights));
+}
+
+TEST_P(RoundTrip, JointsAndWeightsExactEvenAtTheirExtremes) {
+  PackContents in = make_test_contents(6, 7);
+  // Joint indices up to 65534 and weights that no 8/16-bit quantiser keeps.
+  in.joints.resize(65535, in.joints.back());
+  for (size_t j = 5; j < in.joints.size(); ++j) in.joints[j].parent = 0;
+  in.animation = {};
+  in.clips.clear();
+  for (size_t i = 0; i < in.geometry.joints.size(); ++i)
+    in.geometry.joints[i] = static_cast<uint16_t>((i * 7919) % 65535);
+  in.geometry.joints[3] = 65534;
+  for (size_t v = 0; v < in.geometry.vertex_count(); ++v) {
+    float* w = &in.geometry.weights[4 * v];
+    w[0] = 1.0f / 3.0f, w[1] = 1e-7f, w[2] = std::nextafter(0.5f, 1.0f), w[3] = 0.0f;
+  }
+  const PackContents out = round_trip(in, {GetParam()});
+  EXPECT_EQ(out.geometry.joints, in.geometry.joints);
+  EXPECT_TRUE(test::same_bits(out.geometry.weights, in.geometry.weights));
+}
+
+TEST_P(RoundTrip, OptionalAttributesAbsent) {
+  PackContents in = make_test_contents(5, 8);
+  in.geometry.normals.clear();
+  in.geometry.uvs.clear();
+  in.geometry.regions.clear();
+  in.geometry.triangle_material.clear();
+  in.geometry.joints.clear();
+  in.geometry.weights.clear();
+  expect_same_contents(in, round_trip(in, {GetParam(), 0, 0, 0}));
+  expect_same_contents(in, round_trip(in, {GetParam()}), tolerance_for(in, {GetParam()}));
+}
+
+TEST_P(RoundTrip, EmptyContents) {
+  const PackContents in;
+  expect_same_contents(in, round_trip(in, {GetParam()}));
+}
+
+TEST_P(RoundTrip, VerticesWithoutTrianglesAndFlatAttributes) {
+  PackContents in = make_test_contents(4, 9);
+  in.geometry.triangles.clear();
+  in.geometry.triangle_material.clear();
+  in.progressive = {};
+  for (size_t i = 2; i < in.geometry.positions.size(); i += 3) in.geometry.positions[i] = 0.25f;  // flat z
+  for (float& u : in.geometry.uvs) u = 0.5f;  // one UV for all: zero extent
+  const PackWriteOptions options{GetParam()};
+  const PackContents out = round_trip(in, options);
+  expect_same_contents(in, out, tolerance_for(in, options));
+}
+
+TEST_P(RoundTrip, DeterministicBytes) {
+  const PackContents in = make_test_contents(10, 11);
+  const PackWriteOptions options{GetParam()};
+  EXPECT_EQ(write_pack(in, options), write_pack(in, options));
+  // Rewriting what was read gives the same file when nothing is quantised.
+  const PackWriteOptions exact{GetParam(), 0, 0, 0};
+  const std::vector<uint8_t> bytes = write_pack(in, exact);
+  EXPECT_EQ(write_pack(round_trip(in, exact), exact), bytes);
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, RoundTrip,
+                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt, GeometryCodec::kRaw),
+                         [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
+
+TEST(PackWriter, ChunksInStreamingOrderAligned) {
+  const std::vector<uint8_t> bytes = write_pack(make_test_contents());
+  std::vector<PackChunk> chunks;
+  uint16_t major = 0, minor = 0;
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks, &major, &minor));
+  EXPECT_EQ(major, kPackVersionMajor);
+  EXPECT_EQ(minor, kPackVersionMinor);
+  std::string order;
+  for (const PackChunk& c : chunks) {
+    order += pack_format::tag_name(c.tag) + " ";
+    EXPECT_EQ(c.offset % 16, 0u);
+    EXPECT_EQ(c.version, 1u);
+  }
+  EXPECT_EQ(order, "HEAD SKEL CLIP MATL BNDS PROG GEOM ANIM PART ");
+  EXPECT_EQ(bytes.size() % 16, 0u);
+  EXPECT_EQ(bytes.size(), chunks.back().offset + (chunks.back().size + 15) / 16 * 16);
+}
+
+TEST(PackWriter, DracoIsSmallerThanRaw) {
+  const PackContents in = make_test_contents(40, 12);
+  EXPECT_LT(write_pack(in, {GeometryCodec::kDraco}).size(), write_pack(in, {GeometryCodec::kRaw}).size());
+  EXPECT_LT(write_pack(in, {GeometryCodec::kMeshopt}).size(), write_pack(in, {GeometryCodec::kRaw}).size());
+}
+
+// write_pack refuses contents read_pack would refuse, naming the rule.
+void expect_refused(const PackContents& c, const std::string& needle) {
+  try {
+    write_pack(c);
+    ADD_FAILURE() << "write_pack accepted contents that should fail with '" << needle << "'";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(PackWriter, RefusesInvalidContents) {
+  const PackContents good = make_test_contents(4, 13);
+  PackContents c = good;
+  c.geometry.positions[4] = std::numeric_limits<float>::quiet_NaN();
+  expect_refused(c, "not finite");
+  c = good;
+  c.geometry.triangles[5] = 1000;
+  expect_refused(c, "uses vertex 1000");
+  c = good;
+  c.geometry.joints[2] = 5;
+  expect_refused(c, "uses joint 5");
+  c = good;
+  c.geometry.triangle_material[0] = 3;
+  expect_refused(c, "uses material 3");
+  c = good;
+  c.geometry.regions[1] = 7;
+  expect_refused(c, "unknown region 7");
+  c = good;
+  c.joints[2].parent = 2;
+  expect_refused(c, "parent 2");
+  c = good;
+  c.progressive.collapse_to.back() = c.geometry.vertex_count() - 1;
+  expect_refused(c, "collapse_to");
+  c = good;
+  c.progressive.triangle_count.back() -= 1;
+  expect_refused(c, "triangle_count");
+  c = good;
+  c.clips[2].first_row = 100;
+  expect_refused(c, "clip 2 uses rows");
+  c = good;
+  c.clips[1].root_motion = {1.0f};
+  expect_refused(c, "root motion");
+  c = good;
+  c.animation.data.pop_back();
+  expect_refused(c, "ANIM");
+  c = good;
+  c.partition.texels.pop_back();
+  expect_refused(c, "texels for a 64x48 mask");
+  c = good;
+  c.geometry.weights.pop_back();
+  expect_refused(c, "weights");
+  EXPECT_THROW(write_pack(good, {GeometryCodec::kDraco, 25, 10, 12}), std::invalid_argument);
+  EXPECT_THROW(write_pack(good, {GeometryCodec::kDraco, 16, 1, 12}), std::invalid_argument);
+  EXPECT_THROW(write_pack(good, {static_cast<GeometryCodec>(7)}), std::invalid_argument);
+}
+
+TEST(PackWriter, ValidatePackContentsAcceptsTheTestCharacter) {
+  const PackStatus s = validate_pack_contents(make_test_contents());
+  EXPECT_TRUE(s.ok) << s.message;
+  EXPECT_TRUE(validate_pack_contents(PackContents{}).ok);
+}
+
+}  // namespace
+}  // namespace crowdbake
