@@ -15,7 +15,8 @@
 // Encodings (AnimationEncoding):
 // - kFloat32: 3 RGBA32F texels = the three matrix rows. Exact for float input.
 // - kFloat16: 3 RGBA16F texels = the three rows as IEEE binary16 (round to nearest even).
-//   Finite values beyond ±65504 are written as ±65504 (never ±inf), and counted.
+//   Values that would round to ±inf (|v| >= 65520) are written as ±65504 and counted: a
+//   texture never holds inf.
 // - kQuantized: 2 RGBA16_SNORM texels = a similarity transform s·R + t:
 //     texel 0 = unit rotation quaternion (x, y, z, w) with w >= 0, snorm16 (c / 32767);
 //     texel 1 = (tx, ty, tz, s) as center + half * snorm16, with
