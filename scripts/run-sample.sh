@@ -1,11 +1,21 @@
 #!/bin/sh
-# The README's main command: installs dependencies, builds, generates the bundled
-# spectator character and inspects it. Outputs go to out/.
+# The README's main command: installs dependencies, builds, and runs the main job on the
+# bundled sample: generate the spectator character, inspect it, bake it into a pack,
+# write a 25% level of detail, and print the accuracy/time table of the simplifier.
+# Outputs go to out/.
 set -eu
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
 BUILD="${CROWDBAKE_BUILD_DIR:-build}"
+crowdbake="$BUILD/cli/crowdbake"
 mkdir -p out
+
 "$BUILD/samples/spectator/make_spectator" -o out/spectator.glb
-"$BUILD/cli/crowdbake" inspect out/spectator.glb
+"$crowdbake" inspect out/spectator.glb
+"$crowdbake" bake out/spectator.glb -o out/spectator.crowdpack --report out/spectator.bake.json
+echo "baked out/spectator.crowdpack ($(wc -c < out/spectator.crowdpack) bytes); report in out/spectator.bake.json"
+"$crowdbake" lod out/spectator.glb --ratio 0.25 -o out/spectator-lod25.glb
+# note: --quick measures every 6th frame with fewer settings; the full table over every
+# shared asset is `crowdbake bench simplify` (docs/accuracy.md).
+"$crowdbake" bench simplify --quick --spectator-only --out out/bench --plot out/accuracy-vs-time.png
