@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/simplify.h"
@@ -16,6 +17,19 @@ struct InspectSettings {
 };
 
 int run_inspect(const InspectSettings& settings);
+// `inspect` of a .crowdpack (cli/pack_inspect.cpp); run_inspect calls it for packs.
+int run_inspect_pack(const InspectSettings& settings);
+
+// `crowdbake diff A B`: semantic comparison of two packs (docs/pack-diff.md). Returns 0
+// equal within tolerance, 1 different, 2 error (it prints bad packs itself, as exit 2).
+struct DiffSettings {
+  std::string a, b;
+  bool json = false;
+  double tolerance = 0.0;           // lengths relative to the bbox diagonal, others absolute
+  std::vector<std::string> ignore;  // sections whose differences do not count
+};
+
+int run_diff(const DiffSettings& settings);
 
 struct LodSettings {
   std::string input;

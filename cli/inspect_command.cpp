@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/pack_file.h"
 #include "crowdbake/pipeline/import.h"
 
 namespace crowdbake::cli {
@@ -71,6 +72,7 @@ void print_text(const SkinnedAsset& asset) {
 }  // namespace
 
 int run_inspect(const InspectSettings& settings) {
+  if (looks_like_pack(settings.input)) return run_inspect_pack(settings);
   const SkinnedAsset asset = import_asset(settings.input, settings.import);
   if (settings.json)
     std::cout << to_json(asset).dump(2) << "\n";

@@ -1,6 +1,8 @@
 // crowdbake: flags in, calls into the libraries, errors out as one line each.
 // Exit codes: 0 success, 1 bad input, 2 usage, 3 output could not be written.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -32,7 +34,8 @@ int main(int argc, char** argv) {
 
   crowdbake::cli::InspectSettings inspect;
   CLI::App* inspect_cmd = app.add_subcommand("inspect", "Describe a character file: skeleton, meshes, clips, warnings");
-  inspect_cmd->add_option("FILE", inspect.input, "Character file (.gltf, .glb, .fbx, or anything Assimp reads)")
+  inspect_cmd->add_option("FILE", inspect.input,
+                          "Character file (.gltf, .glb, .fbx, or anything Assimp reads) or a .crowdpack")
       ->required();
   inspect_cmd->add_flag("--json", inspect.json, "Print one JSON object to stdout");
   add_import_options(*inspect_cmd, inspect.import);
@@ -83,6 +86,31 @@ int main(int argc, char** argv) {
   bake_cmd->add_flag("--quiet", bake.quiet, "No progress and no summary");
   add_import_options(*bake_cmd, bake.import);
 
+  crowdbake::cli::DiffSettings diff;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff",
+      "Compare two packs semantically (docs/pack-diff.md). Exit 0: equal within tolerance, 1: different, "
+      "2: error (a missing or corrupt pack is 2, not 1)");
+  diff_cmd->add_option("A", diff.a, "First .crowdpack")->required();
+  diff_cmd->add_option("B", diff.b, "Second .crowdpack")->required();
+  diff_cmd->add_flag("--json", diff.json, "Print one JSON object to stdout");
+  diff_cmd->add_option("--tolerance", diff.tolerance,
+                       "Float comparisons: lengths (positions, translations, bounds, heights, root motion x/z) as "
+                       "|a-b| / bbox diagonal <= T, everything else (3x3 matrix parts, rotations, normals, UVs, "
+                       "weights, yaw, fps) as |a-b| <= T; default 0 = exact. Names, counts, indices, order, "
+                       "progressive arrays and mask texels always compare exactly")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double t = std::strtod(text.c_str(), &end);
+            return end != text.c_str() && *end == 0 && std::isfinite(t) && t >= 0 ? "" : "must be a number >= 0";
+          },
+          "T>=0"));
+  diff_cmd->add_option("--ignore", diff.ignore, "Sections whose differences do not count (comma-separated)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"header", "settings", "skeleton", "clips", "materials", "bounds", "geometry",
+                             "progressive", "animation", "partition"}));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -98,6 +126,7 @@ int main(int argc, char** argv) {
     if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
     if (*lod_cmd) return crowdbake::cli::run_lod(lod);
     if (*bake_cmd) return crowdbake::cli::run_bake(bake);
+    if (*diff_cmd) return crowdbake::cli::run_diff(diff);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";

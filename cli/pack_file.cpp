@@ -1,0 +1,92 @@
+#include "cli/pack_file.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "crowdbake/formats/pack_format.h"
+#include "crowdbake/pipeline/error.h"
+
+namespace crowdbake::cli {
+
+bool looks_like_pack(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".crowdpack") return true;
+  std::ifstream in(path, std::ios::binary);
+  char head[pack_format::kMagic.size()] = {};
+  in.read(head, sizeof head);
+  return in.gcount() == static_cast<std::streamsize>(sizeof head) &&
+         std::memcmp(head, pack_format::kMagic.data(), sizeof head) == 0;
+}
+
+PackFile load_pack_file(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw input_error(path, "is a directory, not a pack; pass a .crowdpack file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const int err = errno;
+    throw input_error(path, err == ENOENT ? "file not found; check the path"
+                                          : std::string("cannot open file (") + std::strerror(err) +
+                                                "); check its permissions");
+  }
+  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  if (in.bad()) throw input_error(path, "read error; check the file and the disk");
+
+  PackFile pack;
+  pack.path = path;
+  pack.bytes = data.size();
+  PackStatus status = read_pack_chunks(data.data(), data.size(), pack.chunks, &pack.version_major,
+                                       &pack.version_minor);
+  if (status) status = read_pack(data.data(), data.size(), pack.contents);
+  if (!status) {
+    // note: the reader's message says what is wrong; some already say what to do
+    // ("...; update crowdbake"), the others get the general advice.
+    std::string message = status.message;
+    if (message.find("; ") == std::string::npos)
+      message += "; the file is damaged or not a complete pack: re-bake it with 'crowdbake bake'";
+    throw input_error(path, message);
+  }
+  return pack;
+}
+
+const char* animation_encoding_name(AnimationEncoding encoding) {
+  switch (encoding) {
+    case AnimationEncoding::kFloat32:
+      return "float32";
+    case AnimationEncoding::kFloat16:
+      return "float16";
+    case AnimationEncoding::kQuantized:
+      return "quantized";
+  }
+  return "unknown";
+}
+
+const char* region_name(uint8_t region) {
+  switch (static_cast<Region>(region)) {
+    case Region::kHead:
+      return "head";
+    case Region::kUpperBody:
+      return "upper body";
+    case Region::kTrousers:
+      return "trousers";
+    case Region::kUnused:
+      return "unused";
+  }
+  return "unknown";
+}
+
+double bbox_diagonal(const PackContents& contents) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = double{contents.bounds.max[k]} - double{contents.bounds.min[k]};
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+}  // namespace crowdbake::cli
