@@ -1,5 +1,6 @@
 #include "cli/pack_file.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
