@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -61,6 +64,9 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
     out.close();
     if (!out) throw fail("writing '" + tmp + "' failed", "check the free disk space and try again");
   }
+  // note: a test hook, so the interrupt path can be exercised between write and rename.
+  if (const char* delay = std::getenv("CROWDBAKE_TEST_WRITE_DELAY_MS"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::atoi(delay)));
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec)

@@ -128,3 +128,25 @@ TEST(BakeCommandErrors, BadInputLeavesNoOutput) {
 
 }  // namespace
 }  // namespace crowdbake
+
+namespace crowdbake {
+namespace {
+
+TEST(BakeCommandErrors, InterruptLeavesNeitherOutputNorTemporaryFile) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  const auto output = dir / "x.crowdpack";
+  // The bake pauses between writing its temporary file and renaming it; SIGINT arrives then.
+  const std::string command = "CROWDBAKE_TEST_WRITE_DELAY_MS=3000 timeout -s INT 1 " +
+                              test::shell_quote(CROWDBAKE_EXE) + " bake " + test::shell_quote(input.string()) +
+                              " -o " + test::shell_quote(output.string()) + " >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_FALSE(std::filesystem::exists(output));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename().string().find("x.crowdpack"), std::string::npos)
+        << "left behind: " << entry.path();
+}
+
+}  // namespace
+}  // namespace crowdbake
