@@ -55,18 +55,6 @@ PackFile load_pack_file(const std::string& path) {
   return pack;
 }
 
-const char* animation_encoding_name(AnimationEncoding encoding) {
-  switch (encoding) {
-    case AnimationEncoding::kFloat32:
-      return "float32";
-    case AnimationEncoding::kFloat16:
-      return "float16";
-    case AnimationEncoding::kQuantized:
-      return "quantized";
-  }
-  return "unknown";
-}
-
 const char* region_name(uint8_t region) {
   switch (static_cast<Region>(region)) {
     case Region::kHead:

@@ -26,8 +26,6 @@ bool looks_like_pack(const std::string& path);
 // Reads and validates the whole pack (read_pack_chunks + read_pack).
 PackFile load_pack_file(const std::string& path);
 
-// Short names for reports: "float32", "float16", "quantized"; "unknown" otherwise.
-const char* animation_encoding_name(AnimationEncoding encoding);
 // "head", "upper body", "trousers", "unused"; "unknown" otherwise.
 const char* region_name(uint8_t region);
 

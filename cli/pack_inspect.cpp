@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/pack_file.h"
+#include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
 
 namespace crowdbake::cli {

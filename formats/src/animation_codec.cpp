@@ -646,4 +646,16 @@ void compose_affine(const float a[12], const float b[12], float out[12]) {
   }
 }
 
+const char* animation_encoding_name(AnimationEncoding encoding) {
+  switch (encoding) {
+    case AnimationEncoding::kFloat32:
+      return "float32";
+    case AnimationEncoding::kFloat16:
+      return "float16";
+    case AnimationEncoding::kQuantized:
+      return "quantized";
+  }
+  return "unknown";
+}
+
 }  // namespace crowdbake

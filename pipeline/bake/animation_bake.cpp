@@ -249,18 +249,6 @@ bool closes_loop(const SkinnedAsset& asset, const std::vector<double>& rows, siz
   return distance(previous, first) <= std::max(tolerance, step);
 }
 
-const char* encoding_name(AnimationEncoding e) {
-  switch (e) {
-    case AnimationEncoding::kFloat32:
-      return "float32";
-    case AnimationEncoding::kFloat16:
-      return "float16";
-    case AnimationEncoding::kQuantized:
-      return "quantized";
-  }
-  return "unknown";
-}
-
 }  // namespace
 
 double frame_time(const Clip& clip, uint32_t frame_count, double frame) {
@@ -377,11 +365,11 @@ AnimationBake bake_animation(const SkinnedAsset& asset, const AnimationBakeOptio
 
   if (bake.clamped_values)
     bake.warnings.push_back("animation: " + std::to_string(bake.clamped_values) +
-                            " values were out of range for the " + encoding_name(options.encoding) +
+                            " values were out of range for the " + animation_encoding_name(options.encoding) +
                             " encoding (or non-finite) and were clamped; use float32");
   if (bake.position_error_bound > 1e-3 * diagonal)
     bake.warnings.push_back(
-        std::string("animation: the ") + encoding_name(options.encoding) +
+        std::string("animation: the ") + animation_encoding_name(options.encoding) +
         format(" encoding may move vertices by up to %.3g%% of the bounding-box diagonal "
                "(%.3g model units)",
                100.0 * bake.position_error_bound / diagonal, bake.position_error_bound) +

@@ -130,18 +130,6 @@ void decode_cost(const AnimationTexture& t, double& nearest_ns, double& linear_n
   linear_ns = run(true);
 }
 
-const char* name(AnimationEncoding e) {
-  switch (e) {
-    case AnimationEncoding::kFloat32:
-      return "float32";
-    case AnimationEncoding::kFloat16:
-      return "float16";
-    case AnimationEncoding::kQuantized:
-      return "quantized";
-  }
-  return "?";
-}
-
 std::string sci(double v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.1e", v);
@@ -183,7 +171,7 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
     if (bake.root_joint >= 0) root = a.skeleton.joints[bake.root_joint].name;
     if (i == 0) worst = e.worst_clip;
     std::printf("| %s | %zu | %s | %s / %s | %s / %s | %s / %s | %s / %s | %.0f | %.0f / %.0f |\n",
-                name(encodings[i]), bake.texture.data.size(),
+                animation_encoding_name(encodings[i]), bake.texture.data.size(),
                 sci(bake.position_error_bound / diagonal).c_str(), sci(e.frames[0].mean()).c_str(),
                 sci(e.frames[0].max).c_str(), sci(e.frames[1].mean()).c_str(),
                 sci(e.frames[1].max).c_str(), sci(e.mid[0].mean()).c_str(),
@@ -256,7 +244,7 @@ int main(int argc, char** argv) {
                                          AnimationEncoding::kQuantized};
   for (int i = 0; i < 3; ++i)
     std::printf(
-        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", name(encodings[i]), totals.bytes[i],
+        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", animation_encoding_name(encodings[i]), totals.bytes[i],
         sci(totals.frames_mean[i][1] / totals.assets).c_str(), sci(totals.frames_max[i][1]).c_str(),
         sci(totals.mid_mean[i][0] / totals.assets).c_str(), sci(totals.mid_max[i][0]).c_str(),
         sci(totals.mid_mean[i][1] / totals.assets).c_str(), sci(totals.mid_max[i][1]).c_str());

@@ -62,6 +62,10 @@ struct AnimationTextureFormat {
 // The layout of an encoding; all zero for a value outside the enum.
 AnimationTextureFormat animation_texture_format(AnimationEncoding encoding);
 
+// The encoding's name in configs and reports: "float32", "float16", "quantized";
+// "unknown" for a value outside the enum.
+const char* animation_encoding_name(AnimationEncoding encoding);
+
 // Checks that a texture is internally consistent and safe to decode: a known encoding,
 // texels_per_joint / bytes_per_texel / decode_params matching it, data.size() equal to
 // rows * width() * bytes_per_texel (no overflow), finite decode params and (for the float
