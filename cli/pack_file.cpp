@@ -10,6 +10,7 @@
 
 #include "crowdbake/formats/pack_format.h"
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/input_file.h"
 
 namespace crowdbake::cli {
 
@@ -25,18 +26,7 @@ bool looks_like_pack(const std::string& path) {
 }
 
 PackFile load_pack_file(const std::string& path) {
-  if (std::filesystem::is_directory(path))
-    throw input_error(path, "is a directory, not a pack; pass a .crowdpack file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    throw input_error(path, err == ENOENT ? "file not found; check the path"
-                                          : std::string("cannot open file (") + std::strerror(err) +
-                                                "); check its permissions");
-  }
-  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-  if (in.bad()) throw input_error(path, "read error; check the file and the disk");
+  const std::vector<uint8_t> data = read_input_file(path, "a .crowdpack file");
 
   PackFile pack;
   pack.path = path;

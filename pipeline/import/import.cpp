@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/input_file.h"
 
 namespace crowdbake {
 namespace {
@@ -28,18 +29,7 @@ bool looks_like_gltf(const std::string& path) {
 }  // namespace
 
 SkinnedAsset import_asset(const std::string& path, const ImportOptions& options) {
-  if (std::filesystem::is_directory(path))
-    throw input_error(path, "is a directory, not a character file; pass a .gltf, .glb or .fbx file");
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) {
-      const int err = errno;
-      throw input_error(path, err == ENOENT ? "file not found; check the path"
-                                            : std::string("cannot open file (") +
-                                                  std::strerror(err) +
-                                                  "); check its permissions");
-    }
-  }
+  check_input_file(path, "a character file (.gltf, .glb, .fbx, ...)");
   ImporterKind kind = options.importer;
   if (kind == ImporterKind::kAuto) {
     std::string ext = std::filesystem::path(path).extension().string();
