@@ -75,27 +75,40 @@ SkinnedAsset meshopt_simplify_all(const SkinnedAsset& asset, double ratio) {
   return lod;
 }
 
-// Maps the imported LoD's joints onto the original skeleton by name and checks that both
-// describe the same bind pose.
+// Maps the imported LoD's joints onto the original skeleton by name and brings its
+// vertices into the original's bind space.
+// note: the original is skinned with v' = G_j · B_j · v, gltfpack's output with its own
+// inverse binds B'_j; the same skinned result needs v = B_j⁻¹ · B'_j · v_out. gltfpack may
+// fold a root transform into the mesh (CesiumMan's Z-up rotation), which makes
+// B_j⁻¹ · B'_j one matrix for every joint; anything else is reported, not guessed.
 void adopt_skeleton(SkinnedAsset& lod, const SkinnedAsset& original) {
   std::vector<int> to_original(lod.skeleton.joints.size(), -1);
+  bool have_space = false;
+  glm::dmat4 space(1.0);
   for (size_t j = 0; j < lod.skeleton.joints.size(); ++j) {
     const Joint& joint = lod.skeleton.joints[j];
     const int o = original.skeleton.find(joint.name);
     to_original[j] = o;
     if (o < 0) continue;
-    const glm::dmat4& a = joint.inverse_bind;
-    const glm::dmat4& b = original.skeleton.joints[o].inverse_bind;
+    const glm::dmat4 m =
+        glm::inverse(original.skeleton.joints[o].inverse_bind) * joint.inverse_bind;
+    if (!have_space) {
+      space = m, have_space = true;
+      continue;
+    }
     double diff = 0.0, size = 1e-12;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
-        diff = std::max(diff, std::abs(a[c][r] - b[c][r])),
-        size = std::max(size, std::abs(b[c][r]));
+        diff = std::max(diff, std::abs(m[c][r] - space[c][r])),
+        size = std::max(size, std::abs(space[c][r]));
     if (diff > 1e-4 * size)
-      throw std::runtime_error("gltfpack changed the inverse bind matrix of joint '" + joint.name +
-                               "'");
+      throw std::runtime_error("gltfpack changed the bind pose of joint '" + joint.name +
+                               "' differently from the others");
   }
-  for (Primitive& p : lod.primitives)
+  const glm::dmat3 normal_space = glm::transpose(glm::inverse(glm::dmat3(space)));
+  for (Primitive& p : lod.primitives) {
+    for (glm::vec3& v : p.positions) v = glm::vec3(space * glm::dvec4(glm::dvec3(v), 1.0));
+    for (glm::vec3& n : p.normals) n = glm::vec3(glm::normalize(normal_space * glm::dvec3(n)));
     for (size_t v = 0; v < p.vertex_count(); ++v)
       for (int k = 0; k < 4; ++k) {
         const int o = to_original[p.joints[v][k]];
@@ -109,6 +122,7 @@ void adopt_skeleton(SkinnedAsset& lod, const SkinnedAsset& original) {
           p.joints[v][k] = static_cast<uint16_t>(o);
         }
       }
+  }
   lod.skeleton = original.skeleton;
   lod.clips.clear();
 }
@@ -164,8 +178,14 @@ PeerLod gltfpack_lod(const SkinnedAsset& asset, const std::string& gltfpack,
     }
     ImportOptions gltf;
     gltf.importer = ImporterKind::kGltf;
-    SkinnedAsset lod = import_asset(out, gltf);
-    adopt_skeleton(lod, asset);
+    SkinnedAsset lod;
+    try {
+      lod = import_asset(out, gltf);
+      adopt_skeleton(lod, asset);
+    } catch (const std::exception& e) {
+      r.error = std::string("gltfpack output unusable: ") + e.what();
+      break;
+    }
     const uint32_t kept = count_lod(lod).positions;
     if (distance(kept, target) < best_gap) {
       best_gap = distance(kept, target);

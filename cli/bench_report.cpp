@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "crowdbake/pipeline/error.h"
@@ -31,10 +32,21 @@ std::string percent(double x) {
   return text;
 }
 
-std::ofstream open_output(const std::string& path) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
-  return out;
+// Writes through a temporary file and a rename, so a failed run never leaves half a file.
+void write_file(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
+  }
 }
 
 // Per DQEM configuration and kept fraction: on how many assets its animated max is below
@@ -133,7 +145,7 @@ void print_summary(const BenchResult& result) {
 }
 
 void write_csv(const BenchResult& result, const std::string& path) {
-  std::ofstream out = open_output(path);
+  std::ostringstream out;
   out << "asset,config,method,samples,form,pose_source,seconds,peak_rss_mb,target_fraction,"
          "kept_position_fraction,kept_vertex_fraction,triangles,peer_parameter,frames,bind_rms,"
          "bind_max,"
@@ -158,7 +170,7 @@ void write_csv(const BenchResult& result, const std::string& path) {
         }
         out << line;
       }
-  if (!out) throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
+  write_file(path, out.str());
 }
 
 void write_json(const BenchResult& result, const std::string& path) {
@@ -212,13 +224,11 @@ void write_json(const BenchResult& result, const std::string& path) {
            {"max_below_both_peers", v.max_below_both},
            {"mean_rms_over_better_peer", v.assets ? v.rms_ratio_sum / v.assets : 0.0}});
     }
-  std::ofstream out = open_output(path);
-  out << j.dump(1) << "\n";
-  if (!out) throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
+  write_file(path, j.dump(1) + "\n");
 }
 
 void write_plot_data(const BenchResult& result, const std::string& path) {
-  std::ofstream out = open_output(path);
+  std::ostringstream out;
   for (const BenchAsset& a : result.assets) {
     // note: blocks are separated, not terminated, by two blank lines; a trailing pair
     // would count as one more (empty) block in gnuplot's stats.
@@ -238,7 +248,7 @@ void write_plot_data(const BenchResult& result, const std::string& path) {
       out << line;
     }
   }
-  if (!out) throw Error(Error::Kind::kOutput, path, "cannot write the benchmark output");
+  write_file(path, out.str());
 }
 
 }  // namespace crowdbake::cli
