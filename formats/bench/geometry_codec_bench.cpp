@@ -62,7 +62,9 @@ PackChunk geom_chunk(const std::vector<uint8_t>& bytes) {
 
 double diagonal(const PackGeometry& g) {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t i = 0; i < g.positions.size(); ++i) lo[i % 3] = std::min(lo[i % 3], g.positions[i]), hi[i % 3] = std::max(hi[i % 3], g.positions[i]);
+  for (size_t i = 0; i < g.positions.size(); ++i)
+    lo[i % 3] = std::min(lo[i % 3], g.positions[i]),
+           hi[i % 3] = std::max(hi[i % 3], g.positions[i]);
   double d = 0;
   for (int k = 0; k < 3; ++k) d += double(hi[k] - lo[k]) * (hi[k] - lo[k]);
   return std::sqrt(d);
@@ -70,17 +72,22 @@ double diagonal(const PackGeometry& g) {
 
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {
   double worst = 0;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) worst = std::max(worst, std::fabs(double(a[i]) - b[i]));
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+    worst = std::max(worst, std::fabs(double(a[i]) - b[i]));
   return worst;
 }
 
 double max_angle_degrees(const std::vector<float>& a, const std::vector<float>& b) {
   double worst = 0;
   for (size_t i = 0; i + 2 < a.size() && i + 2 < b.size(); i += 3) {
-    const double la = std::sqrt(double(a[i]) * a[i] + double(a[i + 1]) * a[i + 1] + double(a[i + 2]) * a[i + 2]);
-    const double lb = std::sqrt(double(b[i]) * b[i] + double(b[i + 1]) * b[i + 1] + double(b[i + 2]) * b[i + 2]);
+    const double la =
+        std::sqrt(double(a[i]) * a[i] + double(a[i + 1]) * a[i + 1] + double(a[i + 2]) * a[i + 2]);
+    const double lb =
+        std::sqrt(double(b[i]) * b[i] + double(b[i + 1]) * b[i + 1] + double(b[i + 2]) * b[i + 2]);
     if (la == 0 || lb == 0) continue;
-    const double c = (double(a[i]) * b[i] + double(a[i + 1]) * b[i + 1] + double(a[i + 2]) * b[i + 2]) / (la * lb);
+    const double c =
+        (double(a[i]) * b[i] + double(a[i + 1]) * b[i + 1] + double(a[i + 2]) * b[i + 2]) /
+        (la * lb);
     worst = std::max(worst, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI);
   }
   return worst;
@@ -99,18 +106,27 @@ PackGeometry decode_geom(const std::vector<uint8_t>& bytes) {
 
 void codec_table(const std::vector<Input>& inputs, double min_seconds) {
   std::printf("\n### Size and decode speed\n\n");
-  std::printf("GEOM chunk bytes (and bytes per vertex), encode time, and decode throughput of the GEOM chunk "
-              "(read_pack_chunk: CRC-32C + codec + validation; median of repeated runs). MB/s counts decoded "
-              "array bytes. Default bits are position 16 / normal 10 / uv 12; \"exact\" is 0 bits (floats kept).\n\n");
-  std::printf("| input | vertices | triangles | codec | bits | GEOM bytes | B/vertex | pack bytes | encode ms | "
-              "decode ms | M vertices/s | MB/s |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf(
+      "GEOM chunk bytes (and bytes per vertex), encode time, and decode throughput of the GEOM "
+      "chunk "
+      "(read_pack_chunk: CRC-32C + codec + validation; median of repeated runs). MB/s counts "
+      "decoded "
+      "array bytes. Default bits are position 16 / normal 10 / uv 12; \"exact\" is 0 bits (floats "
+      "kept).\n\n");
+  std::printf(
+      "| input | vertices | triangles | codec | bits | GEOM bytes | B/vertex | pack bytes | encode "
+      "ms | "
+      "decode ms | M vertices/s | MB/s "
+      "|\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
   struct Setting {
     PackWriteOptions options;
     const char* bits;
   };
   const Setting settings[] = {
-      {{GeometryCodec::kDraco, 16, 10, 12}, "default"}, {{GeometryCodec::kDraco, 0, 0, 0}, "exact"},
-      {{GeometryCodec::kMeshopt, 16, 10, 12}, "default"}, {{GeometryCodec::kMeshopt, 0, 0, 0}, "exact"},
+      {{GeometryCodec::kDraco, 16, 10, 12}, "default"},
+      {{GeometryCodec::kDraco, 0, 0, 0}, "exact"},
+      {{GeometryCodec::kMeshopt, 16, 10, 12}, "default"},
+      {{GeometryCodec::kMeshopt, 0, 0, 0}, "exact"},
       {{GeometryCodec::kRaw, 0, 0, 0}, "exact"},
   };
   for (const Input& in : inputs) {
@@ -119,7 +135,8 @@ void codec_table(const std::vector<Input>& inputs, double min_seconds) {
     const double decoded_mb = layout.decoded_bytes() / 1e6;
     for (const Setting& s : settings) {
       std::vector<uint8_t> bytes;
-      const double encode = median_seconds([&] { bytes = write_pack(in.contents, s.options); }, min_seconds / 4);
+      const double encode =
+          median_seconds([&] { bytes = write_pack(in.contents, s.options); }, min_seconds / 4);
       const PackChunk geom = geom_chunk(bytes);
       const double decode = median_seconds(
           [&] {
@@ -127,19 +144,24 @@ void codec_table(const std::vector<Input>& inputs, double min_seconds) {
             if (!read_pack_chunk(geom, bytes.data() + geom.offset, out)) std::exit(3);
           },
           min_seconds);
-      std::printf("| %s | %u | %u | %s | %s | %llu | %.1f | %zu | %.2f | %.3f | %.1f | %.0f |\n", in.name.c_str(),
-                  g.vertex_count(), g.triangle_count(), geometry_codec_name(s.options.codec), s.bits,
-                  static_cast<unsigned long long>(geom.size), double(geom.size) / std::max(1u, g.vertex_count()),
-                  bytes.size(), encode * 1e3, decode * 1e3, g.vertex_count() / decode / 1e6, decoded_mb / decode);
+      std::printf("| %s | %u | %u | %s | %s | %llu | %.1f | %zu | %.2f | %.3f | %.1f | %.0f |\n",
+                  in.name.c_str(), g.vertex_count(), g.triangle_count(),
+                  geometry_codec_name(s.options.codec), s.bits,
+                  static_cast<unsigned long long>(geom.size),
+                  double(geom.size) / std::max(1u, g.vertex_count()), bytes.size(), encode * 1e3,
+                  decode * 1e3, g.vertex_count() / decode / 1e6, decoded_mb / decode);
     }
   }
 }
 
 void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
   std::printf("\n### Position error vs bits\n\n");
-  std::printf("Max position error over all vertices / bind-pose bbox diagonal, and GEOM bytes (normals 10 bits, "
-              "UVs 12 bits). Bound: grid step / 2 = extent / (2 (2^bits - 1)).\n\n");
-  std::vector<int> position_bits = quick ? std::vector<int>{11, 16} : std::vector<int>{8, 10, 11, 12, 14, 16, 18, 20};
+  std::printf(
+      "Max position error over all vertices / bind-pose bbox diagonal, and GEOM bytes (normals 10 "
+      "bits, "
+      "UVs 12 bits). Bound: grid step / 2 = extent / (2 (2^bits - 1)).\n\n");
+  std::vector<int> position_bits =
+      quick ? std::vector<int>{11, 16} : std::vector<int>{8, 10, 11, 12, 14, 16, 18, 20};
   std::printf("| input | codec |");
   for (int b : position_bits) std::printf(" %d bits |", b);
   std::printf("\n|---|---|");
@@ -161,8 +183,9 @@ void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
   }
 
   std::printf("\n### Normal and UV error vs bits\n\n");
-  std::printf("Max angle between original and decoded normal (degrees), and max UV component error, "
-              "positions at 16 bits.\n\n");
+  std::printf(
+      "Max angle between original and decoded normal (degrees), and max UV component error, "
+      "positions at 16 bits.\n\n");
   const std::vector<int> bits = quick ? std::vector<int>{10} : std::vector<int>{6, 8, 10, 12, 14};
   std::printf("| input | codec | what |");
   for (int b : bits) std::printf(" %d bits |", b);
@@ -201,7 +224,8 @@ void chunk_table(const std::vector<Input>& inputs) {
     std::vector<PackChunk> chunks;
     read_pack_chunks(bytes.data(), bytes.size(), chunks);
     std::printf("| %s | %ju |", in.name.c_str(), in.source_bytes);
-    for (const PackChunk& c : chunks) std::printf(" %llu |", static_cast<unsigned long long>(c.size));
+    for (const PackChunk& c : chunks)
+      std::printf(" %llu |", static_cast<unsigned long long>(c.size));
     std::printf(" %zu |\n", bytes.size());
   }
 }
@@ -214,11 +238,15 @@ int main(int argc, char** argv) {
   double min_seconds = 0.3;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") quick = true, min_seconds = 0.01;
-    else if (a == "--assets" && i + 1 < argc) assets = argv[++i];
-    else if (a == "--min-seconds" && i + 1 < argc) min_seconds = std::atof(argv[++i]);
+    if (a == "--quick")
+      quick = true, min_seconds = 0.01;
+    else if (a == "--assets" && i + 1 < argc)
+      assets = argv[++i];
+    else if (a == "--min-seconds" && i + 1 < argc)
+      min_seconds = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: geometry_codec_bench [--quick] [--assets DIR] [--min-seconds S]\n");
+      std::fprintf(stderr,
+                   "usage: geometry_codec_bench [--quick] [--assets DIR] [--min-seconds S]\n");
       return 2;
     }
   }
@@ -226,7 +254,8 @@ int main(int argc, char** argv) {
   settings.simplify.samples = quick ? 4 : 16;  // note: order realism matters here, not LoD quality
 
   std::vector<Input> inputs;
-  const auto add = [&](const std::string& name, const std::string& source, uintmax_t bytes, const SkinnedAsset& asset) {
+  const auto add = [&](const std::string& name, const std::string& source, uintmax_t bytes,
+                       const SkinnedAsset& asset) {
     const auto start = Clock::now();
     BakeReport report;
     inputs.push_back({name, source, bytes, build_pack(asset, settings, report)});
@@ -235,10 +264,12 @@ int main(int argc, char** argv) {
   for (int detail : quick ? std::vector<int>{0} : std::vector<int>{1, 2}) {
     samples::SpectatorOptions options;
     options.detail = detail;
-    add("spectator d" + std::to_string(detail), "generated", 0, samples::make_spectator_character(options));
+    add("spectator d" + std::to_string(detail), "generated", 0,
+        samples::make_spectator_character(options));
   }
-  const char* files[] = {"Fox/Fox.glb", "CesiumMan/CesiumMan.glb", "Quaternius_MaleCasual/Male_Casual.fbx",
-                         "Quaternius_Zombie/Zombie.fbx", "Quaternius_Rat/Rat.fbx"};
+  const char* files[] = {"Fox/Fox.glb", "CesiumMan/CesiumMan.glb",
+                         "Quaternius_MaleCasual/Male_Casual.fbx", "Quaternius_Zombie/Zombie.fbx",
+                         "Quaternius_Rat/Rat.fbx"};
   for (const char* f : files) {
     if (quick && std::string(f) != "CesiumMan/CesiumMan.glb") continue;
     const std::filesystem::path path = std::filesystem::path(assets) / f;
@@ -246,7 +277,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "skipping %s (not found)\n", path.string().c_str());
       continue;
     }
-    add(path.stem().string(), path.string(), std::filesystem::file_size(path), import_asset(path.string()));
+    add(path.stem().string(), path.string(), std::filesystem::file_size(path),
+        import_asset(path.string()));
   }
   std::printf("## geometry_codec_bench%s\n", quick ? " (--quick)" : "");
   codec_table(inputs, min_seconds);

@@ -14,8 +14,8 @@ bool ByteReader::string(std::string& out, uint32_t max_bytes, const char* field)
   uint32_t length = 0;
   if (!u32(length, field)) return false;
   if (length > max_bytes) {
-    return fail(std::string(field) + ": length " + std::to_string(length) + " exceeds the limit of " +
-                std::to_string(max_bytes) + " bytes");
+    return fail(std::string(field) + ": length " + std::to_string(length) +
+                " exceeds the limit of " + std::to_string(max_bytes) + " bytes");
   }
   if (!need(length, field)) return false;
   out.assign(reinterpret_cast<const char*>(data_ + pos_), length);
@@ -29,8 +29,8 @@ bool ByteReader::count_fits(uint64_t count, size_t min_item_bytes, const char* f
   const uint64_t fit = min_item_bytes ? remaining() / min_item_bytes : UINT64_MAX;
   if (count > fit) {
     return fail(std::string(field) + ": count " + std::to_string(count) + " needs at least " +
-                std::to_string(min_item_bytes) + " bytes each, only " + std::to_string(remaining()) +
-                " bytes left");
+                std::to_string(min_item_bytes) + " bytes each, only " +
+                std::to_string(remaining()) + " bytes left");
   }
   return true;
 }

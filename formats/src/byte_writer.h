@@ -59,7 +59,9 @@ class ByteWriter {
     u8(static_cast<uint8_t>(v));
   }
   // Zero bytes up to the next multiple of `alignment`.
-  void zero_pad(size_t alignment) { bytes_.resize((bytes_.size() + alignment - 1) / alignment * alignment, 0); }
+  void zero_pad(size_t alignment) {
+    bytes_.resize((bytes_.size() + alignment - 1) / alignment * alignment, 0);
+  }
 
   // Overwrites a previously written u32/u64 at `offset`.
   void patch_u32(size_t offset, uint32_t v) { std::memcpy(bytes_.data() + offset, &v, 4); }

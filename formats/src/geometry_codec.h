@@ -31,7 +31,7 @@ struct GeometryLayout {
   GeometryCodec codec = GeometryCodec::kRaw;
   uint32_t vertex_count = 0;
   uint32_t triangle_count = 0;
-  uint32_t attributes = 0;  // GeometryAttribute bits
+  uint32_t attributes = 0;                                  // GeometryAttribute bits
   uint8_t position_bits = 0, normal_bits = 0, uv_bits = 0;  // 0 = float
 
   bool has(uint32_t attribute) const { return (attributes & attribute) != 0; }

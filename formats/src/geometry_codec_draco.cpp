@@ -43,8 +43,9 @@ enum DracoAttributeId : uint32_t {
 constexpr uint8_t kDracoMesh = 1, kDracoPointCloud = 0, kDracoSequential = 0;
 
 template <typename T>
-void add_attribute(draco::PointCloud& pc, draco::GeometryAttribute::Type type, draco::DataType data_type,
-                   int components, uint32_t unique_id, const std::vector<T>& values) {
+void add_attribute(draco::PointCloud& pc, draco::GeometryAttribute::Type type,
+                   draco::DataType data_type, int components, uint32_t unique_id,
+                   const std::vector<T>& values) {
   draco::GeometryAttribute ga;
   ga.Init(type, nullptr, static_cast<uint8_t>(components), data_type, false,
           static_cast<int64_t>(sizeof(T) * components), 0);
@@ -53,7 +54,34 @@ void add_attribute(draco::PointCloud& pc, draco::GeometryAttribute::Type type, d
   draco::PointAttribute* att = pc.attribute(id);
   att->set_unique_id(unique_id);
   for (uint32_t i = 0; i < count; ++i)
-    att->SetAttributeValue(draco::AttributeValueIndex(i), &values[static_cast<size_t>(i) * components]);
+    att->SetAttributeValue(draco::AttributeValueIndex(i),
+                           &values[static_cast<size_t>(i) * components]);
+}
+
+// Weights travel as their exact float bits, split into 16-bit halves per vertex: the four
+// high halves (sign, exponent, top of the mantissa: very repetitive) then the four low
+// halves. Draco entropy-codes 16-bit integers quickly; whole 32-bit patterns made its
+// symbol coder about 200x slower to encode for a few percent less.
+std::vector<uint16_t> split_weights(const std::vector<float>& weights) {
+  std::vector<uint16_t> halves(2 * weights.size());
+  for (size_t v = 0; v < weights.size() / 4; ++v)
+    for (size_t k = 0; k < 4; ++k) {
+      uint32_t bits;
+      std::memcpy(&bits, &weights[4 * v + k], 4);
+      halves[8 * v + k] = static_cast<uint16_t>(bits >> 16);
+      halves[8 * v + 4 + k] = static_cast<uint16_t>(bits & 0xffff);
+    }
+  return halves;
+}
+
+std::vector<float> join_weights(const std::vector<uint16_t>& halves) {
+  std::vector<float> weights(halves.size() / 2);
+  for (size_t v = 0; v < weights.size() / 4; ++v)
+    for (size_t k = 0; k < 4; ++k) {
+      const uint32_t bits = uint32_t{halves[8 * v + k]} << 16 | halves[8 * v + 4 + k];
+      std::memcpy(&weights[4 * v + k], &bits, 4);
+    }
+  return weights;
 }
 
 std::vector<uint8_t> to_bytes(const draco::EncoderBuffer& buffer) {
@@ -63,17 +91,22 @@ std::vector<uint8_t> to_bytes(const draco::EncoderBuffer& buffer) {
 std::vector<uint8_t> encode_mesh(const PackGeometry& g, const GeometryLayout& layout) {
   draco::Mesh mesh;
   mesh.set_num_points(layout.vertex_count);
-  add_attribute(mesh, draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3, kIdPosition, g.positions);
+  add_attribute(mesh, draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3, kIdPosition,
+                g.positions);
   if (layout.has(kAttrNormals))
-    add_attribute(mesh, draco::GeometryAttribute::NORMAL, draco::DT_FLOAT32, 3, kIdNormal, g.normals);
+    add_attribute(mesh, draco::GeometryAttribute::NORMAL, draco::DT_FLOAT32, 3, kIdNormal,
+                  g.normals);
   if (layout.has(kAttrUvs))
     add_attribute(mesh, draco::GeometryAttribute::TEX_COORD, draco::DT_FLOAT32, 2, kIdUv, g.uvs);
   if (layout.has(kAttrSkin)) {
-    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 4, kIdJoints, g.joints);
-    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_FLOAT32, 4, kIdWeights, g.weights);
+    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 4, kIdJoints,
+                  g.joints);
+    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 8, kIdWeights,
+                  split_weights(g.weights));
   }
   if (layout.has(kAttrRegions))
-    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, 1, kIdRegions, g.regions);
+    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, 1, kIdRegions,
+                  g.regions);
   mesh.SetNumFaces(layout.triangle_count);
   for (uint32_t t = 0; t < layout.triangle_count; ++t) {
     draco::Mesh::Face face;
@@ -83,9 +116,12 @@ std::vector<uint8_t> encode_mesh(const PackGeometry& g, const GeometryLayout& la
 
   draco::Encoder encoder;
   encoder.options().SetGlobalBool("compress_connectivity", true);
-  if (layout.position_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, layout.position_bits);
-  if (layout.normal_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, layout.normal_bits);
-  if (layout.uv_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, layout.uv_bits);
+  if (layout.position_bits)
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, layout.position_bits);
+  if (layout.normal_bits)
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, layout.normal_bits);
+  if (layout.uv_bits)
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, layout.uv_bits);
   draco::EncoderBuffer buffer;
   draco::Status status;
   if (layout.triangle_count > 0) {
@@ -97,7 +133,8 @@ std::vector<uint8_t> encode_mesh(const PackGeometry& g, const GeometryLayout& la
     encoder.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
     status = encoder.EncodePointCloudToBuffer(mesh, &buffer);
   }
-  if (!status.ok()) throw std::runtime_error("Draco could not encode the mesh: " + status.error_msg_string());
+  if (!status.ok())
+    throw std::runtime_error("Draco could not encode the mesh: " + status.error_msg_string());
   return to_bytes(buffer);
 }
 
@@ -110,7 +147,8 @@ std::vector<uint8_t> encode_materials(const std::vector<uint16_t>& materials) {
   draco::EncoderBuffer buffer;
   const draco::Status status = encoder.EncodePointCloudToBuffer(pc, &buffer);
   if (!status.ok())
-    throw std::runtime_error("Draco could not encode the triangle materials: " + status.error_msg_string());
+    throw std::runtime_error("Draco could not encode the triangle materials: " +
+                             status.error_msg_string());
   return to_bytes(buffer);
 }
 
@@ -143,8 +181,8 @@ bool check_draco_header(ByteReader& in, const uint8_t* data, size_t size, uint8_
                                                 : draco::kDracoPointCloudBitstreamVersionMinor;
   if (major != want_major || minor != want_minor)
     return in.fail(std::string(what) + ": Draco bitstream " + std::to_string(major) + "." +
-                   std::to_string(minor) + ", this build reads " + std::to_string(want_major) + "." +
-                   std::to_string(want_minor));
+                   std::to_string(minor) + ", this build reads " + std::to_string(want_major) +
+                   "." + std::to_string(want_minor));
   if (encoder_type != type || method != kDracoSequential || flags != 0)
     return in.fail(std::string(what) + ": not a sequential Draco " +
                    (type == kDracoMesh ? "mesh" : "point cloud") + " without metadata");
@@ -157,17 +195,18 @@ bool check_draco_header(ByteReader& in, const uint8_t* data, size_t size, uint8_
   }
   if (!h.ok()) return in.fail(std::string(what) + ": Draco stream truncated in its header");
   if (points != expect_points || faces != expect_faces)
-    return in.fail(std::string(what) + ": Draco stream holds " + std::to_string(points) + " points and " +
-                   std::to_string(faces) + " faces, the GEOM header says " + std::to_string(expect_points) +
-                   " and " + std::to_string(expect_faces));
+    return in.fail(std::string(what) + ": Draco stream holds " + std::to_string(points) +
+                   " points and " + std::to_string(faces) + " faces, the GEOM header says " +
+                   std::to_string(expect_points) + " and " + std::to_string(expect_faces));
   return true;
 }
 
 // Copies attribute `unique_id` of `pc` into `out` (components per point, type T), after
 // checking type, component count, mapping and storage size.
 template <typename T>
-bool get_attribute(ByteReader& in, const draco::PointCloud& pc, uint32_t unique_id, draco::DataType data_type,
-                   int components, std::vector<T>& out, const char* what) {
+bool get_attribute(ByteReader& in, const draco::PointCloud& pc, uint32_t unique_id,
+                   draco::DataType data_type, int components, std::vector<T>& out,
+                   const char* what) {
   const draco::PointAttribute* att = pc.GetAttributeByUniqueId(unique_id);
   if (!att) return in.fail(std::string(what) + ": missing from the Draco stream");
   const size_t points = pc.num_points();
@@ -179,9 +218,11 @@ bool get_attribute(ByteReader& in, const draco::PointCloud& pc, uint32_t unique_
     return in.fail(std::string(what) + ": Draco attribute storage is inconsistent");
   out.resize(points * components);
   for (size_t p = 0; p < points; ++p) {
-    const draco::AttributeValueIndex index = att->mapped_index(draco::PointIndex(static_cast<uint32_t>(p)));
+    const draco::AttributeValueIndex index =
+        att->mapped_index(draco::PointIndex(static_cast<uint32_t>(p)));
     if (index.value() >= att->size())
-      return in.fail(std::string(what) + ": Draco maps point " + std::to_string(p) + " to a missing value");
+      return in.fail(std::string(what) + ": Draco maps point " + std::to_string(p) +
+                     " to a missing value");
     std::memcpy(&out[p * components], att->GetAddress(index), sizeof(T) * components);
   }
   return true;
@@ -193,7 +234,8 @@ void encode_geometry_draco(const PackGeometry& g, const GeometryLayout& layout, 
   // note: an empty mesh is no stream at all (Draco refuses to encode zero points).
   put_stream(out, layout.vertex_count ? encode_mesh(g, layout) : std::vector<uint8_t>{});
   if (layout.has(kAttrTriangleMaterial))
-    put_stream(out, layout.triangle_count ? encode_materials(g.triangle_material) : std::vector<uint8_t>{});
+    put_stream(out, layout.triangle_count ? encode_materials(g.triangle_material)
+                                          : std::vector<uint8_t>{});
 }
 
 bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeometry& out) {
@@ -207,8 +249,8 @@ bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeo
     if (layout.triangle_count != 0) return in.fail("triangles without vertices");
   } else {
     const bool points_only = layout.triangle_count == 0;
-    if (!check_draco_header(in, data, size, points_only ? kDracoPointCloud : kDracoMesh, layout.vertex_count,
-                            layout.triangle_count, "Draco mesh"))
+    if (!check_draco_header(in, data, size, points_only ? kDracoPointCloud : kDracoMesh,
+                            layout.vertex_count, layout.triangle_count, "Draco mesh"))
       return false;
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(data), size);
@@ -227,16 +269,20 @@ bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeo
     if (!mesh || mesh->num_points() != layout.vertex_count ||
         (faces ? faces->num_faces() : 0) != layout.triangle_count)
       return in.fail("Draco mesh: decoded counts differ from the GEOM header");
-    if (!get_attribute(in, *mesh, kIdPosition, draco::DT_FLOAT32, 3, out.positions, "positions")) return false;
+    std::vector<uint16_t> weight_halves;
+    if (!get_attribute(in, *mesh, kIdPosition, draco::DT_FLOAT32, 3, out.positions, "positions"))
+      return false;
     if (layout.has(kAttrNormals) &&
         !get_attribute(in, *mesh, kIdNormal, draco::DT_FLOAT32, 3, out.normals, "normals"))
       return false;
-    if (layout.has(kAttrUvs) && !get_attribute(in, *mesh, kIdUv, draco::DT_FLOAT32, 2, out.uvs, "uvs"))
+    if (layout.has(kAttrUvs) &&
+        !get_attribute(in, *mesh, kIdUv, draco::DT_FLOAT32, 2, out.uvs, "uvs"))
       return false;
     if (layout.has(kAttrSkin) &&
         (!get_attribute(in, *mesh, kIdJoints, draco::DT_UINT16, 4, out.joints, "joints") ||
-         !get_attribute(in, *mesh, kIdWeights, draco::DT_FLOAT32, 4, out.weights, "weights")))
+         !get_attribute(in, *mesh, kIdWeights, draco::DT_UINT16, 8, weight_halves, "weights")))
       return false;
+    if (layout.has(kAttrSkin)) out.weights = join_weights(weight_halves);
     if (layout.has(kAttrRegions) &&
         !get_attribute(in, *mesh, kIdRegions, draco::DT_UINT8, 1, out.regions, "regions"))
       return false;
@@ -251,8 +297,10 @@ bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeo
   data = in.cursor();
   if (!in.skip(size, "Draco materials") || !in.zero_pad(4, "Draco material padding")) return false;
   if (layout.triangle_count == 0)
-    return size == 0 || in.fail("Draco materials: " + std::to_string(size) + " bytes for no triangles");
-  if (!check_draco_header(in, data, size, kDracoPointCloud, layout.triangle_count, 0, "Draco materials"))
+    return size == 0 ||
+           in.fail("Draco materials: " + std::to_string(size) + " bytes for no triangles");
+  if (!check_draco_header(in, data, size, kDracoPointCloud, layout.triangle_count, 0,
+                          "Draco materials"))
     return false;
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data), size);
@@ -262,7 +310,8 @@ bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeo
   const std::unique_ptr<draco::PointCloud> pc = std::move(decoded).value();
   if (!pc || pc->num_points() != layout.triangle_count)
     return in.fail("Draco materials: decoded count differs from the GEOM header");
-  return get_attribute(in, *pc, kIdMaterial, draco::DT_UINT16, 1, out.triangle_material, "triangle materials");
+  return get_attribute(in, *pc, kIdMaterial, draco::DT_UINT16, 1, out.triangle_material,
+                       "triangle materials");
 }
 
 }  // namespace crowdbake::pack_io

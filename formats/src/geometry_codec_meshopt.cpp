@@ -63,7 +63,8 @@ void put_stream(ByteWriter& out, const void* elements, size_t count, size_t stri
     return;
   }
   std::vector<uint8_t> buffer(meshopt_encodeVertexBufferBound(count, stride));
-  const size_t size = meshopt_encodeVertexBuffer(buffer.data(), buffer.size(), elements, count, stride);
+  const size_t size =
+      meshopt_encodeVertexBuffer(buffer.data(), buffer.size(), elements, count, stride);
   if (size == 0) throw std::runtime_error("meshopt_encodeVertexBuffer failed");
   out.u32(static_cast<uint32_t>(size));
   out.raw(buffer.data(), size);
@@ -85,7 +86,8 @@ bool get_stream(ByteReader& in, std::vector<uint8_t>& elements, size_t count, si
   elements.assign(count * stride, 0);
   const int rc = meshopt_decodeVertexBuffer(elements.data(), count, stride, data, size);
   if (rc != 0)
-    return in.fail(std::string(field) + ": meshoptimizer's vertex decoder rejected the stream (error " +
+    return in.fail(std::string(field) +
+                   ": meshoptimizer's vertex decoder rejected the stream (error " +
                    std::to_string(rc) + ")");
   return in.zero_pad(4, field);
 }
@@ -127,8 +129,8 @@ void put_float_attribute(ByteWriter& out, const std::vector<float>& values, int 
   put_stream(out, packed.data(), count, lanes * lane_bytes);
 }
 
-bool get_float_attribute(ByteReader& in, std::vector<float>& values, size_t count, int dims, int bits,
-                         const char* field) {
+bool get_float_attribute(ByteReader& in, std::vector<float>& values, size_t count, int dims,
+                         int bits, const char* field) {
   std::vector<uint8_t> bytes;
   if (bits == 0) {
     if (!get_stream(in, bytes, count, dims * sizeof(float), field)) return false;
@@ -154,7 +156,9 @@ bool get_float_attribute(ByteReader& in, std::vector<float>& values, size_t coun
       const size_t at = (i * lanes + c) * lane_bytes;
       const uint32_t q = narrow ? element<uint16_t>(bytes, at) : element<uint32_t>(bytes, at);
       if (c >= static_cast<size_t>(dims)) {
-        if (q != 0) return in.fail(std::string(field) + ": padding lane of value " + std::to_string(i) + " is not zero");
+        if (q != 0)
+          return in.fail(std::string(field) + ": padding lane of value " + std::to_string(i) +
+                         " is not zero");
         continue;
       }
       if (q > grid.max_q)
@@ -182,8 +186,8 @@ bool get_narrow(ByteReader& in, std::vector<T>& values, size_t count, const char
   for (size_t i = 0; i < count; ++i) {
     const uint32_t lane = element<uint32_t>(bytes, 4 * i);
     if (lane > std::numeric_limits<T>::max())
-      return in.fail(std::string(field) + ": value " + std::to_string(i) + " (" + std::to_string(lane) +
-                     ") does not fit its type");
+      return in.fail(std::string(field) + ": value " + std::to_string(i) + " (" +
+                     std::to_string(lane) + ") does not fit its type");
     values[i] = static_cast<T>(lane);
   }
   return true;
@@ -205,18 +209,23 @@ void put_triangles(ByteWriter& out, const std::vector<uint32_t>& triangles, uint
     return;
   }
   std::vector<uint8_t> sequence(meshopt_encodeIndexSequenceBound(index_count, vertex_count));
-  sequence.resize(meshopt_encodeIndexSequence(sequence.data(), sequence.size(), triangles.data(), index_count));
+  sequence.resize(
+      meshopt_encodeIndexSequence(sequence.data(), sequence.size(), triangles.data(), index_count));
   std::vector<uint8_t> buffer(meshopt_encodeIndexBufferBound(index_count, vertex_count));
-  buffer.resize(meshopt_encodeIndexBuffer(buffer.data(), buffer.size(), triangles.data(), index_count));
-  if (sequence.empty() || buffer.empty()) throw std::runtime_error("meshoptimizer's index encoder failed");
+  buffer.resize(
+      meshopt_encodeIndexBuffer(buffer.data(), buffer.size(), triangles.data(), index_count));
+  if (sequence.empty() || buffer.empty())
+    throw std::runtime_error("meshoptimizer's index encoder failed");
 
   std::vector<uint32_t> decoded(index_count);
-  if (meshopt_decodeIndexBuffer(decoded.data(), index_count, sizeof(uint32_t), buffer.data(), buffer.size()) != 0)
+  if (meshopt_decodeIndexBuffer(decoded.data(), index_count, sizeof(uint32_t), buffer.data(),
+                                buffer.size()) != 0)
     throw std::runtime_error("meshoptimizer's index codec does not decode its own output");
   std::vector<uint8_t> rotations((index_count / 3 + 3) / 4, 0);
   for (size_t t = 0; t < index_count / 3; ++t) {
     const int r = rotation_between(&triangles[3 * t], &decoded[3 * t]);
-    if (r < 0) throw std::runtime_error("meshoptimizer's index codec changed a triangle beyond a rotation");
+    if (r < 0)
+      throw std::runtime_error("meshoptimizer's index codec changed a triangle beyond a rotation");
     rotations[t / 4] |= static_cast<uint8_t>(r << (2 * (t % 4)));
   }
   const size_t rotated_size = (buffer.size() + 3) / 4 * 4 + rotations.size();
@@ -250,11 +259,13 @@ bool get_triangles(ByteReader& in, std::vector<uint32_t>& triangles, size_t tria
   if (!in.skip(size, "index stream")) return false;
   const size_t index_count = 3 * triangle_count;
   triangles.assign(index_count, 0);
-  const int rc = mode == kIndexSequence
-                     ? meshopt_decodeIndexSequence(triangles.data(), index_count, sizeof(uint32_t), data, size)
-                     : meshopt_decodeIndexBuffer(triangles.data(), index_count, sizeof(uint32_t), data, size);
+  const int rc =
+      mode == kIndexSequence
+          ? meshopt_decodeIndexSequence(triangles.data(), index_count, sizeof(uint32_t), data, size)
+          : meshopt_decodeIndexBuffer(triangles.data(), index_count, sizeof(uint32_t), data, size);
   if (rc != 0)
-    return in.fail("meshoptimizer's index decoder rejected the triangles (error " + std::to_string(rc) + ")");
+    return in.fail("meshoptimizer's index decoder rejected the triangles (error " +
+                   std::to_string(rc) + ")");
   if (!in.zero_pad(4, "index stream padding")) return false;
   if (mode == kIndexSequence) return true;
   const size_t rotation_bytes = (triangle_count + 3) / 4;
@@ -293,10 +304,13 @@ void encode_geometry_meshopt(const PackGeometry& g, const GeometryLayout& layout
 bool decode_geometry_meshopt(ByteReader& in, const GeometryLayout& layout, PackGeometry& out) {
   const size_t v = layout.vertex_count;
   out = PackGeometry{};
-  if (!get_float_attribute(in, out.positions, v, 3, layout.position_bits, "positions")) return false;
-  if (layout.has(kAttrNormals) && !get_float_attribute(in, out.normals, v, 3, layout.normal_bits, "normals"))
+  if (!get_float_attribute(in, out.positions, v, 3, layout.position_bits, "positions"))
     return false;
-  if (layout.has(kAttrUvs) && !get_float_attribute(in, out.uvs, v, 2, layout.uv_bits, "uvs")) return false;
+  if (layout.has(kAttrNormals) &&
+      !get_float_attribute(in, out.normals, v, 3, layout.normal_bits, "normals"))
+    return false;
+  if (layout.has(kAttrUvs) && !get_float_attribute(in, out.uvs, v, 2, layout.uv_bits, "uvs"))
+    return false;
   if (layout.has(kAttrSkin)) {
     std::vector<uint8_t> bytes;
     if (!get_stream(in, bytes, v, 4 * sizeof(uint16_t), "joints")) return false;

@@ -32,7 +32,8 @@ bool decode_geometry_raw(ByteReader& in, const GeometryLayout& layout, PackGeome
   if (layout.has(kAttrRegions)) in.read_array(out.regions, v, "regions");
   in.zero_pad(4, "padding after the vertex arrays");
   in.read_array(out.triangles, 3 * t, "triangles");
-  if (layout.has(kAttrTriangleMaterial)) in.read_array(out.triangle_material, t, "triangle materials");
+  if (layout.has(kAttrTriangleMaterial))
+    in.read_array(out.triangle_material, t, "triangle materials");
   in.zero_pad(4, "padding after the triangle arrays");
   return in.ok();
 }

@@ -24,7 +24,9 @@ bool get_floats(ByteReader& in, std::array<float, N>& v, const char* field) {
 }
 
 // Runs the part's validity check and turns a complaint into a reader error.
-bool checked(ByteReader& in, const std::string& problem) { return problem.empty() || in.fail(problem); }
+bool checked(ByteReader& in, const std::string& problem) {
+  return problem.empty() || in.fail(problem);
+}
 
 constexpr uint32_t kClipLooping = 1u << 0;
 constexpr uint32_t kMaskRaw = 0, kMaskRunLength = 1;
@@ -48,7 +50,8 @@ void encode_head(const PackContents& c, ByteWriter& out) {
   out.string(c.name, kMaxStringBytes, "name");
   out.string(c.settings_json, kMaxSettingsBytes, "settings_json");
   const HeadCounts h = head_counts(c);
-  for (uint32_t v : {h.joints, h.clips, h.materials, h.vertices, h.triangles, h.animation_rows}) out.u32(v);
+  for (uint32_t v : {h.joints, h.clips, h.materials, h.vertices, h.triangles, h.animation_rows})
+    out.u32(v);
 }
 
 bool decode_head(ByteReader& in, PackContents& out, HeadCounts& h) {
@@ -61,8 +64,8 @@ bool decode_head(ByteReader& in, PackContents& out, HeadCounts& h) {
   in.u32(h.triangles, "triangle count");
   in.u32(h.animation_rows, "animation rows");
   if (!in.ok()) return false;
-  if (h.joints > kMaxJoints || h.clips > kMaxClips || h.materials > kMaxMaterials || h.vertices > kMaxVertices ||
-      h.triangles > kMaxTriangles)
+  if (h.joints > kMaxJoints || h.clips > kMaxClips || h.materials > kMaxMaterials ||
+      h.vertices > kMaxVertices || h.triangles > kMaxTriangles)
     return in.fail("a count exceeds the format's limits");
   return in.expect_end();
 }
@@ -85,7 +88,8 @@ bool decode_skeleton(ByteReader& in, std::vector<PackJoint>& out) {
   constexpr size_t kMinJointBytes = 4 + 4 + 22 * 4;
   uint32_t count = 0;
   if (!in.u32(count, "joint count")) return false;
-  if (count > kMaxJoints) return in.fail("joint count " + std::to_string(count) + " exceeds the limit");
+  if (count > kMaxJoints)
+    return in.fail("joint count " + std::to_string(count) + " exceeds the limit");
   if (!in.count_fits(count, kMinJointBytes, "joints")) return false;
   out.assign(count, PackJoint{});
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
@@ -122,7 +126,8 @@ bool decode_clips(ByteReader& in, std::vector<PackClip>& out) {
   constexpr size_t kMinClipBytes = 7 * 4;
   uint32_t count = 0;
   if (!in.u32(count, "clip count")) return false;
-  if (count > kMaxClips) return in.fail("clip count " + std::to_string(count) + " exceeds the limit");
+  if (count > kMaxClips)
+    return in.fail("clip count " + std::to_string(count) + " exceeds the limit");
   if (!in.count_fits(count, kMinClipBytes, "clips")) return false;
   out.assign(count, PackClip{});
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
@@ -160,7 +165,8 @@ bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out) {
   constexpr size_t kMinMaterialBytes = 4 + 16 + 4;
   uint32_t count = 0;
   if (!in.u32(count, "material count")) return false;
-  if (count > kMaxMaterials) return in.fail("material count " + std::to_string(count) + " exceeds the limit");
+  if (count > kMaxMaterials)
+    return in.fail("material count " + std::to_string(count) + " exceeds the limit");
   if (!in.count_fits(count, kMinMaterialBytes, "materials")) return false;
   out.assign(count, PackMaterial{});
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
@@ -257,9 +263,15 @@ void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, Byt
   out.u8(0);
   for (int i = 0; i < 3; ++i) out.u32(0);
   switch (layout.codec) {
-    case GeometryCodec::kDraco: encode_geometry_draco(g, layout, out); break;
-    case GeometryCodec::kMeshopt: encode_geometry_meshopt(g, layout, out); break;
-    case GeometryCodec::kRaw: encode_geometry_raw(g, layout, out); break;
+    case GeometryCodec::kDraco:
+      encode_geometry_draco(g, layout, out);
+      break;
+    case GeometryCodec::kMeshopt:
+      encode_geometry_meshopt(g, layout, out);
+      break;
+    case GeometryCodec::kRaw:
+      encode_geometry_raw(g, layout, out);
+      break;
   }
 }
 
@@ -277,19 +289,23 @@ bool decode_geometry(ByteReader& in, PackGeometry& out) {
   in.u8(reserved8, "reserved");
   for (int i = 0; i < 3; ++i) in.u32(reserved[i], "reserved");
   if (!in.ok()) return false;
-  if (reserved8 || reserved[0] || reserved[1] || reserved[2]) return in.fail("reserved header fields are not zero");
-  if (codec > static_cast<uint32_t>(GeometryCodec::kRaw)) return in.fail("unknown codec " + std::to_string(codec));
+  if (reserved8 || reserved[0] || reserved[1] || reserved[2])
+    return in.fail("reserved header fields are not zero");
+  if (codec > static_cast<uint32_t>(GeometryCodec::kRaw))
+    return in.fail("unknown codec " + std::to_string(codec));
   layout.codec = static_cast<GeometryCodec>(codec);
   if (layout.vertex_count > kMaxVertices || layout.triangle_count > kMaxTriangles)
-    return in.fail(std::to_string(layout.vertex_count) + " vertices / " + std::to_string(layout.triangle_count) +
-                   " triangles exceed the limits (" + std::to_string(kMaxVertices) + " / " +
-                   std::to_string(kMaxTriangles) + ")");
-  if (layout.attributes & ~kAttrKnown) return in.fail("unknown attribute bits " + std::to_string(layout.attributes));
+    return in.fail(std::to_string(layout.vertex_count) + " vertices / " +
+                   std::to_string(layout.triangle_count) + " triangles exceed the limits (" +
+                   std::to_string(kMaxVertices) + " / " + std::to_string(kMaxTriangles) + ")");
+  if (layout.attributes & ~kAttrKnown)
+    return in.fail("unknown attribute bits " + std::to_string(layout.attributes));
   const auto bad_bits = [&](uint8_t bits, bool present, uint8_t min) {
     if (layout.codec == GeometryCodec::kRaw || !present) return bits != 0;
     return bits != 0 && (bits < min || bits > kMaxQuantizationBits);
   };
-  if (bad_bits(layout.position_bits, true, 1) || bad_bits(layout.normal_bits, layout.has(kAttrNormals), 2) ||
+  if (bad_bits(layout.position_bits, true, 1) ||
+      bad_bits(layout.normal_bits, layout.has(kAttrNormals), 2) ||
       bad_bits(layout.uv_bits, layout.has(kAttrUvs), 1))
     return in.fail("quantisation bits " + std::to_string(layout.position_bits) + "/" +
                    std::to_string(layout.normal_bits) + "/" + std::to_string(layout.uv_bits) +
@@ -303,9 +319,15 @@ bool decode_geometry(ByteReader& in, PackGeometry& out) {
   }
   bool ok = false;
   switch (layout.codec) {
-    case GeometryCodec::kDraco: ok = decode_geometry_draco(in, layout, out); break;
-    case GeometryCodec::kMeshopt: ok = decode_geometry_meshopt(in, layout, out); break;
-    case GeometryCodec::kRaw: ok = decode_geometry_raw(in, layout, out); break;
+    case GeometryCodec::kDraco:
+      ok = decode_geometry_draco(in, layout, out);
+      break;
+    case GeometryCodec::kMeshopt:
+      ok = decode_geometry_meshopt(in, layout, out);
+      break;
+    case GeometryCodec::kRaw:
+      ok = decode_geometry_raw(in, layout, out);
+      break;
   }
   if (!ok) return in.fail("decoding failed");  // note: keeps the codec's own message
   if (out.vertex_count() != layout.vertex_count || out.triangle_count() != layout.triangle_count)
@@ -341,7 +363,8 @@ bool decode_animation(ByteReader& in, AnimationTexture& out) {
   if (!in.ok()) return false;
   if (encoding > 2) return in.fail("unknown encoding " + std::to_string(encoding));
   out.encoding = static_cast<AnimationEncoding>(encoding);
-  if (params > kMaxDecodeParams) return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
+  if (params > kMaxDecodeParams)
+    return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
   in.read_f32_array(out.decode_params, params, "decode parameters");
   in.zero_pad(kAlignment, "padding before the texture data");
   in.read_array(out.data, data_bytes, "texture data");
@@ -384,27 +407,33 @@ bool decode_partition(ByteReader& in, PartitionMask& out) {
   in.u32(size, "encoded size");
   if (!in.ok()) return false;
   if (out.width > kMaxTextureSide || out.height > kMaxTextureSide)
-    return in.fail("mask " + std::to_string(out.width) + "x" + std::to_string(out.height) + " exceeds the limit");
+    return in.fail("mask " + std::to_string(out.width) + "x" + std::to_string(out.height) +
+                   " exceeds the limit");
   const uint64_t texels = uint64_t{out.width} * out.height;
   if (encoding == kMaskRaw) {
-    if (size != texels) return in.fail(std::to_string(size) + " raw bytes for " + std::to_string(texels) + " texels");
+    if (size != texels)
+      return in.fail(std::to_string(size) + " raw bytes for " + std::to_string(texels) + " texels");
     in.read_array(out.texels, size, "texels");
   } else if (encoding == kMaskRunLength) {
     if (size % 2 != 0) return in.fail("run-length data has an odd size");
     if (!in.count_fits(size, 1, "run-length data")) return false;
     // note: allocate only what the runs can cover (each pair covers at most 256 texels).
     if (texels > uint64_t{size} / 2 * 256)
-      return in.fail(std::to_string(size / 2) + " runs cannot cover " + std::to_string(texels) + " texels");
+      return in.fail(std::to_string(size / 2) + " runs cannot cover " + std::to_string(texels) +
+                     " texels");
     out.texels.assign(static_cast<size_t>(texels), 0);
     const uint8_t* runs = in.cursor();
     uint64_t at = 0;
     for (uint32_t i = 0; i < size; i += 2) {
       const uint64_t n = uint64_t{runs[i]} + 1;
-      if (n > texels - at) return in.fail("runs cover more than " + std::to_string(texels) + " texels");
+      if (n > texels - at)
+        return in.fail("runs cover more than " + std::to_string(texels) + " texels");
       std::fill_n(out.texels.begin() + static_cast<ptrdiff_t>(at), n, runs[i + 1]);
       at += n;
     }
-    if (at != texels) return in.fail("runs cover " + std::to_string(at) + " of " + std::to_string(texels) + " texels");
+    if (at != texels)
+      return in.fail("runs cover " + std::to_string(at) + " of " + std::to_string(texels) +
+                     " texels");
     in.skip(size, "run-length data");
   } else {
     return in.fail("unknown mask encoding " + std::to_string(encoding));

@@ -37,7 +37,8 @@ bool decode_bounds(ByteReader& in, PackBounds& out);
 void encode_progressive(const PackProgressive& progressive, ByteWriter& out);
 bool decode_progressive(ByteReader& in, PackProgressive& out);
 
-void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options, ByteWriter& out);
+void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options,
+                     ByteWriter& out);
 bool decode_geometry(ByteReader& in, PackGeometry& out);
 
 void encode_animation(const AnimationTexture& animation, ByteWriter& out);

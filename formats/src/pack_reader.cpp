@@ -59,7 +59,8 @@ struct Header {
   uint32_t chunk_count = 0;
 };
 
-PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h, std::vector<PackChunk>& chunks) {
+PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h,
+                                 std::vector<PackChunk>& chunks) {
   chunks.clear();
   if (data == nullptr && size != 0) return error("no data");
   if (size < kMagic.size() || std::memcmp(data, kMagic.data(), kMagic.size()) != 0)
@@ -71,8 +72,9 @@ PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h, st
   if (!in.ok()) return error("truncated pack: " + in.error());
   if (h.major != kPackVersionMajor) {
     if (h.major > kPackVersionMajor)
-      return error("unsupported pack version " + std::to_string(h.major) + " (this build reads <= " +
-                   std::to_string(kPackVersionMajor) + "); update crowdbake");
+      return error("unsupported pack version " + std::to_string(h.major) +
+                   " (this build reads <= " + std::to_string(kPackVersionMajor) +
+                   "); update crowdbake");
     return error("unsupported pack version " + std::to_string(h.major) + " (this build reads " +
                  std::to_string(kPackVersionMajor) + "); re-bake the pack");
   }
@@ -95,13 +97,15 @@ PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h, st
   if (h.table_offset < kHeaderSize || h.table_offset % kAlignment != 0)
     return error("header: chunk table offset " + std::to_string(h.table_offset) +
                  " is not a 16-byte aligned offset after the header");
-  const uint64_t table_end = h.table_offset + uint64_t{h.chunk_count} * kChunkEntrySize;  // no overflow: < 2^64
-  if (table_end > h.file_size)
-    return error("header: chunk table ends at " + std::to_string(table_end) + ", past the file size " +
+  const uint64_t table_bytes = uint64_t{h.chunk_count} * kChunkEntrySize;
+  if (h.table_offset > h.file_size || table_bytes > h.file_size - h.table_offset)
+    return error("header: chunk table at " + std::to_string(h.table_offset) + " (" +
+                 std::to_string(table_bytes) + " bytes) runs past the file size " +
                  std::to_string(h.file_size));
+  const uint64_t table_end = h.table_offset + table_bytes;
   if (size > h.file_size)
-    return error("pack has " + std::to_string(size - h.file_size) + " trailing bytes after its recorded size " +
-                 std::to_string(h.file_size));
+    return error("pack has " + std::to_string(size - h.file_size) +
+                 " trailing bytes after its recorded size " + std::to_string(h.file_size));
   if (size < table_end)
     return error("truncated pack: " + std::to_string(size) + " bytes, the chunk table ends at " +
                  std::to_string(table_end) + " (file size " + std::to_string(h.file_size) + ")");
@@ -128,13 +132,16 @@ PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h, st
     if (!t.ok()) return error(t.error());
     const std::string name = "chunk " + tag_name(c.tag);
     if (entry_reserved) return error(name + ": reserved table field is not zero");
-    if (c.offset % kAlignment != 0) return error(name + ": offset " + std::to_string(c.offset) + " is not 16-byte aligned");
+    if (c.offset % kAlignment != 0)
+      return error(name + ": offset " + std::to_string(c.offset) + " is not 16-byte aligned");
     if (c.offset < previous_end)
-      return error(name + ": offset " + std::to_string(c.offset) +
-                   " overlaps the chunk table or the previous chunk (chunks must be in file order)");
-    if (c.size > h.file_size - c.offset)
-      return error(name + ": " + std::to_string(c.size) + " bytes at offset " + std::to_string(c.offset) +
-                   " run past the file size " + std::to_string(h.file_size));
+      return error(
+          name + ": offset " + std::to_string(c.offset) +
+          " overlaps the chunk table or the previous chunk (chunks must be in file order)");
+    if (c.offset > h.file_size || c.size > h.file_size - c.offset)
+      return error(name + ": " + std::to_string(c.size) + " bytes at offset " +
+                   std::to_string(c.offset) + " run past the file size " +
+                   std::to_string(h.file_size));
     previous_end = c.offset + c.size;
     for (uint32_t k = 0; k < i; ++k)
       if (chunks[k].tag == c.tag) return error(name + ": appears twice in the chunk table");
@@ -148,26 +155,44 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
   const std::string name = "chunk " + tag_name(chunk.tag);
   const uint32_t crc = pack_io::crc32c(payload, static_cast<size_t>(chunk.size));
   if (!checksum_matches(chunk.checksum, crc))
-    return error(name + ": checksum mismatch (stored " + hex(chunk.checksum) + ", computed " + hex(crc) +
-                 "): the chunk is corrupt");
+    return error(name + ": checksum mismatch (stored " + hex(chunk.checksum) + ", computed " +
+                 hex(crc) + "): the chunk is corrupt");
   const KnownChunk* known = find_known(chunk.tag);
   if (!known) return {};  // note: unknown chunks are skipped (newer minor versions add them)
   if (chunk.version != known->version)
-    return error("unsupported " + name + " version " + std::to_string(chunk.version) + " (this build reads <= " +
-                 std::to_string(known->version) + ")");
+    return error("unsupported " + name + " version " + std::to_string(chunk.version) +
+                 " (this build reads <= " + std::to_string(known->version) + ")");
   ByteReader in(payload, static_cast<size_t>(chunk.size), name);
   pack_io::HeadCounts ignored;
   bool ok = false;
   switch (chunk.tag) {
-    case kTagHead: ok = pack_io::decode_head(in, out, counts ? *counts : ignored); break;
-    case kTagSkel: ok = pack_io::decode_skeleton(in, out.joints); break;
-    case kTagClip: ok = pack_io::decode_clips(in, out.clips); break;
-    case kTagMatl: ok = pack_io::decode_materials(in, out.materials); break;
-    case kTagBnds: ok = pack_io::decode_bounds(in, out.bounds); break;
-    case kTagProg: ok = pack_io::decode_progressive(in, out.progressive); break;
-    case kTagGeom: ok = pack_io::decode_geometry(in, out.geometry); break;
-    case kTagAnim: ok = pack_io::decode_animation(in, out.animation); break;
-    case kTagPart: ok = pack_io::decode_partition(in, out.partition); break;
+    case kTagHead:
+      ok = pack_io::decode_head(in, out, counts ? *counts : ignored);
+      break;
+    case kTagSkel:
+      ok = pack_io::decode_skeleton(in, out.joints);
+      break;
+    case kTagClip:
+      ok = pack_io::decode_clips(in, out.clips);
+      break;
+    case kTagMatl:
+      ok = pack_io::decode_materials(in, out.materials);
+      break;
+    case kTagBnds:
+      ok = pack_io::decode_bounds(in, out.bounds);
+      break;
+    case kTagProg:
+      ok = pack_io::decode_progressive(in, out.progressive);
+      break;
+    case kTagGeom:
+      ok = pack_io::decode_geometry(in, out.geometry);
+      break;
+    case kTagAnim:
+      ok = pack_io::decode_animation(in, out.animation);
+      break;
+    case kTagPart:
+      ok = pack_io::decode_partition(in, out.partition);
+      break;
   }
   if (!ok) return error(in.ok() ? name + ": invalid" : in.error());
   return {};
@@ -179,14 +204,17 @@ PackStatus check_head_counts(const pack_io::HeadCounts& h, const PackContents& c
     const char* what;
     uint32_t head, actual;
   } pairs[] = {
-      {"joints", h.joints, actual.joints},           {"clips", h.clips, actual.clips},
-      {"materials", h.materials, actual.materials}, {"vertices", h.vertices, actual.vertices},
-      {"triangles", h.triangles, actual.triangles}, {"animation rows", h.animation_rows, actual.animation_rows},
+      {"joints", h.joints, actual.joints},
+      {"clips", h.clips, actual.clips},
+      {"materials", h.materials, actual.materials},
+      {"vertices", h.vertices, actual.vertices},
+      {"triangles", h.triangles, actual.triangles},
+      {"animation rows", h.animation_rows, actual.animation_rows},
   };
   for (const auto& p : pairs)
     if (p.head != p.actual)
-      return error("chunk HEAD: says " + std::to_string(p.head) + " " + p.what + ", the pack holds " +
-                   std::to_string(p.actual));
+      return error("chunk HEAD: says " + std::to_string(p.head) + " " + p.what +
+                   ", the pack holds " + std::to_string(p.actual));
   return {};
 }
 
@@ -213,7 +241,8 @@ PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackCh
 }
 
 PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out) {
-  if (payload == nullptr && chunk.size != 0) return error("chunk " + tag_name(chunk.tag) + ": no data");
+  if (payload == nullptr && chunk.size != 0)
+    return error("chunk " + tag_name(chunk.tag) + ": no data");
   return decode_chunk(chunk, payload, out, nullptr);
 }
 
@@ -231,7 +260,8 @@ PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
   uint64_t at = h.table_offset + uint64_t{h.chunk_count} * kChunkEntrySize;
   const auto zero_gap = [&](uint64_t from, uint64_t to) -> PackStatus {
     for (uint64_t i = from; i < to; ++i)
-      if (data[i] != 0) return error("padding byte at offset " + std::to_string(i) + " is not zero");
+      if (data[i] != 0)
+        return error("padding byte at offset " + std::to_string(i) + " is not zero");
     return {};
   };
   if (!(status = zero_gap(kHeaderSize, h.table_offset))) return status;
@@ -243,7 +273,8 @@ PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
 
   pack_io::HeadCounts counts;
   for (const KnownChunk& k : kKnownChunks) {
-    const auto it = std::find_if(chunks.begin(), chunks.end(), [&](const PackChunk& c) { return c.tag == k.tag; });
+    const auto it = std::find_if(chunks.begin(), chunks.end(),
+                                 [&](const PackChunk& c) { return c.tag == k.tag; });
     if (it == chunks.end()) return error("missing chunk " + tag_name(k.tag));
   }
   for (const PackChunk& c : chunks) {

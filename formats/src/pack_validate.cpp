@@ -32,11 +32,12 @@ std::string check_joints(const std::vector<PackJoint>& joints) {
   for (size_t i = 0; i < joints.size(); ++i) {
     const PackJoint& j = joints[i];
     std::ostringstream out;
-    if (j.name.size() > kMaxStringBytes) out << "name is " << j.name.size() << " bytes";
+    if (j.name.size() > kMaxStringBytes)
+      out << "name is " << j.name.size() << " bytes";
     else if (j.parent < -1 || j.parent >= static_cast<int64_t>(i))
       out << "parent " << j.parent << " is not -1 or below the joint's own index";
-    else if (!all_finite(j.inverse_bind) || !all_finite(j.rest_translation) || !all_finite(j.rest_rotation) ||
-             !all_finite(j.rest_scale))
+    else if (!all_finite(j.inverse_bind) || !all_finite(j.rest_translation) ||
+             !all_finite(j.rest_rotation) || !all_finite(j.rest_scale))
       out << "has a non-finite matrix or rest transform";
     if (!out.str().empty()) return "joint " + std::to_string(i) + ": " + out.str();
   }
@@ -48,32 +49,42 @@ std::string check_clips(const std::vector<PackClip>& clips) {
   for (size_t i = 0; i < clips.size(); ++i) {
     const PackClip& c = clips[i];
     std::ostringstream out;
-    if (c.name.size() > kMaxStringBytes) out << "name is " << c.name.size() << " bytes";
-    else if (c.frame_count == 0) out << "has no frames";
-    else if (!std::isfinite(c.fps) || !(c.fps > 0.0f)) out << "fps " << c.fps << " is not positive";
-    else if (!std::isfinite(c.duration) || c.duration < 0.0f) out << "duration " << c.duration << " is negative";
+    if (c.name.size() > kMaxStringBytes)
+      out << "name is " << c.name.size() << " bytes";
+    else if (c.frame_count == 0)
+      out << "has no frames";
+    else if (!std::isfinite(c.fps) || !(c.fps > 0.0f))
+      out << "fps " << c.fps << " is not positive";
+    else if (!std::isfinite(c.duration) || c.duration < 0.0f)
+      out << "duration " << c.duration << " is negative";
     else if (!c.root_motion.empty() && c.root_motion.size() != 3 * size_t{c.frame_count})
-      out << "root motion has " << c.root_motion.size() << " floats, expected 0 or " << 3 * size_t{c.frame_count};
-    else if (!all_finite(c.root_motion)) out << "root motion is not finite";
-    if (!out.str().empty()) return "clip " + std::to_string(i) + " (" + c.name.substr(0, 64) + "): " + out.str();
+      out << "root motion has " << c.root_motion.size() << " floats, expected 0 or "
+          << 3 * size_t{c.frame_count};
+    else if (!all_finite(c.root_motion))
+      out << "root motion is not finite";
+    if (!out.str().empty())
+      return "clip " + std::to_string(i) + " (" + c.name.substr(0, 64) + "): " + out.str();
   }
   return "";
 }
 
 std::string check_materials(const std::vector<PackMaterial>& materials) {
-  if (materials.size() > kMaxMaterials) return too_many("materials", materials.size(), kMaxMaterials);
+  if (materials.size() > kMaxMaterials)
+    return too_many("materials", materials.size(), kMaxMaterials);
   for (size_t i = 0; i < materials.size(); ++i) {
     const PackMaterial& m = materials[i];
     if (m.name.size() > kMaxStringBytes || m.base_color_texture.size() > kMaxStringBytes)
       return "material " + std::to_string(i) + ": name or texture reference exceeds " +
              std::to_string(kMaxStringBytes) + " bytes";
-    if (!all_finite(m.base_color)) return "material " + std::to_string(i) + ": base colour is not finite";
+    if (!all_finite(m.base_color))
+      return "material " + std::to_string(i) + ": base colour is not finite";
   }
   return "";
 }
 
 std::string check_bounds(const PackBounds& b) {
-  if (!all_finite(b.min) || !all_finite(b.max) || !std::isfinite(b.radius)) return "bounds are not finite";
+  if (!all_finite(b.min) || !all_finite(b.max) || !std::isfinite(b.radius))
+    return "bounds are not finite";
   if (b.radius < 0.0f) return "bounding radius " + std::to_string(b.radius) + " is negative";
   return "";
 }
@@ -99,10 +110,14 @@ std::string check_progressive(const PackProgressive& p) {
   for (uint32_t i = 0; i < v; ++i) {
     const uint32_t to = p.collapse_to[i], start = p.group_start[i];
     if (i < p.min_vertices) {
-      if (to != i) out << "kept vertex " << i << " has collapse_to " << to;
-      else if (start != i) out << "kept vertex " << i << " has group_start " << start;
+      if (to != i)
+        out << "kept vertex " << i << " has collapse_to " << to;
+      else if (start != i)
+        out << "kept vertex " << i << " has group_start " << start;
     } else {
-      if (to >= i) out << "removed vertex " << i << " has collapse_to " << to << " (must be below " << i << ")";
+      if (to >= i)
+        out << "removed vertex " << i << " has collapse_to " << to << " (must be below " << i
+            << ")";
       else if (start < p.min_vertices || start > i || (start != i && p.group_start[i - 1] != start))
         out << "vertex " << i << " has inconsistent group_start " << start;
     }
@@ -128,16 +143,20 @@ std::string check_geometry(const PackGeometry& g) {
   const size_t v = g.positions.size() / 3, t = g.triangles.size() / 3;
   if (v > kMaxVertices) return too_many("vertices", v, kMaxVertices);
   if (t > kMaxTriangles) return too_many("triangles", t, kMaxTriangles);
-  if (!g.normals.empty() && g.normals.size() != 3 * v) out << g.normals.size() << " normal floats for " << v << " vertices";
-  else if (!g.uvs.empty() && g.uvs.size() != 2 * v) out << g.uvs.size() << " uv floats for " << v << " vertices";
+  if (!g.normals.empty() && g.normals.size() != 3 * v)
+    out << g.normals.size() << " normal floats for " << v << " vertices";
+  else if (!g.uvs.empty() && g.uvs.size() != 2 * v)
+    out << g.uvs.size() << " uv floats for " << v << " vertices";
   else if (g.joints.size() != g.weights.size() || (!g.joints.empty() && g.joints.size() != 4 * v))
     out << g.joints.size() << " joint indices and " << g.weights.size() << " weights for " << v
         << " vertices (expected 4 each per vertex, or none)";
-  else if (!g.regions.empty() && g.regions.size() != v) out << g.regions.size() << " regions for " << v << " vertices";
+  else if (!g.regions.empty() && g.regions.size() != v)
+    out << g.regions.size() << " regions for " << v << " vertices";
   else if (!g.triangle_material.empty() && g.triangle_material.size() != t)
     out << g.triangle_material.size() << " triangle materials for " << t << " triangles";
   if (!out.str().empty()) return out.str();
-  if (!all_finite(g.positions) || !all_finite(g.normals) || !all_finite(g.uvs) || !all_finite(g.weights))
+  if (!all_finite(g.positions) || !all_finite(g.normals) || !all_finite(g.uvs) ||
+      !all_finite(g.weights))
     return "a position, normal, uv or weight is not finite";
   for (size_t i = 0; i < g.weights.size(); ++i)
     if (g.weights[i] < 0.0f) return "vertex " + std::to_string(i / 4) + " has a negative weight";
@@ -146,8 +165,8 @@ std::string check_geometry(const PackGeometry& g) {
       return "vertex " + std::to_string(i) + " has unknown region " + std::to_string(g.regions[i]);
   for (size_t c = 0; c < g.triangles.size(); ++c)
     if (g.triangles[c] >= v)
-      return "triangle " + std::to_string(c / 3) + " uses vertex " + std::to_string(g.triangles[c]) +
-             ", vertex count is " + std::to_string(v);
+      return "triangle " + std::to_string(c / 3) + " uses vertex " +
+             std::to_string(g.triangles[c]) + ", vertex count is " + std::to_string(v);
   return "";
 }
 
@@ -155,7 +174,8 @@ std::string check_animation(const AnimationTexture& a) {
   std::ostringstream out;
   // note: the format's limits first (they bound every size), then the codec's own rules
   // (animation_codec.h: layout per encoding, data size, finite values).
-  if (a.joints > kMaxJoints) out << too_many("joints per row", a.joints, kMaxJoints);
+  if (a.joints > kMaxJoints)
+    out << too_many("joints per row", a.joints, kMaxJoints);
   else if (a.decode_params.size() > kMaxDecodeParams)
     out << too_many("decode parameters", a.decode_params.size(), kMaxDecodeParams);
   if (!out.str().empty()) return out.str();
@@ -167,10 +187,12 @@ std::string check_animation(const AnimationTexture& a) {
 std::string check_partition(const PartitionMask& p) {
   std::ostringstream out;
   if (p.width > kMaxTextureSide || p.height > kMaxTextureSide)
-    out << "mask " << p.width << "x" << p.height << " exceeds " << kMaxTextureSide << " texels a side";
+    out << "mask " << p.width << "x" << p.height << " exceeds " << kMaxTextureSide
+        << " texels a side";
   else if (p.texels.size() != size_t{p.width} * p.height)
     out << p.texels.size() << " texels for a " << p.width << "x" << p.height << " mask";
-  else if (!std::isfinite(p.neck_height) || !std::isfinite(p.waist_height) || !all_finite(p.up_axis))
+  else if (!std::isfinite(p.neck_height) || !std::isfinite(p.waist_height) ||
+           !all_finite(p.up_axis))
     out << "heights or up axis not finite";
   if (!out.str().empty()) return out.str();
   for (size_t i = 0; i < p.texels.size(); ++i)
@@ -182,30 +204,32 @@ std::string check_partition(const PartitionMask& p) {
 std::string check_cross_references(const PackContents& c) {
   const PackGeometry& g = c.geometry;
   std::ostringstream out;
-  if (!g.joints.empty() && c.joints.empty()) return "GEOM: vertices are skinned but the skeleton is empty";
+  if (!g.joints.empty() && c.joints.empty())
+    return "GEOM: vertices are skinned but the skeleton is empty";
   for (size_t i = 0; i < g.joints.size(); ++i)
     if (g.joints[i] >= c.joints.size())
-      return "GEOM: vertex " + std::to_string(i / 4) + " uses joint " + std::to_string(g.joints[i]) +
-             ", the skeleton has " + std::to_string(c.joints.size());
+      return "GEOM: vertex " + std::to_string(i / 4) + " uses joint " +
+             std::to_string(g.joints[i]) + ", the skeleton has " + std::to_string(c.joints.size());
   for (size_t t = 0; t < g.triangle_material.size(); ++t)
     if (g.triangle_material[t] >= c.materials.size())
-      return "GEOM: triangle " + std::to_string(t) + " uses material " + std::to_string(g.triangle_material[t]) +
-             ", there are " + std::to_string(c.materials.size());
+      return "GEOM: triangle " + std::to_string(t) + " uses material " +
+             std::to_string(g.triangle_material[t]) + ", there are " +
+             std::to_string(c.materials.size());
   const PackProgressive& p = c.progressive;
   if (!p.collapse_to.empty()) {
     if (p.collapse_to.size() != g.vertex_count())
       out << "PROG: " << p.collapse_to.size() << " vertices, GEOM has " << g.vertex_count();
     else if (p.triangle_count.back() != g.triangle_count())
-      out << "PROG: triangle_count[" << g.vertex_count() << "] = " << p.triangle_count.back() << ", GEOM has "
-          << g.triangle_count() << " triangles";
+      out << "PROG: triangle_count[" << g.vertex_count() << "] = " << p.triangle_count.back()
+          << ", GEOM has " << g.triangle_count() << " triangles";
     if (!out.str().empty()) return out.str();
   }
   for (size_t i = 0; i < c.clips.size(); ++i) {
     const PackClip& clip = c.clips[i];
     if (uint64_t{clip.first_row} + clip.frame_count > c.animation.rows)
-      return "CLIP: clip " + std::to_string(i) + " uses rows " + std::to_string(clip.first_row) + ".." +
-             std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) + ", the texture has " +
-             std::to_string(c.animation.rows);
+      return "CLIP: clip " + std::to_string(i) + " uses rows " + std::to_string(clip.first_row) +
+             ".." + std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) +
+             ", the texture has " + std::to_string(c.animation.rows);
   }
   if (c.animation.rows > 0 && c.animation.joints != c.joints.size())
     return "ANIM: " + std::to_string(c.animation.joints) + " joints per row, the skeleton has " +

@@ -25,21 +25,26 @@ void check_options(const PackWriteOptions& o) {
     return bits == 0 || (bits >= min && bits <= static_cast<int>(kMaxQuantizationBits));
   };
   if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kRaw))
-    throw std::invalid_argument("write_pack: unknown geometry codec " + std::to_string(static_cast<uint32_t>(o.codec)));
+    throw std::invalid_argument("write_pack: unknown geometry codec " +
+                                std::to_string(static_cast<uint32_t>(o.codec)));
   if (!bits_ok(o.position_bits, 1) || !bits_ok(o.uv_bits, 1) || !bits_ok(o.normal_bits, 2))
-    throw std::invalid_argument("write_pack: quantisation bits must be 0 or 1.." + std::to_string(kMaxQuantizationBits) +
-                                " (normals 2.." + std::to_string(kMaxQuantizationBits) + "), got position " +
-                                std::to_string(o.position_bits) + ", normal " + std::to_string(o.normal_bits) +
-                                ", uv " + std::to_string(o.uv_bits));
+    throw std::invalid_argument(
+        "write_pack: quantisation bits must be 0 or 1.." + std::to_string(kMaxQuantizationBits) +
+        " (normals 2.." + std::to_string(kMaxQuantizationBits) + "), got position " +
+        std::to_string(o.position_bits) + ", normal " + std::to_string(o.normal_bits) + ", uv " +
+        std::to_string(o.uv_bits));
 }
 
 }  // namespace
 
 const char* geometry_codec_name(GeometryCodec codec) {
   switch (codec) {
-    case GeometryCodec::kDraco: return "draco";
-    case GeometryCodec::kMeshopt: return "meshopt";
-    case GeometryCodec::kRaw: return "raw";
+    case GeometryCodec::kDraco:
+      return "draco";
+    case GeometryCodec::kMeshopt:
+      return "meshopt";
+    case GeometryCodec::kRaw:
+      return "raw";
   }
   return "unknown";
 }
@@ -92,7 +97,7 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   file.u16(kPackVersionMinor);
   file.u32(0);  // flags
   file.u32(static_cast<uint32_t>(chunks.size()));
-  file.u32(0);  // reserved
+  file.u32(0);            // reserved
   file.u64(kHeaderSize);  // chunk table right after the header
   const size_t file_size_at = file.size();
   file.u64(0);  // file size, patched below

@@ -2,10 +2,10 @@
 // stops later reads, counts are checked without overflow before anything is allocated.
 #include "byte_reader.h"
 
+#include <gtest/gtest.h>
+
 #include <limits>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "byte_writer.h"
 
@@ -61,7 +61,8 @@ TEST(ByteReader, ItemContextInMessages) {
 }
 
 TEST(ByteReader, NonFiniteFloatsRejected) {
-  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+  for (float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     ByteWriter w;
     w.f32(1.0f);
     w.f32(bad);

@@ -1,10 +1,10 @@
 // CRC-32C against published check values (RFC 3720 appendix B.4 and the usual "123456789").
 #include "crc32c.h"
 
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace crowdbake::pack_io {
 namespace {
@@ -17,7 +17,8 @@ TEST(Crc32c, CheckValues) {
   EXPECT_EQ(crc32c(zeros.data(), zeros.size()), 0x8A9136AAu);
   EXPECT_EQ(crc32c(ones.data(), ones.size()), 0x62A8AB43u);
   std::vector<uint8_t> ascending(32), descending(32);
-  for (int i = 0; i < 32; ++i) ascending[i] = static_cast<uint8_t>(i), descending[i] = static_cast<uint8_t>(31 - i);
+  for (int i = 0; i < 32; ++i)
+    ascending[i] = static_cast<uint8_t>(i), descending[i] = static_cast<uint8_t>(31 - i);
   EXPECT_EQ(crc32c(ascending.data(), ascending.size()), 0x46DD794Eu);
   EXPECT_EQ(crc32c(descending.data(), descending.size()), 0x113FDB5Cu);
 }

@@ -2,9 +2,9 @@
 // header pre-check, and every decoder fed random bytes behind a plausible layout.
 #include "geometry_codec.h"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "pack_compare.h"
 #include "pack_test_contents.h"
@@ -26,8 +26,8 @@ const Codec kCodecs[] = {
     {GeometryCodec::kRaw, encode_geometry_raw, decode_geometry_raw},
 };
 
-bool decode(const Codec& codec, const std::vector<uint8_t>& bytes, const GeometryLayout& layout, PackGeometry& out,
-            std::string* error = nullptr) {
+bool decode(const Codec& codec, const std::vector<uint8_t>& bytes, const GeometryLayout& layout,
+            PackGeometry& out, std::string* error = nullptr) {
   ByteReader in(bytes.data(), bytes.size(), "GEOM");
   const bool ok = codec.decode(in, layout, out) && in.expect_end();
   if (error) *error = in.error();
@@ -66,7 +66,9 @@ TEST(DracoCodec, StreamCountsMustMatchTheGeomHeader) {
   ASSERT_TRUE(decode(kCodecs[0], w.bytes(), layout, out, &error)) << error;
   layout.vertex_count += 1;
   EXPECT_FALSE(decode(kCodecs[0], w.bytes(), layout, out, &error));
-  EXPECT_EQ(error, "GEOM: Draco mesh: Draco stream holds 16 points and 18 faces, the GEOM header says 17 and 18");
+  EXPECT_EQ(error,
+            "GEOM: Draco mesh: Draco stream holds 16 points and 18 faces, the GEOM header says 17 "
+            "and 18");
 }
 
 TEST(DracoCodec, OtherBitstreamsRefusedBeforeDracoSeesThem) {
@@ -84,9 +86,9 @@ TEST(DracoCodec, OtherBitstreamsRefusedBeforeDracoSeesThem) {
   };
   expect(0, 'X', "not a Draco stream");
   expect(5, 1, "Draco bitstream 1.2, this build reads 2.2");
-  expect(7, 0, "not a sequential Draco mesh without metadata");          // point cloud
-  expect(8, 1, "not a sequential Draco mesh without metadata");          // Edgebreaker
-  expect(10, 0x80, "not a sequential Draco mesh without metadata");      // metadata flag
+  expect(7, 0, "not a sequential Draco mesh without metadata");      // point cloud
+  expect(8, 1, "not a sequential Draco mesh without metadata");      // Edgebreaker
+  expect(10, 0x80, "not a sequential Draco mesh without metadata");  // metadata flag
 }
 
 TEST(GeometryCodecs, RandomBytesNeverCrashAnyDecoder) {

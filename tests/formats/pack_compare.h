@@ -3,13 +3,13 @@
 // quantisation tolerance (docs/pack-format.md).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/formats/pack.h"
 
@@ -43,14 +43,16 @@ inline double max_difference(const std::vector<float>& a, const std::vector<floa
 
 // Bit-exact float comparison (distinguishes -0 and 0).
 inline bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
 struct Tolerance {
   double positions = 0.0, normals = 0.0, uvs = 0.0;
 };
 
-inline void expect_same_contents(const PackContents& a, const PackContents& b, const Tolerance& tol = {}) {
+inline void expect_same_contents(const PackContents& a, const PackContents& b,
+                                 const Tolerance& tol = {}) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.settings_json, b.settings_json);
   ASSERT_EQ(a.joints.size(), b.joints.size());
@@ -79,8 +81,8 @@ inline void expect_same_contents(const PackContents& a, const PackContents& b, c
     EXPECT_EQ(a.materials[i].base_color_texture, b.materials[i].base_color_texture);
   }
   const PackGeometry &ga = a.geometry, &gb = b.geometry;
-  const auto check_floats = [](const std::vector<float>& x, const std::vector<float>& y, double tolerance,
-                               const char* what) {
+  const auto check_floats = [](const std::vector<float>& x, const std::vector<float>& y,
+                               double tolerance, const char* what) {
     if (tolerance == 0.0) {
       EXPECT_TRUE(same_bits(x, y)) << what << " differ (max " << max_difference(x, y) << ")";
     } else {

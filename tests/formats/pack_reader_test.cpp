@@ -3,11 +3,11 @@
 // valid checksums so the chunk decoders (Draco and meshoptimizer included) see them,
 // appended bytes, bad magic and versions, unknown/missing/duplicate chunks, random
 // garbage, and counts that would allocate huge amounts of memory.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <memory>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "allocation_tracker.h"
 #include "crowdbake/formats/pack.h"
@@ -68,8 +68,10 @@ TEST_P(Hostile, EveryTruncatedPrefixIsACleanError) {
     const PackStatus s = read_copy(bytes.data(), size);
     ASSERT_FALSE(s.ok) << "prefix of " << size << " bytes accepted";
     ASSERT_FALSE(s.message.empty());
-    if (size < 8) ASSERT_NE(s.message.find("not a crowdbake pack"), std::string::npos) << s.message;
-    else ASSERT_NE(s.message.find("truncated"), std::string::npos) << size << ": " << s.message;
+    if (size < 8)
+      ASSERT_NE(s.message.find("not a crowdbake pack"), std::string::npos) << s.message;
+    else
+      ASSERT_NE(s.message.find("truncated"), std::string::npos) << size << ": " << s.message;
     // The front of a file is enough for the chunk table (streaming).
     std::unique_ptr<uint8_t[]> copy(new uint8_t[size]);
     if (size) std::memcpy(copy.get(), bytes.data(), size);
@@ -87,7 +89,8 @@ TEST_P(Hostile, EverySingleByteFlipIsDetected) {
       std::vector<uint8_t> bad = bytes;
       bad[i] ^= mask;
       const PackStatus s = read(bad);
-      ASSERT_FALSE(s.ok) << "flip 0x" << std::hex << int{mask} << " at byte " << std::dec << i << " accepted";
+      ASSERT_FALSE(s.ok) << "flip 0x" << std::hex << int{mask} << " at byte " << std::dec << i
+                         << " accepted";
       ASSERT_FALSE(s.message.empty());
     }
   }
@@ -125,7 +128,8 @@ TEST_P(Hostile, ResealedFlipsInEveryChunkNeverCrash) {
 }
 
 TEST_P(Hostile, AppendedBytesRejected) {
-  for (const std::vector<uint8_t>& tail : {std::vector<uint8_t>{0}, std::vector<uint8_t>(16, 0), std::vector<uint8_t>{0xff}}) {
+  for (const std::vector<uint8_t>& tail :
+       {std::vector<uint8_t>{0}, std::vector<uint8_t>(16, 0), std::vector<uint8_t>{0xff}}) {
     std::vector<uint8_t> bytes = small_pack(GetParam());
     bytes.insert(bytes.end(), tail.begin(), tail.end());
     expect_error(read(bytes), "trailing bytes");
@@ -133,7 +137,8 @@ TEST_P(Hostile, AppendedBytesRejected) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Codecs, Hostile,
-                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt, GeometryCodec::kRaw),
+                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt,
+                                           GeometryCodec::kRaw),
                          [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
 
 TEST(PackReader, WrongMagic) {
@@ -171,7 +176,8 @@ TEST(PackReader, NewerMinorVersionStillReads) {
 
 TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
   const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
-  expect_error(read(test::assemble_pack(chunks, 1, 0, 0x4)), "unsupported required feature flags 0x00000004");
+  expect_error(read(test::assemble_pack(chunks, 1, 0, 0x4)),
+               "unsupported required feature flags 0x00000004");
   const PackStatus s = read(test::assemble_pack(chunks, 1, 0, 0x10000));
   EXPECT_TRUE(s.ok) << s.message;
 }
@@ -179,7 +185,8 @@ TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
 TEST(PackReader, UnknownChunksAreSkipped) {
   const PackContents in = test::make_test_contents(4, 23);
   auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kRaw}));
-  chunks.insert(chunks.begin() + 4, RawChunk{make_tag('X', 'T', 'R', 'A'), 7, std::vector<uint8_t>(37, 0xab)});
+  chunks.insert(chunks.begin() + 4,
+                RawChunk{make_tag('X', 'T', 'R', 'A'), 7, std::vector<uint8_t>(37, 0xab)});
   chunks.push_back(RawChunk{0xdeadbeef, 1, {}});
   PackContents out;
   const PackStatus s = read(test::assemble_pack(chunks), out);
@@ -241,8 +248,15 @@ TEST(PackReader, BadTableEntriesRejected) {
   test::reseal_header(b);
   expect_error(read(b), "run past the file size");
   b = good;
+  test::put64(b, entry(8) + 8, uint64_t{1} << 40);  // starts past the end (found by the fuzzer)
+  test::reseal_header(b);
+  expect_error(read(b), "run past the file size");
+  b = good;
   test::put32(b, 16, 100000);  // chunk count (checked before the checksum)
   expect_error(read(b), "exceed the limit of 256");
+  b = good;
+  test::put64(b, 24, ~uint64_t{0} - 47);  // offset + table size wraps around (found by the fuzzer)
+  expect_error(read(b), "runs past the file size");
   b = good;
   test::put64(b, 24, 32);  // table inside the header
   test::reseal_header(b);
@@ -262,7 +276,8 @@ TEST(PackReader, HeadCountsMustMatch) {
   std::vector<uint8_t>& head = chunks[0].payload;
   const size_t vertices_at = head.size() - 3 * 4;
   test::put32(head, vertices_at, test::get32(head, vertices_at) + 1);
-  expect_error(read(test::assemble_pack(chunks)), "chunk HEAD: says 17 vertices, the pack holds 16");
+  expect_error(read(test::assemble_pack(chunks)),
+               "chunk HEAD: says 17 vertices, the pack holds 16");
 }
 
 TEST(PackReader, MessagesNameChunkItemAndField) {
@@ -310,7 +325,8 @@ TEST(PackReader, GarbageChunkPayloadsAreRejected) {
 
 // Replaces chunk `tag`'s payload and expects an error containing `needle` with no
 // allocation above 1 MiB while reading.
-void expect_cheap_rejection(uint32_t tag, const std::vector<uint8_t>& payload, const std::string& needle) {
+void expect_cheap_rejection(uint32_t tag, const std::vector<uint8_t>& payload,
+                            const std::string& needle) {
   auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   for (RawChunk& c : chunks)
     if (c.tag == tag) c.payload = payload;
@@ -329,18 +345,23 @@ std::vector<uint8_t> words(std::initializer_list<uint32_t> values) {
 }
 
 TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
-  expect_cheap_rejection(kTagSkel, words({65535}), "chunk SKEL: joints: count 65535 needs at least 96 bytes each");
+  expect_cheap_rejection(kTagSkel, words({65535}),
+                         "chunk SKEL: joints: count 65535 needs at least 96 bytes each");
   expect_cheap_rejection(kTagSkel, words({0xffffffff}), "joint count 4294967295 exceeds the limit");
-  expect_cheap_rejection(kTagClip, words({1, 0xfffffff0, 0, 0, 0, 0, 0, 0}), "chunk CLIP: clip 0 name: length 4294967280 exceeds");
+  expect_cheap_rejection(kTagClip, words({1, 0xfffffff0, 0, 0, 0, 0, 0, 0}),
+                         "chunk CLIP: clip 0 name: length 4294967280 exceeds");
   expect_cheap_rejection(kTagMatl, words({60000}), "chunk MATL: materials: count 60000");
-  expect_cheap_rejection(kTagProg, words({1u << 24, 0, 0}), "chunk PROG: progressive arrays: count 50331649");
+  expect_cheap_rejection(kTagProg, words({1u << 24, 0, 0}),
+                         "chunk PROG: progressive arrays: count 50331649");
   // GEOM: raw arrays must be present; compressed ones obey the expansion limit.
-  expect_cheap_rejection(kTagGeom, words({2, 1u << 24, 0, 0, 0, 0, 0, 0}), "chunk GEOM: positions: count 50331648");
+  expect_cheap_rejection(kTagGeom, words({2, 1u << 24, 0, 0, 0, 0, 0, 0}),
+                         "chunk GEOM: positions: count 50331648");
   expect_cheap_rejection(kTagGeom, words({0, 1u << 24, 1u << 25, 31, 0, 0, 0, 0, 0}),
                          "more than the format's expansion limit");
   expect_cheap_rejection(kTagGeom, words({1, 1u << 20, 0, 0, 0, 0, 0, 0, 0}),
                          "more than the format's expansion limit");
-  expect_cheap_rejection(kTagGeom, words({1, (1u << 24) + 1, 0, 0, 0, 0, 0, 0}), "exceed the limits");
+  expect_cheap_rejection(kTagGeom, words({1, (1u << 24) + 1, 0, 0, 0, 0, 0, 0}),
+                         "exceed the limits");
   // ANIM: a 1 TiB texture in a few bytes.
   std::vector<uint8_t> anim = words({0, 5, 3, 16, 1u << 20, 0});
   const std::vector<uint8_t> huge = words({0, 1u << 8});
@@ -350,7 +371,8 @@ TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
   std::vector<uint8_t> part = words({16384, 16384, 0, 0, 0, 0x3f800000, 0, 1, 4});
   part.insert(part.end(), {255, 0, 255, 1});
   expect_cheap_rejection(kTagPart, part, "2 runs cannot cover 268435456 texels");
-  expect_cheap_rejection(kTagPart, words({16385, 1, 0, 0, 0, 0x3f800000, 0, 0, 16385}), "exceeds the limit");
+  expect_cheap_rejection(kTagPart, words({16385, 1, 0, 0, 0, 0x3f800000, 0, 0, 16385}),
+                         "exceeds the limit");
 }
 
 TEST(PackReader, ReadOneChunkForStreaming) {
@@ -364,7 +386,8 @@ TEST(PackReader, ReadOneChunkForStreaming) {
   EXPECT_TRUE(test::same_bits(out.geometry.positions, in.geometry.positions));
   PackChunk corrupt = geom;
   corrupt.checksum ^= 1;
-  expect_error(read_pack_chunk(corrupt, bytes.data() + geom.offset, out), "chunk GEOM: checksum mismatch");
+  expect_error(read_pack_chunk(corrupt, bytes.data() + geom.offset, out),
+               "chunk GEOM: checksum mismatch");
   PackChunk unknown = geom;
   unknown.tag = make_tag('Z', 'Z', 'Z', 'Z');
   EXPECT_TRUE(read_pack_chunk(unknown, bytes.data() + geom.offset, out).ok);

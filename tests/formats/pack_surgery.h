@@ -5,11 +5,11 @@
 // checksums, and re-seal corrupted payloads so the decoders behind the checksums are hit.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <cstring>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crc32c.h"
 #include "crowdbake/formats/pack.h"
@@ -36,7 +36,9 @@ inline std::vector<RawChunk> split_pack(const std::vector<uint8_t>& bytes) {
   EXPECT_TRUE(s.ok) << s.message;
   std::vector<RawChunk> out;
   for (const PackChunk& c : chunks)
-    out.push_back({c.tag, c.version, std::vector<uint8_t>(bytes.begin() + c.offset, bytes.begin() + c.offset + c.size)});
+    out.push_back(
+        {c.tag, c.version,
+         std::vector<uint8_t>(bytes.begin() + c.offset, bytes.begin() + c.offset + c.size)});
   return out;
 }
 

@@ -52,7 +52,8 @@ inline PackContents make_test_contents(uint32_t grid = 8, uint32_t seed = 1) {
     clip.duration = (frames[k] - 1) / clip.fps;
     clip.looping = k != 0;
     if (k == 2)
-      for (uint32_t f = 0; f < frames[k]; ++f) clip.root_motion.insert(clip.root_motion.end(), {0.05f * f, 0.01f * f, 0.02f * f});
+      for (uint32_t f = 0; f < frames[k]; ++f)
+        clip.root_motion.insert(clip.root_motion.end(), {0.05f * f, 0.01f * f, 0.02f * f});
     row += frames[k];
     c.clips.push_back(clip);
   }
@@ -69,7 +70,8 @@ inline PackContents make_test_contents(uint32_t grid = 8, uint32_t seed = 1) {
       const float u = static_cast<float>(x) / (n - 1), v = static_cast<float>(y) / (n - 1);
       const float z = 0.2f * std::sin(3.0f * u) * std::cos(2.0f * v);
       g.positions.insert(g.positions.end(), {u * 1.7f - 0.85f, v * 1.75f, z + 0.001f * unit(rng)});
-      float nx = -0.6f * std::cos(3.0f * u) * std::cos(2.0f * v), ny = 0.4f * std::sin(3.0f * u) * std::sin(2.0f * v);
+      float nx = -0.6f * std::cos(3.0f * u) * std::cos(2.0f * v),
+            ny = 0.4f * std::sin(3.0f * u) * std::sin(2.0f * v);
       const float len = std::sqrt(nx * nx + ny * ny + 1.0f);
       g.normals.insert(g.normals.end(), {nx / len, ny / len, 1.0f / len});
       g.uvs.insert(g.uvs.end(), {u, 1.0f - v});
@@ -120,8 +122,8 @@ inline PackContents make_test_contents(uint32_t grid = 8, uint32_t seed = 1) {
   for (uint32_t m = 0; m <= vertices; ++m) {
     const uint32_t k = m < p.min_vertices ? 0 : m - p.min_vertices;
     const uint32_t span = vertices - p.min_vertices;
-    p.triangle_count.push_back(span ? base + static_cast<uint32_t>(uint64_t{triangles - base} * k / span)
-                                    : triangles);
+    p.triangle_count.push_back(
+        span ? base + static_cast<uint32_t>(uint64_t{triangles - base} * k / span) : triangles);
   }
 
   // Animation texture: float32 rows for every clip frame.

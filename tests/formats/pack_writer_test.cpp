@@ -1,11 +1,11 @@
 // write_pack → read_pack round trips for every codec: exact where the format promises
 // exactness, within the documented tolerance for quantised positions/normals/UVs; order
 // of vertices and triangles preserved; deterministic bytes; invalid contents refused.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/formats/pack.h"
 #include "pack_compare.h"
@@ -35,8 +35,9 @@ test::Tolerance tolerance_for(const PackContents& c, const PackWriteOptions& o) 
   tol.positions = test::grid_tolerance(test::extent(c.geometry.positions, 3), o.position_bits);
   tol.uvs = test::grid_tolerance(test::extent(c.geometry.uvs, 2), o.uv_bits);
   if (o.normal_bits)
-    tol.normals = o.codec == GeometryCodec::kDraco ? 2.5 / ((1u << o.normal_bits) - 1) + 1e-6
-                                                   : test::grid_tolerance(test::extent(c.geometry.normals, 3), o.normal_bits);
+    tol.normals = o.codec == GeometryCodec::kDraco
+                      ? 2.5 / ((1u << o.normal_bits) - 1) + 1e-6
+                      : test::grid_tolerance(test::extent(c.geometry.normals, 3), o.normal_bits);
   return tol;
 }
 
@@ -115,7 +116,8 @@ TEST_P(RoundTrip, VerticesWithoutTrianglesAndFlatAttributes) {
   in.geometry.triangles.clear();
   in.geometry.triangle_material.clear();
   in.progressive = {};
-  for (size_t i = 2; i < in.geometry.positions.size(); i += 3) in.geometry.positions[i] = 0.25f;  // flat z
+  for (size_t i = 2; i < in.geometry.positions.size(); i += 3)
+    in.geometry.positions[i] = 0.25f;         // flat z
   for (float& u : in.geometry.uvs) u = 0.5f;  // one UV for all: zero extent
   const PackWriteOptions options{GetParam()};
   const PackContents out = round_trip(in, options);
@@ -133,7 +135,8 @@ TEST_P(RoundTrip, DeterministicBytes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Codecs, RoundTrip,
-                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt, GeometryCodec::kRaw),
+                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt,
+                                           GeometryCodec::kRaw),
                          [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
 
 TEST(PackWriter, ChunksInStreamingOrderAligned) {
@@ -156,8 +159,10 @@ TEST(PackWriter, ChunksInStreamingOrderAligned) {
 
 TEST(PackWriter, DracoIsSmallerThanRaw) {
   const PackContents in = make_test_contents(40, 12);
-  EXPECT_LT(write_pack(in, {GeometryCodec::kDraco}).size(), write_pack(in, {GeometryCodec::kRaw}).size());
-  EXPECT_LT(write_pack(in, {GeometryCodec::kMeshopt}).size(), write_pack(in, {GeometryCodec::kRaw}).size());
+  EXPECT_LT(write_pack(in, {GeometryCodec::kDraco}).size(),
+            write_pack(in, {GeometryCodec::kRaw}).size());
+  EXPECT_LT(write_pack(in, {GeometryCodec::kMeshopt}).size(),
+            write_pack(in, {GeometryCodec::kRaw}).size());
 }
 
 // write_pack refuses contents read_pack would refuse, naming the rule.

@@ -59,16 +59,16 @@ constexpr uint32_t kRequiredFlagsMask = 0x0000ffffu;
 // Reader limits (docs/pack-format.md "Limits"). Counts above these are rejected before
 // anything is allocated.
 constexpr uint32_t kMaxChunks = 256;
-constexpr uint32_t kMaxStringBytes = 65536;           // names, texture references
-constexpr uint32_t kMaxSettingsBytes = 16u << 20;     // HEAD settings_json
-constexpr uint32_t kMaxJoints = 65535;                // joint indices are uint16
+constexpr uint32_t kMaxStringBytes = 65536;        // names, texture references
+constexpr uint32_t kMaxSettingsBytes = 16u << 20;  // HEAD settings_json
+constexpr uint32_t kMaxJoints = 65535;             // joint indices are uint16
 constexpr uint32_t kMaxClips = 65535;
-constexpr uint32_t kMaxMaterials = 65535;             // material indices are uint16
+constexpr uint32_t kMaxMaterials = 65535;  // material indices are uint16
 constexpr uint32_t kMaxVertices = 1u << 24;
 constexpr uint32_t kMaxTriangles = 1u << 25;
 constexpr uint32_t kMaxDecodeParams = 4096;
-constexpr uint32_t kMaxTextureSide = 16384;           // partition mask width/height
-constexpr uint32_t kMaxQuantizationBits = 24;         // 0 = unquantised float
+constexpr uint32_t kMaxTextureSide = 16384;    // partition mask width/height
+constexpr uint32_t kMaxQuantizationBits = 24;  // 0 = unquantised float
 // A compressed GEOM chunk may not decode to more than this many bytes of arrays plus
 // kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
 constexpr uint64_t kGeomExpansionSlack = 1u << 20;
