@@ -1,8 +1,10 @@
 #!/bin/sh
-# The README's test command: installs dependencies, builds, runs every test.
+# The README's test command: installs dependencies, builds, runs every test, then fuzzes
+# the pack reader for a short while (libFuzzer under ASAN/UBSAN, scripts/fuzz-pack-reader.sh).
 set -eu
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
 BUILD="${CROWDBAKE_BUILD_DIR:-build}"
 ctest --test-dir "$BUILD" --output-on-failure -j "${CROWDBAKE_JOBS:-$(nproc)}"
+./scripts/fuzz-pack-reader.sh "${CROWDBAKE_FUZZ_SECONDS:-30}"
