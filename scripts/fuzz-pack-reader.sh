@@ -30,6 +30,14 @@ mkdir -p "$SEEDS" "$CORPUS"
 "$BUILD/tests/formats/make_pack_corpus" "$SEEDS"
 # -malloc_limit_mb: any single allocation above 64 MiB is a failure (the reader bounds
 # what a small input can allocate); -timeout: a single input taking 10 s is a hang.
-exec "$BUILD/tests/formats/pack_reader_fuzz" "$CORPUS" "$SEEDS" -max_total_time="$SECONDS_TO_RUN" \
+# note: libFuzzer's progress goes to a log; the summary (or, on failure, the log's end) is printed.
+LOG="$BUILD/fuzz/last-run.log"
+if "$BUILD/tests/formats/pack_reader_fuzz" "$CORPUS" "$SEEDS" -max_total_time="$SECONDS_TO_RUN" \
   -dict=tests/formats/pack_reader_fuzz.dict -max_len=65536 -rss_limit_mb=2048 -malloc_limit_mb=64 \
-  -timeout=10 -print_final_stats=1 -artifact_prefix="$BUILD/fuzz/"
+  -timeout=10 -print_final_stats=1 -artifact_prefix="$BUILD/fuzz/" >"$LOG" 2>&1; then
+  echo "fuzz-pack-reader: ${SECONDS_TO_RUN} s, no crash: $(grep -E '^stat::number_of_executed_units' "$LOG" | awk '{print $2}') inputs, corpus in $CORPUS"
+else
+  tail -n 60 "$LOG"
+  echo "fuzz-pack-reader: FAILED; the crashing input is in $BUILD/fuzz/ (full log: $LOG)"
+  exit 1
+fi
