@@ -22,11 +22,12 @@ set xlabel "simplification time (s)"
 set ylabel "mean-RMS error (% of diagonal)"
 set key below horizontal maxrows 2 font ",7" samplen 1 width -2
 set grid
+set yrange [0:*]
 set datafile missing NaN
 
 is(s) = (strcol(2) eq s)
 do for [i = 0:n - 1] {
-  set title (words(assets) > i ? word(assets, i + 1) : sprintf("asset %d", i + 1))
+  set title (words(assets) > i ? word(assets, i + 1) : sprintf("asset %d", i + 1)) noenhanced
   plot datafile index i using 3:(is('static') ? $4 : NaN) with points pt 9 ps 1.4 lc rgb "#555555" title "S=1 static QEM", \
        '' index i using 3:(is('pullback') ? $4 : NaN) with points pt 7 ps 1.1 lc rgb "#1f77b4" title "DQEM pullback", \
        '' index i using 3:(is('exact') ? $4 : NaN) with points pt 5 ps 1.1 lc rgb "#d62728" title "DQEM exact", \
