@@ -1,0 +1,89 @@
+#include "crowdbake/runtime/effects/pose.h"
+
+#include <cmath>
+
+namespace crowdbake::effects {
+namespace {
+
+bool fail(std::string* why, std::string message) {
+  if (why) *why = std::move(message);
+  return false;
+}
+
+bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+bool is_valid_transform(const Transform& transform, float tolerance) {
+  const glm::quat& q = transform.rotation;
+  if (!finite3(transform.translation) || !finite3(transform.scale)) return false;
+  if (!std::isfinite(q.w) || !std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
+    return false;
+  }
+  return std::fabs(glm::length(q) - 1.0f) <= tolerance;
+}
+
+bool Skeleton::validate(std::string* why) const {
+  if (parents.empty()) return fail(why, "skeleton has no joints");
+  if (joint_names.size() != parents.size() || rest_pose.size() != parents.size()) {
+    return fail(why, "skeleton arrays differ in size: " + std::to_string(joint_names.size()) +
+                         " names, " + std::to_string(parents.size()) + " parents, " +
+                         std::to_string(rest_pose.size()) + " rest transforms");
+  }
+  for (size_t j = 0; j < parents.size(); ++j) {
+    if (parents[j] != kNoParent && (parents[j] < 0 || static_cast<size_t>(parents[j]) >= j)) {
+      return fail(why, "joint " + std::to_string(j) + " has parent " + std::to_string(parents[j]) +
+                           " (must be -1 or an earlier joint)");
+    }
+    if (!is_valid_transform(rest_pose[j])) {
+      return fail(why, "joint " + std::to_string(j) +
+                           " rest transform is not finite or its rotation is not unit");
+    }
+  }
+  return true;
+}
+
+glm::quat nlerp_shortest(const glm::quat& a, const glm::quat& b, float w) {
+  const float wa = 1.0f - w;
+  // note: negating b's weight is the shortest-arc flip; at w = 1 the result is −b, the
+  // same rotation as b.
+  const float wb = glm::dot(a, b) < 0.0f ? -w : w;
+  const glm::quat sum(a.w * wa + b.w * wb, a.x * wa + b.x * wb, a.y * wa + b.y * wb,
+                      a.z * wa + b.z * wb);
+  const float inv = 1.0f / std::sqrt(glm::dot(sum, sum));
+  return glm::quat(sum.w * inv, sum.x * inv, sum.y * inv, sum.z * inv);
+}
+
+Transform blend(const Transform& a, const Transform& b, float w) {
+  const float wa = 1.0f - w;
+  Transform out;
+  out.translation = a.translation * wa + b.translation * w;
+  out.scale = a.scale * wa + b.scale * w;
+  out.rotation = nlerp_shortest(a.rotation, b.rotation, w);
+  return out;
+}
+
+glm::mat4 to_matrix(const Transform& t) {
+  const glm::quat& q = t.rotation;
+  const float xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+  const float xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+  const float wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+  glm::mat4 m(1.0f);  // column-major: m[column][row]
+  m[0][0] = (1.0f - 2.0f * (yy + zz)) * t.scale.x;
+  m[0][1] = 2.0f * (xy + wz) * t.scale.x;
+  m[0][2] = 2.0f * (xz - wy) * t.scale.x;
+  m[1][0] = 2.0f * (xy - wz) * t.scale.y;
+  m[1][1] = (1.0f - 2.0f * (xx + zz)) * t.scale.y;
+  m[1][2] = 2.0f * (yz + wx) * t.scale.y;
+  m[2][0] = 2.0f * (xz + wy) * t.scale.z;
+  m[2][1] = 2.0f * (yz - wx) * t.scale.z;
+  m[2][2] = (1.0f - 2.0f * (xx + yy)) * t.scale.z;
+  m[3][0] = t.translation.x;
+  m[3][1] = t.translation.y;
+  m[3][2] = t.translation.z;
+  return m;
+}
+
+}  // namespace crowdbake::effects
