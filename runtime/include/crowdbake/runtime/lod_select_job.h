@@ -1,0 +1,123 @@
+// LodSelectJob: how many vertices each visible instance gets this frame (DESIGN.md §3.4,
+// thesis §2.2.1.3), as a two-pass job like the GPU's (pass 1: weights and their sum, the
+// reduction; pass 2: each instance's share and its clamping).
+//
+// Continuous mode, exactly as the design writes it. For the m visible instances, with
+//   A_i  the projected screen area of instance i's bounding sphere, in pixels²: the sphere
+//        seen as a disc of radius focal_pixels · r_i / D_i, so A_i = π · (focal_pixels ·
+//        r_i / D_i)², capped at the screen's area width · height;
+//   D_i  the distance from the camera's eye to the sphere's centre, at least the near plane
+//        distance (so it is never 0);
+//   P_i  the instance's original triangle count (the pack's full triangle count);
+//   β = α − 1:
+//     w_i  = β · (A_i / D_i) · P_i^β
+//     vc_i = N · w_i^(1/α) / Σ_j w_j^(1/α)
+// and then, with min_i / max_i the pack's LoD range (Pack::min_vertices, max_vertices):
+//     vc_i in [min_i, max_i]       → vc_i (rounded down to a whole vertex count)
+//     vc_i > max_i                 → max_i
+//     vc_i / min_i in [MinT, 1)    → min_i
+//     vc_i / min_i < MinT          → 0: not drawn
+// Budget left over by instances clamped to max_i is not handed to the others (the design
+// does not), and promotions to min_i may exceed N by Σ (min_i − vc_i) over the promoted
+// instances; with MinT = 1 the selected counts always sum to at most N.
+// note: w_i^(1/α) is computed as exp((ln β + ln A_i − ln D_i + β·ln P_i) / α) in double:
+// the same value, without overflowing P_i^β for large α.
+//
+// Discrete mode (a baseline, like classic LoD): each type has a few fixed levels, the
+// fractions `discrete_levels` of its full vertex count (clamped to [min_i, max_i] and rounded
+// down to a collapse-group start, see usable_vertices). The continuous count is computed as
+// above and snapped down to the largest level not above it (or to the coarsest level when it
+// is below all of them); instances the continuous mode drops stay dropped. So both modes
+// spend about the same budget, and only the discrete one jumps between a few meshes.
+//
+// Full mode: every visible instance gets max_i.
+//
+// The output is the selected vertex count n_i per instance (0 = culled or not drawn); the
+// drawn mesh is reconstruct(n_i) (reconstruct_job.h), which rounds n_i down to a collapse-group
+// start, so drawn vertices never exceed the selection.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "crowdbake/runtime/camera.h"
+#include "crowdbake/runtime/span.h"
+
+namespace crowdbake::runtime {
+
+enum class LodMode : uint32_t {
+  kContinuous = 0,  // the budgeted selection above
+  kDiscrete = 1,    // the same, snapped down to a few fixed levels
+  kFull = 2,        // every visible instance at full resolution
+};
+
+constexpr uint32_t kMaxDiscreteLevels = 8;
+
+struct LodSettings {
+  LodMode mode = LodMode::kContinuous;
+  uint32_t budget = 1000000;  // N: vertices for all visible instances together, >= 1
+  float alpha = 2.0f;         // α > 1 (β = α − 1 must be positive)
+  float min_t = 0.5f;         // MinT in [0, 1]
+  // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
+  std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
+  uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels
+};
+
+// Checks settings: budget >= 1, α > 1 and finite, MinT in [0, 1], and for the discrete
+// levels a count in 1..8 with fractions strictly decreasing in (0, 1].
+// Returns false with the reason in *why (may be null).
+bool check_lod_settings(const LodSettings& settings, std::string* why = nullptr);
+
+// What LoD selection needs of a character type (make_lod_type in scene.h fills it from a Pack).
+struct LodType {
+  uint32_t min_vertices = 0;  // min_i
+  uint32_t max_vertices = 0;  // max_i
+  uint32_t triangles = 0;     // P_i: full-resolution triangle count
+  // Discrete levels in vertices, finest first (discrete mode only).
+  std::array<uint32_t, kMaxDiscreteLevels> levels{};
+  uint32_t level_count = 0;
+};
+
+// Counts of one selection (for profiling and tests).
+struct LodStats {
+  uint32_t visible = 0;        // m
+  uint32_t drawn = 0;          // instances with n_i > 0
+  uint32_t at_max = 0;         // vc_i > max_i, clamped to max_i
+  uint32_t in_range = 0;       // vc_i kept
+  uint32_t promoted = 0;       // vc_i / min_i in [MinT, 1), raised to min_i
+  uint32_t dropped = 0;        // vc_i / min_i < MinT, not drawn
+  double weight_sum = 0.0;     // Σ w_j^(1/α) (pass 1's reduction)
+  uint64_t selected_vertices = 0;  // Σ n_i
+};
+
+struct LodSelectJob {
+  LodSettings settings;
+  const View* view = nullptr;  // eye, focal_pixels, near plane, resolution
+
+  Span<const LodType> types;  // per character type
+
+  // Per instance (n): type index, world-space sphere (4 floats: centre, radius; CullJob's
+  // output), visibility (CullJob's output, 0 = culled).
+  Span<const uint32_t> type;
+  Span<const float> spheres;
+  Span<const uint8_t> visible;
+
+  // Scratch, n floats: receives w_i^(1/α) (0 for culled instances).
+  Span<double> weights;
+  // Output: the selected vertex count n_i of each instance (0 = not drawn).
+  Span<uint32_t> vertex_count;
+  LodStats* stats = nullptr;  // may be null
+
+  // False when: view is null; the settings fail check_lod_settings; spheres is not 4n,
+  // visible / weights / vertex_count not n (n = type.size()); a type index is out of
+  // `types`; a type has min_vertices > max_vertices, or (discrete mode) no levels.
+  bool Validate() const;
+  // Validates, then runs both passes. Allocates nothing.
+  bool Run() const;
+};
+
+// A_i and D_i of one sphere as the job defines them (see the file comment).
+void lod_area_distance(const View& view, const float sphere[4], double* area, double* distance);
+
+}  // namespace crowdbake::runtime

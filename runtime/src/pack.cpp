@@ -1,0 +1,360 @@
+// Pack streaming: header and table first, tables at open, bulky chunks on demand. The
+// per-chunk decoding and checks are crowdbake_formats' (read_pack_chunks, read_pack_chunk);
+// this file adds what a reader of single chunks must check itself: HEAD's counts against
+// every chunk, and the rules between chunks that read_pack checks after decoding a whole file.
+#include "crowdbake/runtime/pack.h"
+
+#include <cmath>
+#include <cstring>
+#include <new>
+
+#include "crowdbake/formats/pack_format.h"
+
+namespace crowdbake::runtime {
+namespace {
+
+using pack_format::tag_name;
+
+constexpr uint32_t kTableTags[] = {pack_format::kTagHead, pack_format::kTagSkel,
+                                   pack_format::kTagClip, pack_format::kTagMatl,
+                                   pack_format::kTagBnds, pack_format::kTagProg};
+constexpr uint32_t kRequiredTags[] = {
+    pack_format::kTagHead, pack_format::kTagSkel, pack_format::kTagClip,
+    pack_format::kTagMatl, pack_format::kTagBnds, pack_format::kTagProg,
+    pack_format::kTagGeom, pack_format::kTagAnim, pack_format::kTagPart};
+
+uint32_t load_u32(const uint8_t* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);  // note: the format and every supported target are little-endian
+  return v;
+}
+uint64_t load_u64(const uint8_t* p) {
+  uint64_t v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
+
+// Inverse of a 3x4 affine matrix in double; false when the 3x3 part is singular.
+bool invert_affine(const float m[12], float out[12]) {
+  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9],
+               i = m[10];
+  const double c00 = e * i - f * h, c01 = c * h - b * i, c02 = b * f - c * e;
+  const double c10 = f * g - d * i, c11 = a * i - c * g, c12 = c * d - a * f;
+  const double c20 = d * h - e * g, c21 = b * g - a * h, c22 = a * e - b * d;
+  const double det = a * c00 + b * c10 + c * c20;
+  double scale = 0.0;  // note: singular relative to the matrix's own magnitude
+  for (int k : {0, 1, 2, 4, 5, 6, 8, 9, 10}) scale = std::max(scale, std::fabs(double{m[k]}));
+  if (!std::isfinite(det) || scale == 0.0 || std::fabs(det) <= 1e-12 * scale * scale * scale)
+    return false;
+  const double r[9] = {c00 / det, c01 / det, c02 / det, c10 / det, c11 / det,
+                       c12 / det, c20 / det, c21 / det, c22 / det};
+  const double t[3] = {m[3], m[7], m[11]};
+  for (int row = 0; row < 3; ++row) {
+    double tr = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      out[4 * row + k] = static_cast<float>(r[3 * row + k]);
+      tr -= r[3 * row + k] * t[k];
+    }
+    out[4 * row + 3] = static_cast<float>(tr);
+  }
+  for (int k = 0; k < 12; ++k)
+    if (!std::isfinite(out[k])) return false;
+  return true;
+}
+
+}  // namespace
+
+struct Pack::Impl {
+  std::unique_ptr<ByteSource> source;
+  std::string name;
+  std::vector<PackChunk> chunks;
+  uint16_t major = 0, minor = 0;
+  PackCounts counts;
+  PackContents contents;
+  uint32_t loaded = 0;
+  std::vector<float> bind;         // 12 per joint
+  std::vector<uint8_t> bind_ok;    // 1 per joint
+
+  Status fail(const std::string& what) const {
+    return {StatusCode::kInvalidPack, name + ": " + what};
+  }
+
+  const PackChunk* find(uint32_t tag) const {
+    for (const PackChunk& c : chunks)
+      if (c.tag == tag) return &c;
+    return nullptr;
+  }
+
+  // Reads one chunk's payload and decodes it into `contents`.
+  Status read_chunk(uint32_t tag, std::vector<uint8_t>* keep_payload = nullptr) {
+    const PackChunk* chunk = find(tag);
+    if (!chunk) return fail("missing chunk " + tag_name(tag));
+    std::vector<uint8_t> payload(static_cast<size_t>(chunk->size));
+    if (Status s = source->read(chunk->offset, payload.size(), payload.data()); !s) return s;
+    const PackStatus decoded = read_pack_chunk(*chunk, payload.data(), contents);
+    if (!decoded) return fail(decoded.message);
+    if (keep_payload) *keep_payload = std::move(payload);
+    return {};
+  }
+
+  Status open_front() {
+    const uint64_t size = source->size();
+    // Header first: it says where the table is. A short or odd header goes to
+    // read_pack_chunks as is, which reports the precise problem.
+    std::vector<uint8_t> front(static_cast<size_t>(std::min<uint64_t>(size, pack_format::kHeaderSize)));
+    if (Status s = source->read(0, front.size(), front.data()); !s) return s;
+    if (front.size() == pack_format::kHeaderSize) {
+      const uint32_t chunk_count = load_u32(&front[16]);
+      const uint64_t table_offset = load_u64(&front[24]);
+      const uint64_t table_bytes = uint64_t{chunk_count} * pack_format::kChunkEntrySize;
+      if (chunk_count <= pack_format::kMaxChunks && table_offset <= size &&
+          table_bytes <= size - table_offset && table_offset + table_bytes > front.size()) {
+        const size_t old = front.size();
+        front.resize(static_cast<size_t>(table_offset + table_bytes));
+        if (Status s = source->read(old, front.size() - old, front.data() + old); !s) return s;
+      }
+    }
+    const PackStatus table = read_pack_chunks(front.data(), front.size(), chunks, &major, &minor);
+    if (!table) return fail(table.message);
+    const uint64_t recorded = load_u64(&front[32]);
+    if (size < recorded)
+      return fail("truncated pack: " + std::to_string(size) + " bytes, the header records " +
+                  std::to_string(recorded));
+    if (size > recorded)
+      return fail("pack has " + std::to_string(size - recorded) +
+                  " trailing bytes after its recorded size " + std::to_string(recorded));
+    for (uint32_t tag : kRequiredTags)
+      if (!find(tag)) return fail("missing chunk " + tag_name(tag));
+    return {};
+  }
+
+  Status load_tables() {
+    std::vector<uint8_t> head;
+    if (Status s = read_chunk(pack_format::kTagHead, &head); !s) return s;
+    // note: HEAD ends with its six u32 counts (docs/pack-format.md 3.1); read_pack_chunk
+    // has checked the payload holds exactly name, settings and those counts.
+    if (head.size() < 24) return fail("chunk HEAD: too short for its counts");
+    const uint8_t* c = head.data() + head.size() - 24;
+    counts = {load_u32(c), load_u32(c + 4), load_u32(c + 8), load_u32(c + 12), load_u32(c + 16),
+              load_u32(c + 20)};
+    for (uint32_t tag : kTableTags)
+      if (tag != pack_format::kTagHead)
+        if (Status s = read_chunk(tag); !s) return s;
+    return check_tables();
+  }
+
+  Status count_mismatch(const char* chunk, const char* what, uint64_t head, uint64_t actual) const {
+    return fail(std::string("chunk ") + chunk + ": holds " + std::to_string(actual) + " " + what +
+                ", HEAD says " + std::to_string(head));
+  }
+
+  Status check_tables() {
+    const PackContents& p = contents;
+    if (p.joints.size() != counts.joints)
+      return count_mismatch("SKEL", "joints", counts.joints, p.joints.size());
+    if (p.clips.size() != counts.clips)
+      return count_mismatch("CLIP", "clips", counts.clips, p.clips.size());
+    if (p.materials.size() != counts.materials)
+      return count_mismatch("MATL", "materials", counts.materials, p.materials.size());
+    for (size_t i = 0; i < p.clips.size(); ++i) {
+      const PackClip& clip = p.clips[i];
+      if (uint64_t{clip.first_row} + clip.frame_count > counts.animation_rows)
+        return fail("chunk CLIP: clip " + std::to_string(i) + " '" + clip.name + "' uses rows " +
+                    std::to_string(clip.first_row) + ".." +
+                    std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) +
+                    ", HEAD says the animation texture has " +
+                    std::to_string(counts.animation_rows));
+    }
+    const PackProgressive& prog = p.progressive;
+    if (!prog.collapse_to.empty()) {
+      if (prog.collapse_to.size() != counts.vertices)
+        return count_mismatch("PROG", "vertices", counts.vertices, prog.collapse_to.size());
+      if (prog.triangle_count.back() != counts.triangles)
+        return fail("chunk PROG: triangle_count[" + std::to_string(counts.vertices) + "] = " +
+                    std::to_string(prog.triangle_count.back()) + ", HEAD says " +
+                    std::to_string(counts.triangles) + " triangles");
+    }
+    bind.assign(size_t{12} * p.joints.size(), 0.0f);
+    bind_ok.assign(p.joints.size(), 0);
+    for (size_t j = 0; j < p.joints.size(); ++j)
+      bind_ok[j] = invert_affine(p.joints[j].inverse_bind.data(), &bind[12 * j]);
+    return {};
+  }
+
+  Status check_geometry() const {
+    const PackGeometry& g = contents.geometry;
+    if (g.vertex_count() != counts.vertices)
+      return count_mismatch("GEOM", "vertices", counts.vertices, g.vertex_count());
+    if (g.triangle_count() != counts.triangles)
+      return count_mismatch("GEOM", "triangles", counts.triangles, g.triangle_count());
+    if (!g.joints.empty() && counts.joints == 0)
+      return fail("chunk GEOM: vertices are skinned but the skeleton is empty");
+    for (size_t i = 0; i < g.joints.size(); ++i)
+      if (g.joints[i] >= counts.joints)
+        return fail("chunk GEOM: vertex " + std::to_string(i / 4) + " uses joint " +
+                    std::to_string(g.joints[i]) + ", the skeleton has " +
+                    std::to_string(counts.joints));
+    for (size_t t = 0; t < g.triangle_material.size(); ++t)
+      if (g.triangle_material[t] >= counts.materials)
+        return fail("chunk GEOM: triangle " + std::to_string(t) + " uses material " +
+                    std::to_string(g.triangle_material[t]) + ", there are " +
+                    std::to_string(counts.materials));
+    return {};
+  }
+
+  Status check_animation() const {
+    const AnimationTexture& a = contents.animation;
+    if (a.rows != counts.animation_rows)
+      return count_mismatch("ANIM", "rows", counts.animation_rows, a.rows);
+    if (a.rows > 0 && a.joints != counts.joints)
+      return fail("chunk ANIM: " + std::to_string(a.joints) + " joints per row, the skeleton has " +
+                  std::to_string(counts.joints));
+    return {};
+  }
+
+  void clear(uint32_t parts) {
+    if (parts & kPackGeometry) contents.geometry = PackGeometry{};
+    if (parts & kPackAnimation) contents.animation = AnimationTexture{};
+    if (parts & kPackPartition) contents.partition = PartitionMask{};
+    loaded &= ~(parts & ~uint32_t{kPackTables});
+  }
+
+  Status load_part(uint32_t part) {
+    const uint32_t tag = part == kPackGeometry    ? pack_format::kTagGeom
+                         : part == kPackAnimation ? pack_format::kTagAnim
+                                                  : pack_format::kTagPart;
+    Status s = read_chunk(tag);
+    if (s && part == kPackGeometry) s = check_geometry();
+    if (s && part == kPackAnimation) s = check_animation();
+    if (!s) {
+      clear(part);
+      return s;
+    }
+    loaded |= part;
+    if (loaded == kPackAll) {
+      // note: everything is in memory: the whole-pack rules read_pack guarantees must hold.
+      const PackStatus all = validate_pack_contents(contents);
+      if (!all) {
+        clear(part);
+        return fail(all.message);
+      }
+    }
+    return {};
+  }
+};
+
+Pack::Pack() = default;
+Pack::~Pack() = default;
+Pack::Pack(Pack&&) noexcept = default;
+Pack& Pack::operator=(Pack&&) noexcept = default;
+
+Status Pack::open(std::unique_ptr<ByteSource> source, Pack& out, uint32_t parts) {
+  out.impl_.reset();
+  if (!source) return {StatusCode::kInvalidArgument, "Pack::open: no byte source"};
+  try {
+    auto impl = std::make_unique<Impl>();
+    impl->name = source->name();
+    impl->source = std::move(source);
+    if (Status s = impl->open_front(); !s) return s;
+    if (Status s = impl->load_tables(); !s) return s;
+    impl->loaded = kPackTables;
+    out.impl_ = std::move(impl);
+    if (Status s = out.load(parts); !s) {
+      out.impl_.reset();
+      return s;
+    }
+    return {};
+  } catch (const std::bad_alloc&) {
+    out.impl_.reset();
+    return {StatusCode::kOutOfMemory, "out of memory while opening a pack"};
+  } catch (const std::exception& e) {
+    out.impl_.reset();
+    return {StatusCode::kInvalidPack, std::string("unexpected error while opening a pack: ") + e.what()};
+  }
+}
+
+Status Pack::open_file(const std::string& path, Pack& out, uint32_t parts) {
+  out.impl_.reset();
+  std::unique_ptr<ByteSource> source;
+  if (Status s = open_file_source(path, source); !s) return s;
+  return open(std::move(source), out, parts);
+}
+
+bool Pack::is_open() const { return impl_ != nullptr; }
+
+Status Pack::load(uint32_t parts) {
+  if (!impl_) return {StatusCode::kInvalidArgument, "Pack::load: the pack is not open"};
+  try {
+    for (uint32_t part : {kPackGeometry, kPackAnimation, kPackPartition}) {
+      if (!(parts & part) || (impl_->loaded & part)) continue;
+      if (Status s = impl_->load_part(part); !s) return s;
+    }
+    return {};
+  } catch (const std::bad_alloc&) {
+    impl_->clear(parts);
+    return {StatusCode::kOutOfMemory, impl_->name + ": out of memory while loading"};
+  } catch (const std::exception& e) {
+    impl_->clear(parts);
+    return {StatusCode::kInvalidPack, impl_->name + ": unexpected error while loading: " + e.what()};
+  }
+}
+
+void Pack::release(uint32_t parts) {
+  if (impl_) impl_->clear(parts);
+}
+
+uint32_t Pack::loaded_parts() const { return impl_ ? impl_->loaded : 0; }
+
+const PackContents& Pack::contents() const {
+  static const PackContents kEmpty;
+  return impl_ ? impl_->contents : kEmpty;
+}
+const PackCounts& Pack::counts() const {
+  static const PackCounts kEmpty;
+  return impl_ ? impl_->counts : kEmpty;
+}
+const std::vector<PackChunk>& Pack::chunks() const {
+  static const std::vector<PackChunk> kEmpty;
+  return impl_ ? impl_->chunks : kEmpty;
+}
+const std::string& Pack::source_name() const {
+  static const std::string kEmpty;
+  return impl_ ? impl_->name : kEmpty;
+}
+uint16_t Pack::version_major() const { return impl_ ? impl_->major : 0; }
+uint16_t Pack::version_minor() const { return impl_ ? impl_->minor : 0; }
+
+int32_t Pack::find_clip(std::string_view name) const {
+  const auto& clips = contents().clips;
+  for (size_t i = 0; i < clips.size(); ++i)
+    if (clips[i].name == name) return static_cast<int32_t>(i);
+  return -1;
+}
+
+int32_t Pack::find_joint(std::string_view name) const {
+  const auto& joints = contents().joints;
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == name) return static_cast<int32_t>(i);
+  return -1;
+}
+
+uint32_t Pack::min_vertices() const {
+  const PackProgressive& p = contents().progressive;
+  return p.collapse_to.empty() ? counts().vertices : p.min_vertices;
+}
+
+uint32_t Pack::max_vertices() const { return counts().vertices; }
+
+std::array<float, 3> Pack::bounds_center() const {
+  const PackBounds& b = contents().bounds;
+  return {0.5f * (b.min[0] + b.max[0]), 0.5f * (b.min[1] + b.max[1]), 0.5f * (b.min[2] + b.max[2])};
+}
+
+float Pack::bounds_radius() const { return contents().bounds.radius; }
+
+const float* Pack::bind_matrix(uint32_t joint) const {
+  if (!impl_ || joint >= impl_->bind_ok.size() || !impl_->bind_ok[joint]) return nullptr;
+  return &impl_->bind[size_t{12} * joint];
+}
+
+}  // namespace crowdbake::runtime

@@ -1,0 +1,802 @@
+// scene.json → Scene (docs/scene-format.md). Three stages, so a file's own mistakes are
+// reported before any pack is opened: (1) read every key into plain structs, checking types,
+// ranges and unknown keys; (2) open the packs; (3) resolve names against the packs (clips)
+// and build the instance arrays, listed instances first, then each generator in order.
+// Errors are thrown inside this file as SceneError and returned as a Status at the boundary.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <new>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "crowdbake/runtime/scene.h"
+
+namespace crowdbake::runtime {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr float kPi = 3.14159265358979323846f;
+
+struct SceneError {
+  StatusCode code;
+  std::string message;  // "<key path>: <problem>"
+};
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem,
+                       StatusCode code = StatusCode::kInvalidScene) {
+  throw SceneError{code, (path.empty() ? std::string("scene") : path) + ": " + problem};
+}
+
+std::string key_path(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+std::string item_path(const std::string& path, size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+std::string show(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.7g", v);  // note: values end up as float
+  return buffer;
+}
+
+// "string \"abc\"", "number 3", "array", ...: what was found instead.
+std::string describe(const json& v) {
+  if (v.is_string()) return "string \"" + v.get<std::string>() + "\"";
+  if (v.is_number()) return "number " + v.dump();
+  if (v.is_boolean()) return std::string("boolean ") + (v.get<bool>() ? "true" : "false");
+  return v.type_name();
+}
+
+const json* find(const json& object, const char* key) {
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+void check_object(const json& v, const std::string& path, std::initializer_list<const char*> keys) {
+  if (!v.is_object()) fail(path, "expected an object, got " + describe(v));
+  for (const auto& item : v.items()) {
+    bool known = false;
+    for (const char* k : keys) known = known || item.key() == k;
+    if (!known) {
+      std::string list;
+      for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+      fail(key_path(path, item.key()), "unknown key (expected one of: " + list + ")");
+    }
+  }
+}
+
+const json& require(const json& object, const char* key, const std::string& path) {
+  const json* v = find(object, key);
+  if (!v) fail(key_path(path, key), "missing (required)");
+  return *v;
+}
+
+double number(const json& v, const std::string& path) {
+  if (!v.is_number()) fail(path, "expected a number, got " + describe(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(path, "must be a finite number");
+  // note: values are stored as float; a double beyond float range would become infinite.
+  if (std::fabs(d) > 1e30) fail(path, "must be within ±1e30, got " + show(d));
+  return d;
+}
+
+double number_at_least(const json& v, const std::string& path, double lo, bool inclusive) {
+  const double d = number(v, path);
+  if (inclusive ? d < lo : d <= lo)
+    fail(path, std::string("must be ") + (inclusive ? ">= " : "> ") + show(lo) + ", got " + show(d));
+  return d;
+}
+
+int64_t integer(const json& v, const std::string& path, int64_t lo, int64_t hi) {
+  if (!v.is_number_integer())
+    fail(path, "expected an integer, got " + describe(v));
+  if (v.is_number_unsigned()) {
+    const uint64_t u = v.get<uint64_t>();
+    if (lo > 0 && u < static_cast<uint64_t>(lo))
+      fail(path, "must be at least " + std::to_string(lo) + ", got " + v.dump());
+    if (u > static_cast<uint64_t>(hi)) fail(path, "must be at most " + std::to_string(hi) + ", got " + v.dump());
+    return static_cast<int64_t>(u);
+  }
+  const int64_t i = v.get<int64_t>();
+  if (i < lo) fail(path, "must be at least " + std::to_string(lo) + ", got " + std::to_string(i));
+  if (i > hi) fail(path, "must be at most " + std::to_string(hi) + ", got " + std::to_string(i));
+  return i;
+}
+
+std::string string(const json& v, const std::string& path) {
+  if (!v.is_string()) fail(path, "expected a string, got " + describe(v));
+  return v.get<std::string>();
+}
+
+bool boolean(const json& v, const std::string& path) {
+  if (!v.is_boolean()) fail(path, "expected true or false, got " + describe(v));
+  return v.get<bool>();
+}
+
+const json& array(const json& v, const std::string& path) {
+  if (!v.is_array()) fail(path, "expected an array, got " + describe(v));
+  return v;
+}
+
+template <size_t N>
+std::array<float, N> numbers(const json& v, const std::string& path) {
+  if (!v.is_array() || v.size() != N)
+    fail(path, "expected an array of " + std::to_string(N) + " numbers, got " +
+                   (v.is_array() ? "an array of " + std::to_string(v.size()) : describe(v)));
+  std::array<float, N> out{};
+  for (size_t i = 0; i < N; ++i) out[i] = static_cast<float>(number(v[i], item_path(path, i)));
+  return out;
+}
+
+// A number, or a range [min, max] drawn uniformly per instance.
+struct Range {
+  float lo = 0.0f, hi = 0.0f;
+};
+
+Range range(const json& v, const std::string& path, double lo, bool inclusive) {
+  if (v.is_array()) {
+    if (v.size() != 2)
+      fail(path, "expected a number or a range [min, max], got an array of " +
+                     std::to_string(v.size()));
+    const double a = number_at_least(v[0], item_path(path, 0), lo, inclusive);
+    const double b = number_at_least(v[1], item_path(path, 1), lo, inclusive);
+    if (b < a) fail(path, "range [" + show(a) + ", " + show(b) + "] has max < min");
+    return {static_cast<float>(a), static_cast<float>(b)};
+  }
+  if (!v.is_number()) fail(path, "expected a number or a range [min, max], got " + describe(v));
+  const float x = static_cast<float>(number_at_least(v, path, lo, inclusive));
+  return {x, x};
+}
+
+// Deterministic on every platform (std:: distributions are not): splitmix64.
+class Random {
+ public:
+  explicit Random(uint64_t seed) : state_(seed) {}
+  uint64_t next() {
+    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  float unit() { return static_cast<float>(next() >> 40) * (1.0f / 16777216.0f); }  // [0, 1)
+  float in(const Range& r) { return r.lo + (r.hi - r.lo) * unit(); }
+  uint32_t below(uint32_t n) {
+    return std::min(n - 1, static_cast<uint32_t>(unit() * static_cast<float>(n)));
+  }
+
+ private:
+  uint64_t state_;
+};
+
+uint64_t mix(uint64_t seed, uint64_t index, uint64_t stream) {
+  Random r(seed ^ (index * 0xD1B54A32D192ED03ull) ^ (stream * 0x8CB92BA72F3D8DD7ull));
+  return r.next();
+}
+
+std::array<float, 4> yaw_quaternion(float degrees) {
+  const float half = 0.5f * degrees * kPi / 180.0f;
+  return {0.0f, std::sin(half), 0.0f, std::cos(half)};
+}
+
+// ---- Stage 1: the file's own content ----------------------------------------------------
+
+struct RawTextures {
+  bool random = false;
+  std::array<int64_t, 3> value{0, 0, 0};
+  std::string path;
+};
+
+struct RawColor {
+  Vec3 value{0.0f, 1.0f, 1.0f};
+};
+
+struct RawType {
+  std::string name, pack, path;
+  TextureVariants variants;
+};
+
+// Attributes shared by listed instances and generators (generators allow ranges).
+struct RawAttributes {
+  std::string path;
+  std::string type;  // empty: the only type
+  std::vector<std::string> clips;  // empty: clip 0; several: one drawn per instance
+  Range speed{1.0f, 1.0f};
+  Range time_offset{0.0f, 0.0f};
+  Range scale{1.0f, 1.0f};
+  RawTextures textures;
+  Vec3 color{0.0f, 1.0f, 1.0f};         // listed instances
+  Vec3 color_variation{0.0f, 0.0f, 0.0f};  // generators: ± hue (deg), saturation, brightness
+  std::optional<float> neck_height, waist_height;
+};
+
+struct RawInstance {
+  RawAttributes a;
+  Vec3 position{};
+  std::array<float, 4> rotation{0.0f, 0.0f, 0.0f, 1.0f};
+};
+
+struct RawGenerator {
+  RawAttributes a;
+  bool grid = true;
+  uint64_t seed = 0;
+  // seat_grid
+  Vec3 origin{0.0f, 0.0f, 0.0f};
+  uint32_t rows = 0, columns = 0;
+  float spacing[2] = {0.0f, 0.0f};
+  float row_rise = 0.0f;
+  float yaw_degrees = 0.0f;
+  bool random_yaw = false;
+  float empty_probability = 0.0f;
+  // scatter
+  uint32_t count = 0;
+  float rect_min[2] = {0.0f, 0.0f}, rect_max[2] = {0.0f, 0.0f};
+  float y = 0.0f;
+};
+
+struct RawScene {
+  Camera camera;
+  std::vector<CameraKey> path;
+  LodSettings lod;
+  AnimationSettings animation;
+  std::vector<RawType> types;
+  std::vector<RawInstance> instances;
+  std::vector<RawGenerator> generators;
+};
+
+void check_view(const Camera& camera, const std::string& path) {
+  View view;
+  std::string why;
+  if (!make_view(camera, view, &why)) fail(path, why);
+}
+
+void parse_camera(const json& v, RawScene& s) {
+  const std::string path = "camera";
+  check_object(v, path, {"position", "target", "up", "fov_degrees", "near", "far", "resolution", "path"});
+  Camera& c = s.camera;
+  const json* keys = find(v, "path");
+  const bool has_path = keys != nullptr;
+  if (const json* p = find(v, "position")) c.position = numbers<3>(*p, path + ".position");
+  else if (!has_path) fail(path + ".position", "missing (required unless camera.path is given)");
+  if (const json* p = find(v, "target")) c.target = numbers<3>(*p, path + ".target");
+  else if (!has_path) fail(path + ".target", "missing (required unless camera.path is given)");
+  if (const json* p = find(v, "up")) c.up = numbers<3>(*p, path + ".up");
+  if (const json* p = find(v, "fov_degrees")) {
+    const double fov = number(*p, path + ".fov_degrees");
+    if (!(fov > 0.0 && fov < 180.0)) fail(path + ".fov_degrees", "must be in (0, 180), got " + show(fov));
+    c.fov_y_degrees = static_cast<float>(fov);
+  }
+  if (const json* p = find(v, "near"))
+    c.near_plane = static_cast<float>(number_at_least(*p, path + ".near", 0.0, false));
+  if (const json* p = find(v, "far")) {
+    c.far_plane = static_cast<float>(number(*p, path + ".far"));
+    if (!(c.far_plane > c.near_plane))
+      fail(path + ".far", "must be beyond near (" + show(c.near_plane) + "), got " + show(c.far_plane));
+  } else if (!(c.far_plane > c.near_plane)) {
+    fail(path + ".near", "must be below far (" + show(c.far_plane) + "), got " + show(c.near_plane));
+  }
+  if (const json* p = find(v, "resolution")) {
+    const std::string rp = path + ".resolution";
+    if (!p->is_array() || p->size() != 2)
+      fail(rp, "expected [width, height] in pixels, got " +
+                   (p->is_array() ? "an array of " + std::to_string(p->size()) : describe(*p)));
+    const char* names[2] = {"width", "height"};
+    uint32_t size[2];
+    for (int i = 0; i < 2; ++i) {
+      const json& e = (*p)[i];
+      if (!e.is_number_integer()) fail(item_path(rp, i), "expected an integer " + std::string(names[i]) + ", got " + describe(e));
+      const bool negative = !e.is_number_unsigned() && e.get<int64_t>() < 0;
+      const uint64_t value = negative ? 0 : e.get<uint64_t>();
+      if (negative || value < 1 || value > kMaxResolution)
+        fail(rp, std::string(names[i]) + " must be 1.." + std::to_string(kMaxResolution) +
+                     " pixels, got " + e.dump());
+      size[i] = static_cast<uint32_t>(value);
+    }
+    c.width = size[0];
+    c.height = size[1];
+  }
+  if (has_path) {
+    const json& arr = array(*keys, path + ".path");
+    if (arr.empty()) fail(path + ".path", "needs at least one key");
+    for (size_t i = 0; i < arr.size(); ++i) {
+      const std::string kp = item_path(path + ".path", i);
+      check_object(arr[i], kp, {"time", "position", "target"});
+      CameraKey key;
+      key.time = static_cast<float>(number_at_least(require(arr[i], "time", kp), kp + ".time", 0.0, true));
+      key.position = numbers<3>(require(arr[i], "position", kp), kp + ".position");
+      key.target = numbers<3>(require(arr[i], "target", kp), kp + ".target");
+      if (!s.path.empty() && !(key.time > s.path.back().time))
+        fail(kp + ".time", "keys must be in increasing time order (" + show(key.time) +
+                               " follows " + show(s.path.back().time) + ")");
+      Camera at = c;
+      at.position = key.position;
+      at.target = key.target;
+      check_view(at, kp);
+      s.path.push_back(key);
+    }
+    if (!find(v, "position")) c.position = s.path.front().position;
+    if (!find(v, "target")) c.target = s.path.front().target;
+  }
+  check_view(c, path);
+}
+
+void parse_lod(const json& v, RawScene& s) {
+  const std::string path = "lod";
+  check_object(v, path, {"mode", "budget", "alpha", "min_t", "discrete_levels"});
+  LodSettings& l = s.lod;
+  if (const json* p = find(v, "mode")) {
+    const std::string mode = string(*p, path + ".mode");
+    if (mode == "continuous") l.mode = LodMode::kContinuous;
+    else if (mode == "discrete") l.mode = LodMode::kDiscrete;
+    else if (mode == "full") l.mode = LodMode::kFull;
+    else fail(path + ".mode", "unknown mode \"" + mode + "\" (expected continuous, discrete or full)");
+  }
+  if (const json* p = find(v, "budget"))
+    l.budget = static_cast<uint32_t>(integer(*p, path + ".budget", 1, UINT32_MAX));
+  if (const json* p = find(v, "alpha")) {
+    const double a = number(*p, path + ".alpha");
+    if (!(a > 1.0)) fail(path + ".alpha", "must be > 1 (beta = alpha - 1 must be positive), got " + show(a));
+    l.alpha = static_cast<float>(a);
+  }
+  if (const json* p = find(v, "min_t")) {
+    const double t = number(*p, path + ".min_t");
+    if (!(t >= 0.0 && t <= 1.0)) fail(path + ".min_t", "must be in [0, 1], got " + show(t));
+    l.min_t = static_cast<float>(t);
+  }
+  if (const json* p = find(v, "discrete_levels")) {
+    const std::string lp = path + ".discrete_levels";
+    const json& arr = array(*p, lp);
+    if (arr.empty() || arr.size() > kMaxDiscreteLevels)
+      fail(lp, "needs 1 to " + std::to_string(kMaxDiscreteLevels) + " levels, got " + std::to_string(arr.size()));
+    for (size_t i = 0; i < arr.size(); ++i) {
+      const double f = number(arr[i], item_path(lp, i));
+      if (!(f > 0.0 && f <= 1.0)) fail(item_path(lp, i), "must be a fraction in (0, 1], got " + show(f));
+      if (i > 0 && !(f < l.discrete_levels[i - 1]))
+        fail(item_path(lp, i), "levels must be strictly decreasing (" + show(f) + " follows " +
+                                   show(l.discrete_levels[i - 1]) + ")");
+      l.discrete_levels[i] = static_cast<float>(f);
+    }
+    l.discrete_level_count = static_cast<uint32_t>(arr.size());
+  }
+}
+
+void parse_animation(const json& v, RawScene& s) {
+  const std::string path = "animation";
+  check_object(v, path, {"interpolation", "root_motion"});
+  if (const json* p = find(v, "interpolation")) {
+    const std::string mode = string(*p, path + ".interpolation");
+    if (mode == "nearest") s.animation.filter = FrameFilter::kNearest;
+    else if (mode == "linear") s.animation.filter = FrameFilter::kLinear;
+    else fail(path + ".interpolation", "unknown interpolation \"" + mode + "\" (expected nearest or linear)");
+  }
+  if (const json* p = find(v, "root_motion")) s.animation.root_motion = boolean(*p, path + ".root_motion");
+}
+
+void parse_types(const json& v, RawScene& s) {
+  const std::string path = "character_types";
+  const json& arr = array(v, path);
+  if (arr.empty()) fail(path, "needs at least one character type");
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const std::string tp = item_path(path, i);
+    check_object(arr[i], tp, {"name", "pack", "texture_variants"});
+    RawType t;
+    t.path = tp;
+    t.name = string(require(arr[i], "name", tp), tp + ".name");
+    if (t.name.empty()) fail(tp + ".name", "must not be empty");
+    for (const RawType& other : s.types)
+      if (other.name == t.name) fail(tp + ".name", "\"" + t.name + "\" is already the name of " + other.path);
+    t.pack = string(require(arr[i], "pack", tp), tp + ".pack");
+    if (t.pack.empty()) fail(tp + ".pack", "must not be empty");
+    if (const json* p = find(arr[i], "texture_variants")) {
+      const std::string vp = tp + ".texture_variants";
+      check_object(*p, vp, {"head", "upper_body", "trousers"});
+      uint32_t* fields[3] = {&t.variants.head, &t.variants.upper_body, &t.variants.trousers};
+      const char* names[3] = {"head", "upper_body", "trousers"};
+      for (int k = 0; k < 3; ++k)
+        if (const json* q = find(*p, names[k]))
+          *fields[k] = static_cast<uint32_t>(integer(*q, vp + "." + names[k], 1, 256));
+    }
+    s.types.push_back(std::move(t));
+  }
+}
+
+void parse_textures(const json& v, const std::string& path, bool allow_random, RawTextures& out) {
+  out.path = path;
+  if (allow_random && v.is_string()) {
+    if (v.get<std::string>() != "random")
+      fail(path, "expected \"random\" or an object of variant indices, got " + describe(v));
+    out.random = true;
+    return;
+  }
+  check_object(v, path, {"head", "upper_body", "trousers"});
+  const char* names[3] = {"head", "upper_body", "trousers"};
+  for (int k = 0; k < 3; ++k)
+    if (const json* q = find(v, names[k])) out.value[k] = integer(*q, path + "." + names[k], 0, 255);
+}
+
+// Keys every instance description (listed or generated) may have.
+void parse_attributes(const json& v, const std::string& path, bool generator, RawAttributes& a) {
+  a.path = path;
+  if (const json* p = find(v, "type")) {
+    a.type = string(*p, path + ".type");
+  }
+  const json* clip = find(v, "clip");
+  const json* clips = generator ? find(v, "clips") : nullptr;
+  if (clip && clips) fail(path + ".clips", "give either clip or clips, not both");
+  if (clip) a.clips.push_back(string(*clip, path + ".clip"));
+  if (clips) {
+    const json& arr = array(*clips, path + ".clips");
+    if (arr.empty()) fail(path + ".clips", "needs at least one clip name");
+    for (size_t i = 0; i < arr.size(); ++i) a.clips.push_back(string(arr[i], item_path(path + ".clips", i)));
+  }
+  const auto value_or_range = [&](const char* key, double lo, bool inclusive, Range& out) {
+    const json* p = find(v, key);
+    if (!p) return;
+    if (generator) {
+      out = range(*p, path + "." + key, lo, inclusive);
+    } else {
+      const float x = static_cast<float>(number_at_least(*p, path + "." + key, lo, inclusive));
+      out = {x, x};
+    }
+  };
+  value_or_range("speed", 0.0, true, a.speed);
+  value_or_range("time_offset", 0.0, true, a.time_offset);
+  value_or_range("scale", 0.0, false, a.scale);
+  if (const json* p = find(v, "textures")) parse_textures(*p, path + ".textures", generator, a.textures);
+  if (const json* p = find(v, "neck_height")) a.neck_height = static_cast<float>(number(*p, path + ".neck_height"));
+  if (const json* p = find(v, "waist_height")) a.waist_height = static_cast<float>(number(*p, path + ".waist_height"));
+  if (!generator) {
+    if (const json* p = find(v, "color")) {
+      const std::string cp = path + ".color";
+      check_object(*p, cp, {"hue", "saturation", "brightness"});
+      if (const json* q = find(*p, "hue")) {
+        const double h = number(*q, cp + ".hue");
+        if (!(h >= -180.0 && h <= 180.0)) fail(cp + ".hue", "must be in [-180, 180] degrees, got " + show(h));
+        a.color[0] = static_cast<float>(h);
+      }
+      if (const json* q = find(*p, "saturation")) a.color[1] = static_cast<float>(number_at_least(*q, cp + ".saturation", 0.0, true));
+      if (const json* q = find(*p, "brightness")) a.color[2] = static_cast<float>(number_at_least(*q, cp + ".brightness", 0.0, true));
+    }
+  } else if (const json* p = find(v, "color_variation")) {
+    const std::string cp = path + ".color_variation";
+    check_object(*p, cp, {"hue", "saturation", "brightness"});
+    if (const json* q = find(*p, "hue")) {
+      const double h = number_at_least(*q, cp + ".hue", 0.0, true);
+      if (h > 180.0) fail(cp + ".hue", "must be at most 180 degrees, got " + show(h));
+      a.color_variation[0] = static_cast<float>(h);
+    }
+    const char* names[2] = {"saturation", "brightness"};
+    for (int k = 0; k < 2; ++k)
+      if (const json* q = find(*p, names[k])) {
+        const double x = number_at_least(*q, cp + "." + names[k], 0.0, true);
+        if (x > 1.0) fail(cp + "." + names[k], "must be at most 1, got " + show(x));
+        a.color_variation[k + 1] = static_cast<float>(x);
+      }
+  }
+}
+
+void parse_instances(const json& v, RawScene& s) {
+  const std::string path = "instances";
+  const json& arr = array(v, path);
+  if (arr.size() > kMaxInstances)
+    fail(path, std::to_string(arr.size()) + " instances exceed the limit of " + std::to_string(kMaxInstances));
+  s.instances.reserve(arr.size());
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const std::string ip = item_path(path, i);
+    check_object(arr[i], ip, {"type", "position", "rotation", "yaw_degrees", "scale", "clip", "speed",
+                              "time_offset", "textures", "neck_height", "waist_height", "color"});
+    RawInstance r;
+    parse_attributes(arr[i], ip, false, r.a);
+    r.position = numbers<3>(require(arr[i], "position", ip), ip + ".position");
+    const json* rotation = find(arr[i], "rotation");
+    const json* yaw = find(arr[i], "yaw_degrees");
+    if (rotation && yaw) fail(ip + ".yaw_degrees", "give either rotation or yaw_degrees, not both");
+    if (rotation) {
+      std::array<float, 4> q = numbers<4>(*rotation, ip + ".rotation");
+      const double len = std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] + double{q[3]} * q[3]);
+      if (!(len > 1e-6)) fail(ip + ".rotation", "quaternion [x, y, z, w] must not be zero");
+      for (float& c : q) c = static_cast<float>(c / len);
+      r.rotation = q;
+    }
+    if (yaw) r.rotation = yaw_quaternion(static_cast<float>(number(*yaw, ip + ".yaw_degrees")));
+    s.instances.push_back(std::move(r));
+  }
+}
+
+void parse_generators(const json& v, RawScene& s) {
+  const std::string path = "generators";
+  const json& arr = array(v, path);
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const std::string gp = item_path(path, i);
+    if (!arr[i].is_object()) fail(gp, "expected an object, got " + describe(arr[i]));
+    const std::string kind = string(require(arr[i], "kind", gp), gp + ".kind");
+    RawGenerator g;
+    if (kind == "seat_grid") {
+      check_object(arr[i], gp, {"kind", "type", "seed", "origin", "rows", "columns", "spacing", "row_rise",
+                                "yaw_degrees", "empty_probability", "clip", "clips", "speed", "time_offset",
+                                "scale", "textures", "color_variation", "neck_height", "waist_height"});
+      g.grid = true;
+      if (const json* p = find(arr[i], "origin")) g.origin = numbers<3>(*p, gp + ".origin");
+      g.rows = static_cast<uint32_t>(integer(require(arr[i], "rows", gp), gp + ".rows", 1, kMaxInstances));
+      g.columns = static_cast<uint32_t>(integer(require(arr[i], "columns", gp), gp + ".columns", 1, kMaxInstances));
+      if (uint64_t{g.rows} * g.columns > kMaxInstances)
+        fail(gp, std::to_string(g.rows) + " rows x " + std::to_string(g.columns) +
+                     " columns exceed the limit of " + std::to_string(kMaxInstances) + " instances");
+      const std::array<float, 2> spacing = numbers<2>(require(arr[i], "spacing", gp), gp + ".spacing");
+      for (int k = 0; k < 2; ++k)
+        if (!(spacing[k] > 0.0f))
+          fail(item_path(gp + ".spacing", k), "must be > 0, got " + show(spacing[k]));
+      g.spacing[0] = spacing[0];
+      g.spacing[1] = spacing[1];
+      if (const json* p = find(arr[i], "row_rise")) g.row_rise = static_cast<float>(number(*p, gp + ".row_rise"));
+      if (const json* p = find(arr[i], "yaw_degrees")) g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
+      if (const json* p = find(arr[i], "empty_probability")) {
+        const double e = number(*p, gp + ".empty_probability");
+        if (!(e >= 0.0 && e <= 1.0)) fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
+        g.empty_probability = static_cast<float>(e);
+      }
+    } else if (kind == "scatter") {
+      check_object(arr[i], gp, {"kind", "type", "seed", "count", "rectangle", "y", "yaw_degrees", "clip",
+                                "clips", "speed", "time_offset", "scale", "textures", "color_variation",
+                                "neck_height", "waist_height"});
+      g.grid = false;
+      g.count = static_cast<uint32_t>(integer(require(arr[i], "count", gp), gp + ".count", 0, kMaxInstances));
+      const std::string rp = gp + ".rectangle";
+      const json& rect = require(arr[i], "rectangle", gp);
+      check_object(rect, rp, {"min", "max"});
+      const std::array<float, 2> lo = numbers<2>(require(rect, "min", rp), rp + ".min");
+      const std::array<float, 2> hi = numbers<2>(require(rect, "max", rp), rp + ".max");
+      for (int k = 0; k < 2; ++k)
+        if (!(hi[k] > lo[k]))
+          fail(rp, std::string("max must exceed min in ") + (k == 0 ? "x" : "z") + " (min " +
+                       show(lo[k]) + ", max " + show(hi[k]) + ")");
+      g.rect_min[0] = lo[0], g.rect_min[1] = lo[1], g.rect_max[0] = hi[0], g.rect_max[1] = hi[1];
+      if (const json* p = find(arr[i], "y")) g.y = static_cast<float>(number(*p, gp + ".y"));
+      g.random_yaw = true;
+      if (const json* p = find(arr[i], "yaw_degrees")) {
+        if (p->is_string() && p->get<std::string>() == "random") g.random_yaw = true;
+        else if (p->is_number()) g.random_yaw = false, g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
+        else fail(gp + ".yaw_degrees", "expected a number or \"random\", got " + describe(*p));
+      }
+    } else {
+      fail(gp + ".kind", "unknown generator \"" + kind + "\" (expected seat_grid or scatter)");
+    }
+    if (const json* p = find(arr[i], "seed"))
+      g.seed = static_cast<uint64_t>(integer(*p, gp + ".seed", 0, INT64_MAX));
+    parse_attributes(arr[i], gp, true, g.a);
+    s.generators.push_back(std::move(g));
+  }
+}
+
+RawScene parse_raw(const json& root) {
+  RawScene s;
+  check_object(root, "", {"version", "camera", "lod", "animation", "character_types", "instances", "generators"});
+  if (const json* p = find(root, "version")) {
+    const int64_t version = integer(*p, "version", 0, INT32_MAX);
+    if (version != 1)
+      fail("version", "unsupported scene version " + std::to_string(version) + " (this build reads 1)");
+  }
+  parse_camera(require(root, "camera", ""), s);
+  if (const json* p = find(root, "lod")) parse_lod(*p, s);
+  if (const json* p = find(root, "animation")) parse_animation(*p, s);
+  parse_types(require(root, "character_types", ""), s);
+  if (const json* p = find(root, "instances")) parse_instances(*p, s);
+  if (const json* p = find(root, "generators")) parse_generators(*p, s);
+  uint64_t total = s.instances.size();
+  for (const RawGenerator& g : s.generators) total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
+  if (total > kMaxInstances)
+    fail("generators", "the scene would hold " + std::to_string(total) +
+                           " instances, above the limit of " + std::to_string(kMaxInstances));
+  return s;
+}
+
+// ---- Stages 2 and 3: packs, names, instances --------------------------------------------
+
+struct Resolved {
+  uint32_t type = 0;
+  std::vector<uint32_t> clips;  // Scene::clips indices
+  float neck = 0.0f, waist = 0.0f;
+};
+
+std::string clip_list(const Pack& pack) {
+  std::string out;
+  const auto& clips = pack.contents().clips;
+  for (size_t i = 0; i < clips.size() && i < 12; ++i) out += (i ? ", " : "") + clips[i].name;
+  if (clips.size() > 12) out += ", ...";
+  return out;
+}
+
+Resolved resolve(const Scene& scene, const RawScene& raw, const RawAttributes& a) {
+  Resolved r;
+  if (a.type.empty()) {
+    if (scene.types.size() != 1)
+      fail(a.path + ".type", "missing (required when the scene has several character types)");
+    r.type = 0;
+  } else {
+    const int32_t t = scene.find_type(a.type);
+    if (t < 0) {
+      std::string names;
+      for (const CharacterType& ct : scene.types) names += (names.empty() ? "" : ", ") + ct.name;
+      fail(a.path + ".type", "unknown character type \"" + a.type + "\" (types: " + names + ")");
+    }
+    r.type = static_cast<uint32_t>(t);
+  }
+  const CharacterType& type = scene.types[r.type];
+  const bool several = a.clips.size() > 1;
+  for (size_t k = 0; k < a.clips.size(); ++k) {
+    const int32_t c = scene.find_clip(r.type, a.clips[k]);
+    if (c < 0)
+      fail(several ? item_path(a.path + ".clips", k) : a.path + ".clip",
+           "character type '" + type.name + "' has no clip \"" + a.clips[k] + "\" (its clips: " +
+               clip_list(type.pack) + ")");
+    r.clips.push_back(static_cast<uint32_t>(c));
+  }
+  if (r.clips.empty()) r.clips.push_back(type.first_clip);
+  const TextureVariants& v = type.texture_variants;
+  const uint32_t counts[3] = {v.head, v.upper_body, v.trousers};
+  const char* names[3] = {"head", "upper_body", "trousers"};
+  if (!a.textures.random)
+    for (int k = 0; k < 3; ++k)
+      if (a.textures.value[k] >= counts[k])
+        fail(a.textures.path + "." + names[k],
+             "variant " + std::to_string(a.textures.value[k]) + " is out of range: character type '" +
+                 type.name + "' has " + std::to_string(counts[k]) + " " + names[k] +
+                 " variant(s) (character_types texture_variants)");
+  const PartitionMask& part = type.pack.contents().partition;
+  r.neck = a.neck_height.value_or(part.neck_height);
+  r.waist = a.waist_height.value_or(part.waist_height);
+  if (r.waist > r.neck)
+    fail(a.path + (a.waist_height ? ".waist_height" : ".neck_height"),
+         "waist height " + show(r.waist) + " is above neck height " + show(r.neck));
+  (void)raw;
+  return r;
+}
+
+// Draws one instance's attributes (always the same number of draws, in the same order, so
+// changing one attribute's range does not reshuffle the others).
+Instance make_instance(const Scene& scene, const RawAttributes& a, const Resolved& r, Random& rng) {
+  Instance in;
+  in.type = r.type;
+  const uint32_t pick = rng.below(static_cast<uint32_t>(r.clips.size()));
+  in.clip = r.clips[pick];
+  in.speed = rng.in(a.speed);
+  in.time_offset = rng.in(a.time_offset);
+  in.scale = rng.in(a.scale);
+  const TextureVariants& v = scene.types[r.type].texture_variants;
+  const uint32_t counts[3] = {v.head, v.upper_body, v.trousers};
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t drawn = rng.below(counts[k]);
+    in.textures[k] = static_cast<uint8_t>(a.textures.random ? drawn : static_cast<uint32_t>(a.textures.value[k]));
+  }
+  const float h = rng.unit() * 2.0f - 1.0f, s = rng.unit() * 2.0f - 1.0f, b = rng.unit() * 2.0f - 1.0f;
+  in.color = {a.color[0] + h * a.color_variation[0], a.color[1] * (1.0f + s * a.color_variation[1]),
+              a.color[2] * (1.0f + b * a.color_variation[2])};
+  in.neck_height = r.neck;
+  in.waist_height = r.waist;
+  return in;
+}
+
+void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoadOptions& options, Scene& scene) {
+  for (const RawType& t : raw.types) {
+    std::filesystem::path p(t.pack);
+    if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
+    Pack pack;
+    const Status s = Pack::open_file(p.lexically_normal().string(), pack, options.pack_parts | kPackPartition);
+    if (!s) fail(t.path + ".pack", s.message(), s.code());
+    if (pack.contents().clips.empty())
+      fail(t.path + ".pack", pack.source_name() + ": the pack has no clips to play");
+    uint32_t index = 0;
+    const Status added = add_character_type(scene, t.name, std::move(pack), t.variants, &index);
+    if (!added) fail(t.path, added.message());
+  }
+}
+
+void build_instances(const RawScene& raw, Scene& scene) {
+  InstanceArrays& out = scene.instances;
+  uint64_t total = raw.instances.size();
+  for (const RawGenerator& g : raw.generators) total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
+  out.reserve(static_cast<size_t>(total));
+  for (const RawInstance& ri : raw.instances) {
+    const Resolved r = resolve(scene, raw, ri.a);
+    Random rng(0);
+    Instance in = make_instance(scene, ri.a, r, rng);
+    in.position = ri.position;
+    in.rotation = ri.rotation;
+    out.add(in);
+  }
+  for (const RawGenerator& g : raw.generators) {
+    const Resolved r = resolve(scene, raw, g.a);
+    if (g.grid) {
+      const float yaw = g.yaw_degrees * kPi / 180.0f;
+      const float c = std::cos(yaw), s = std::sin(yaw);
+      const std::array<float, 4> rotation = yaw_quaternion(g.yaw_degrees);
+      for (uint32_t row = 0; row < g.rows; ++row) {
+        for (uint32_t col = 0; col < g.columns; ++col) {
+          const uint64_t seat = uint64_t{row} * g.columns + col;
+          Random gaps(mix(g.seed, seat, 1));
+          if (gaps.unit() < g.empty_probability) continue;
+          Random rng(mix(g.seed, seat, 2));
+          Instance in = make_instance(scene, g.a, r, rng);
+          // note: seats go along +X of the grid, rows back along -Z and up by row_rise; the
+          // crowd faces +Z of the grid (the spectator faces +Z), turned by yaw about +Y.
+          const float lx = static_cast<float>(col) * g.spacing[0];
+          const float lz = -static_cast<float>(row) * g.spacing[1];
+          in.position = {g.origin[0] + c * lx + s * lz, g.origin[1] + static_cast<float>(row) * g.row_rise,
+                         g.origin[2] - s * lx + c * lz};
+          in.rotation = rotation;
+          out.add(in);
+        }
+      }
+    } else {
+      for (uint32_t k = 0; k < g.count; ++k) {
+        Random rng(mix(g.seed, k, 2));
+        Instance in = make_instance(scene, g.a, r, rng);
+        Random place(mix(g.seed, k, 3));
+        const float x = g.rect_min[0] + (g.rect_max[0] - g.rect_min[0]) * place.unit();
+        const float z = g.rect_min[1] + (g.rect_max[1] - g.rect_min[1]) * place.unit();
+        const float yaw = place.unit() * 360.0f - 180.0f;
+        in.position = {x, g.y, z};
+        in.rotation = yaw_quaternion(g.random_yaw ? yaw : g.yaw_degrees);
+        out.add(in);
+      }
+    }
+  }
+}
+
+Status build(const json& root, const std::string& base_dir, const SceneLoadOptions& options, Scene& out) {
+  const RawScene raw = parse_raw(root);
+  Scene scene;
+  scene.camera = raw.camera;
+  scene.camera_path = raw.path;
+  scene.lod = raw.lod;
+  scene.animation = raw.animation;
+  open_packs(raw, base_dir, options, scene);
+  build_instances(raw, scene);
+  out = std::move(scene);
+  return {};
+}
+
+}  // namespace
+
+Status parse_scene(std::string_view text, const std::string& name, const std::string& base_dir,
+                   Scene& out, const SceneLoadOptions& options) {
+  try {
+    json root;
+    try {
+      root = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+      std::string what = e.what();
+      const size_t bracket = what.find("] ");
+      if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) what = what.substr(bracket + 2);
+      return {StatusCode::kInvalidScene, name + ": not valid JSON: " + what};
+    }
+    return build(root, base_dir, options, out);
+  } catch (const SceneError& e) {
+    return {e.code, name + ": " + e.message};
+  } catch (const std::bad_alloc&) {
+    return {StatusCode::kOutOfMemory, name + ": out of memory while loading the scene"};
+  } catch (const std::exception& e) {
+    return {StatusCode::kInvalidScene, name + ": " + e.what()};
+  }
+}
+
+Status load_scene(const std::string& path, Scene& out, const SceneLoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {StatusCode::kIoError, path + ": cannot open: " + std::strerror(errno)};
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return {StatusCode::kIoError, path + ": read failed"};
+  const std::filesystem::path base = std::filesystem::path(path).parent_path();
+  return parse_scene(text.str(), path, base.string(), out, options);
+}
+
+}  // namespace crowdbake::runtime

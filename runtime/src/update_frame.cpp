@@ -1,0 +1,145 @@
+#include <string>
+
+#include "crowdbake/runtime/animate_job.h"
+#include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/cull_job.h"
+#include "crowdbake/runtime/frame.h"
+#include "crowdbake/runtime/reconstruct_job.h"
+#include "crowdbake/runtime/skin_job.h"
+
+namespace crowdbake::runtime {
+namespace {
+
+Status invalid(const std::string& what) { return {StatusCode::kInvalidArgument, what}; }
+
+}  // namespace
+
+Status update_frame(const Scene& scene, float time, FrameState& state) {
+  std::string why;
+  if (!make_view(scene.camera_at_time(time), state.view, &why)) return invalid(why);
+  if (!check_lod_settings(scene.lod, &why)) return invalid("lod: " + why);
+  const InstanceArrays& in = scene.instances;
+  const size_t n = in.size();
+  state.time = time;
+  state.row0.resize(n);
+  state.row1.resize(n);
+  state.blend.resize(n);
+  state.world.resize(12 * n);
+  state.spheres.resize(4 * n);
+  state.visible.resize(n);
+  state.weights.resize(n);
+  state.vertex_count.resize(n);
+  state.lod_types.resize(scene.types.size());
+  state.bounds.resize(scene.types.size());
+  for (size_t t = 0; t < scene.types.size(); ++t) {
+    state.lod_types[t] = make_lod_type(scene.types[t].pack, scene.lod);
+    state.bounds[t] = make_type_bounds(scene.types[t].pack);
+  }
+
+  AnimateJob animate;
+  animate.time = time;
+  animate.filter = scene.animation.filter;
+  animate.root_motion = scene.animation.root_motion;
+  animate.clips = scene.clips;
+  animate.clip = in.clip;
+  animate.speed = in.speed;
+  animate.time_offset = in.time_offset;
+  animate.position = in.position;
+  animate.rotation = in.rotation;
+  animate.scale = in.scale;
+  animate.row0 = state.row0;
+  animate.row1 = state.row1;
+  animate.blend = state.blend;
+  animate.world = state.world;
+  if (!animate.Run())
+    return invalid("instance arrays are inconsistent (sizes or clip indices) for the crowd update");
+  for (size_t i = 0; i < n; ++i)
+    if (scene.clips[in.clip[i]].type != in.type[i])
+      return invalid("instance " + std::to_string(i) + " plays a clip of another character type");
+
+  CullJob cull;
+  cull.planes = state.view.planes;
+  cull.bounds = state.bounds;
+  cull.type = in.type;
+  cull.world = state.world;
+  cull.scale = in.scale;
+  cull.spheres = state.spheres;
+  cull.visible = state.visible;
+  cull.visible_count = &state.visible_count;
+  if (!cull.Run()) return invalid("instance arrays are inconsistent (sizes or type indices) for culling");
+
+  LodSelectJob lod;
+  lod.settings = scene.lod;
+  lod.view = &state.view;
+  lod.types = state.lod_types;
+  lod.type = in.type;
+  lod.spheres = state.spheres;
+  lod.visible = state.visible;
+  lod.weights = state.weights;
+  lod.vertex_count = state.vertex_count;
+  lod.stats = &state.lod;
+  if (!lod.Run()) return invalid("LoD selection rejected its inputs");
+  return {};
+}
+
+Status reconstruct_lod(const Scene& scene, uint32_t type, uint32_t vertices,
+                       std::vector<uint32_t>& triangles) {
+  if (type >= scene.types.size()) return invalid("type index " + std::to_string(type) + " out of range");
+  const Pack& pack = scene.types[type].pack;
+  if (!pack.has(kPackGeometry))
+    return {StatusCode::kNotLoaded, pack.source_name() + ": geometry is not loaded"};
+  ReconstructJob job;
+  job.mesh = progressive_view(pack.contents());
+  job.vertices = vertices;
+  triangles.resize(3 * size_t{lod_triangle_count(job.mesh, vertices)});
+  job.output = triangles;
+  if (!job.Run()) return invalid(pack.source_name() + ": progressive arrays rejected by reconstruction");
+  return {};
+}
+
+Status skin_instance(const Scene& scene, uint32_t instance, float time, uint32_t vertices,
+                     std::vector<float>& positions, std::vector<float>* normals) {
+  const InstanceArrays& in = scene.instances;
+  if (instance >= in.size()) return invalid("instance " + std::to_string(instance) + " out of range");
+  if (in.clip[instance] >= scene.clips.size() || in.type[instance] >= scene.types.size())
+    return invalid("instance " + std::to_string(instance) + " has a bad type or clip index");
+  const Pack& pack = scene.types[in.type[instance]].pack;
+  if (!pack.has(kPackGeometry | kPackAnimation))
+    return {StatusCode::kNotLoaded, pack.source_name() + ": geometry and animation must be loaded"};
+  const PackContents& c = pack.contents();
+  const PackClip& clip = *scene.clips[in.clip[instance]].clip;
+  FrameChoice frame;
+  float world[12];
+  animate_instance(clip, time, in.speed[instance], in.time_offset[instance], scene.animation.filter,
+                   scene.animation.root_motion, &in.position[3 * size_t{instance}],
+                   &in.rotation[4 * size_t{instance}], in.scale[instance], frame, world);
+  std::vector<float> palette(12 * size_t{c.animation.joints});
+  PaletteJob pj;
+  pj.texture = &c.animation;
+  pj.row0 = clip.first_row + frame.frame0;
+  pj.row1 = clip.first_row + frame.frame1;
+  pj.blend = frame.blend;
+  pj.palette = palette;
+  if (!pj.Run()) return invalid(pack.source_name() + ": animation texture rejected by the palette job");
+  const uint32_t n = std::min(vertices, c.geometry.vertex_count());
+  positions.resize(3 * size_t{n});
+  SkinJob sj;
+  sj.positions = c.geometry.positions;
+  sj.normals = c.geometry.normals;
+  sj.joints = c.geometry.joints;
+  sj.weights = c.geometry.weights;
+  sj.vertex_count = n;
+  sj.palette = palette;
+  sj.world = Span<const float>(world, 12);
+  sj.out_positions = positions;
+  if (normals && !c.geometry.normals.empty()) {
+    normals->resize(3 * size_t{n});
+    sj.out_normals = *normals;
+  } else if (normals) {
+    normals->clear();
+  }
+  if (!sj.Run()) return invalid(pack.source_name() + ": geometry rejected by the skinning job");
+  return {};
+}
+
+}  // namespace crowdbake::runtime

@@ -1,0 +1,236 @@
+// The per-frame CPU reference over a whole scene: update_frame (crowd update, culling, LoD
+// selection), reconstruct_lod and skin_instance, on packs baked by the real pipeline.
+#include "crowdbake/runtime/cpu_reference.h"
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "crowdbake/runtime/frame.h"
+#include "crowdbake/runtime/reconstruct_job.h"
+#include "crowdbake/runtime/skin_job.h"
+#include "runtime/runtime_test_support.h"
+#include "temp_dir.h"
+
+namespace crowdbake::runtime {
+namespace {
+
+// A stand of spectators (20 rows x 30 seats) seen from the pitch, plus one behind the camera.
+Status stadium(Scene& scene, uint32_t parts = kPackAll, const std::string& lod = R"({"budget": 300000, "min_t": 1})") {
+  test::TempDir dir;
+  const std::string json = std::string(R"({
+    "camera": {"path": [{"time": 0, "position": [8, 6, 25], "target": [8, 4, -5]},
+                        {"time": 10, "position": [8, 6, 15], "target": [8, 4, -5]}],
+               "resolution": [1280, 720], "fov_degrees": 50},
+    "lod": )") + lod + R"(,
+    "character_types": [{"name": "spectator", "pack": ")" + test::BakedPacks::get().spectator() + R"("},
+                        {"name": "kid", "pack": ")" + test::BakedPacks::get().spectator_f32() + R"("}],
+    "instances": [{"type": "kid", "position": [8, 0, 40], "clip": "walk"}],
+    "generators": [
+      {"kind": "seat_grid", "type": "spectator", "rows": 20, "columns": 30, "spacing": [0.6, 0.9],
+       "row_rise": 0.45, "empty_probability": 0.1, "seed": 4, "clips": ["idle", "clap", "cheer"],
+       "speed": [0.8, 1.2], "time_offset": [0, 3]},
+      {"kind": "scatter", "type": "kid", "count": 30, "rectangle": {"min": [0, 3], "max": [16, 8]}, "seed": 2,
+       "clip": "walk"}]
+  })";
+  test::write_text(dir / "scene.json", json);
+  SceneLoadOptions options;
+  options.pack_parts = parts;
+  return load_scene((dir / "scene.json").string(), scene, options);
+}
+
+TEST(UpdateFrame, RunsTheJobsOverTheWholeScene) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  const Status loaded = stadium(scene);
+  ASSERT_TRUE(loaded) << loaded.message();
+  const size_t n = scene.instances.size();
+  ASSERT_GT(n, 500u);
+  FrameState state;
+  ASSERT_TRUE(update_frame(scene, 2.5f, state));
+  EXPECT_EQ(state.world.size(), 12 * n);
+  EXPECT_EQ(state.spheres.size(), 4 * n);
+  EXPECT_EQ(state.vertex_count.size(), n);
+  // The camera follows its path: at t = 2.5 it is a quarter of the way from z = 25 to 15.
+  EXPECT_FLOAT_EQ(state.view.eye[2], 22.5f);
+
+  uint32_t visible = 0;
+  uint64_t selected = 0;
+  for (size_t i = 0; i < n; ++i) {
+    visible += state.visible[i];
+    selected += state.vertex_count[i];
+    if (!state.visible[i]) {
+      EXPECT_EQ(state.vertex_count[i], 0u);
+    }
+    // Frame choice: exactly choose_frame for the instance's clip.
+    const PackClip& clip = *scene.clips[scene.instances.clip[i]].clip;
+    const FrameChoice f = choose_frame(clip, 2.5f, scene.instances.speed[i], scene.instances.time_offset[i],
+                                       FrameFilter::kNearest);
+    EXPECT_EQ(state.row0[i], clip.first_row + f.frame0);
+    const uint32_t count = state.vertex_count[i];
+    if (count > 0) {
+      const Pack& pack = scene.types[scene.instances.type[i]].pack;
+      EXPECT_GE(count, pack.min_vertices());
+      EXPECT_LE(count, pack.max_vertices());
+    }
+  }
+  EXPECT_EQ(visible, state.visible_count);
+  EXPECT_EQ(state.lod.visible, visible);
+  EXPECT_EQ(selected, state.lod.selected_vertices);
+  EXPECT_LE(selected, 300000u);  // MinT = 1: the budget holds
+  EXPECT_GT(state.lod.drawn, 400u);
+  EXPECT_EQ(state.visible[0], 0u) << "the instance behind the camera is culled";
+
+  // The same arrays again: allocations are reused, results identical.
+  const std::vector<uint32_t> before = state.vertex_count;
+  const float* world = state.world.data();
+  ASSERT_TRUE(update_frame(scene, 2.5f, state));
+  EXPECT_EQ(state.vertex_count, before);
+  EXPECT_EQ(state.world.data(), world);
+}
+
+TEST(UpdateFrame, NeedsOnlyThePackTables) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene full, tables;
+  ASSERT_TRUE(stadium(full));
+  ASSERT_TRUE(stadium(tables, kPackTables));
+  EXPECT_FALSE(tables.types[0].pack.has(kPackGeometry));
+  FrameState a, b;
+  ASSERT_TRUE(update_frame(full, 7.0f, a));
+  ASSERT_TRUE(update_frame(tables, 7.0f, b));
+  EXPECT_EQ(a.vertex_count, b.vertex_count);
+  EXPECT_EQ(a.world, b.world);
+  std::vector<uint32_t> triangles;
+  EXPECT_EQ(reconstruct_lod(tables, 0, 100, triangles).code(), StatusCode::kNotLoaded);
+  std::vector<float> positions;
+  EXPECT_EQ(skin_instance(tables, 1, 0.0f, 100, positions).code(), StatusCode::kNotLoaded);
+}
+
+TEST(UpdateFrame, ModesAndBudgets) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0;
+  for (const auto& [lod, out] : {std::pair<const char*, uint64_t*>{R"({"budget": 300000, "min_t": 1})", &continuous},
+                                 {R"({"budget": 300000, "min_t": 1, "mode": "discrete"})", &discrete},
+                                 {R"({"mode": "full"})", &full},
+                                 {R"({"budget": 20000, "min_t": 1})", &small_budget}}) {
+    Scene scene;
+    ASSERT_TRUE(stadium(scene, kPackTables, lod));
+    FrameState state;
+    ASSERT_TRUE(update_frame(scene, 1.0f, state));
+    *out = state.lod.selected_vertices;
+    if (scene.lod.mode == LodMode::kDiscrete) {
+      // Every drawn instance uses one of its type's levels.
+      for (size_t i = 0; i < scene.instances.size(); ++i) {
+        if (!state.vertex_count[i]) continue;
+        const LodType& t = state.lod_types[scene.instances.type[i]];
+        bool on_level = false;
+        for (uint32_t k = 0; k < t.level_count; ++k) on_level = on_level || t.levels[k] == state.vertex_count[i];
+        EXPECT_TRUE(on_level) << "instance " << i << " has " << state.vertex_count[i];
+      }
+    }
+  }
+  EXPECT_LE(discrete, continuous);
+  EXPECT_GT(full, continuous);
+  EXPECT_LE(small_budget, 20000u);
+  EXPECT_LT(small_budget, continuous);
+}
+
+TEST(UpdateFrame, RejectsBadInput) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  ASSERT_TRUE(stadium(scene, kPackTables));
+  FrameState state;
+  scene.camera_path.clear();
+  scene.camera.target = scene.camera.position;
+  Status s = update_frame(scene, 0.0f, state);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("same point"), std::string::npos);
+  ASSERT_TRUE(stadium(scene, kPackTables));
+  scene.instances.clip[0] = scene.types[1].first_clip == 0 ? 1 : 0;  // a spectator clip on a kid
+  s = update_frame(scene, 0.0f, state);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("another character type"), std::string::npos) << s.message();
+  ASSERT_TRUE(stadium(scene, kPackTables));
+  scene.instances.speed.pop_back();
+  EXPECT_EQ(update_frame(scene, 0.0f, state).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(stadium(scene, kPackTables));
+  scene.lod.budget = 0;
+  EXPECT_EQ(update_frame(scene, 0.0f, state).code(), StatusCode::kInvalidArgument);
+}
+
+TEST(SkinInstance, MatchesThePaletteAndSkinJobs) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  ASSERT_TRUE(stadium(scene));
+  for (FrameFilter filter : {FrameFilter::kNearest, FrameFilter::kLinear}) {
+    scene.animation.filter = filter;
+    for (uint32_t i : {1u, 77u, 400u, static_cast<uint32_t>(scene.instances.size() - 1)}) {
+      const Pack& pack = scene.types[scene.instances.type[i]].pack;
+      const PackContents& c = pack.contents();
+      const uint32_t n = pack.max_vertices() / 2;
+      std::vector<float> positions, normals;
+      ASSERT_TRUE(skin_instance(scene, i, 3.3f, n, positions, &normals));
+      ASSERT_EQ(positions.size(), 3 * size_t{n});
+      ASSERT_EQ(normals.size(), 3 * size_t{n});
+      // By hand: the frame, the decoded matrices, the blend.
+      const Instance in = scene.instances.get(i);
+      const PackClip& clip = *scene.clips[in.clip].clip;
+      FrameChoice frame;
+      float world[12];
+      animate_instance(clip, 3.3f, in.speed, in.time_offset, filter, true, in.position.data(), in.rotation.data(),
+                       in.scale, frame, world);
+      for (uint32_t v = 0; v < n; v += 97) {
+        float m[12] = {0};
+        for (int k = 0; k < 4; ++k) {
+          float s[12];
+          decode_skinning_matrix(c.animation, clip.first_row + frame.frame0, clip.first_row + frame.frame1,
+                                 frame.blend, c.geometry.joints[4 * v + k], s);
+          for (int e = 0; e < 12; ++e) m[e] += c.geometry.weights[4 * v + k] * s[e];
+        }
+        const float* p = &c.geometry.positions[3 * v];
+        for (int r = 0; r < 3; ++r) {
+          float local[3];
+          for (int q = 0; q < 3; ++q) local[q] = m[4 * q] * p[0] + m[4 * q + 1] * p[1] + m[4 * q + 2] * p[2] + m[4 * q + 3];
+          const float expected = world[4 * r] * local[0] + world[4 * r + 1] * local[1] + world[4 * r + 2] * local[2] + world[4 * r + 3];
+          EXPECT_NEAR(positions[3 * v + r], expected, 1e-5f) << "instance " << i << " vertex " << v;
+        }
+        const float len = std::sqrt(normals[3 * v] * normals[3 * v] + normals[3 * v + 1] * normals[3 * v + 1] +
+                                    normals[3 * v + 2] * normals[3 * v + 2]);
+        EXPECT_NEAR(len, 1.0f, 1e-5f);
+      }
+      // The skinned character stays inside its world bounding sphere.
+      FrameState state;
+      ASSERT_TRUE(update_frame(scene, 3.3f, state));
+      const float* sphere = &state.spheres[4 * i];
+      for (uint32_t v = 0; v < n; ++v) {
+        const float dx = positions[3 * v] - sphere[0], dy = positions[3 * v + 1] - sphere[1],
+                    dz = positions[3 * v + 2] - sphere[2];
+        ASSERT_LE(std::sqrt(dx * dx + dy * dy + dz * dz), sphere[3] * 1.001f) << "instance " << i << " vertex " << v;
+      }
+    }
+  }
+  std::vector<float> positions;
+  EXPECT_EQ(skin_instance(scene, 1u << 30, 0.0f, 10, positions).code(), StatusCode::kInvalidArgument);
+}
+
+TEST(ReconstructLod, EqualsTheJob) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  ASSERT_TRUE(stadium(scene));
+  for (uint32_t type = 0; type < 2; ++type) {
+    const Pack& pack = scene.types[type].pack;
+    for (uint32_t n : {0u, pack.min_vertices(), pack.max_vertices() / 3, pack.max_vertices()}) {
+      std::vector<uint32_t> triangles;
+      ASSERT_TRUE(reconstruct_lod(scene, type, n, triangles));
+      const ProgressiveView view = progressive_view(pack.contents());
+      EXPECT_EQ(triangles.size(), 3 * size_t{lod_triangle_count(view, n)});
+      for (uint32_t k : triangles) ASSERT_LT(k, usable_vertices(view, n));
+    }
+  }
+  std::vector<uint32_t> triangles;
+  EXPECT_EQ(reconstruct_lod(scene, 7, 10, triangles).code(), StatusCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace crowdbake::runtime

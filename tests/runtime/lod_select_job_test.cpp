@@ -1,0 +1,370 @@
+// LodSelectJob: the budgeted continuous LoD of DESIGN.md §3.4, hand-computed, every clamping
+// branch, the budget, culled instances, discrete and full modes.
+#include "crowdbake/runtime/lod_select_job.h"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace crowdbake::runtime {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Eye at the origin looking down -Z, 90 degrees, 100 x 100 pixels: focal_pixels = 50.
+View test_view() {
+  Camera c;
+  c.position = {0, 0, 0};
+  c.target = {0, 0, -1};
+  c.fov_y_degrees = 90.0f;
+  c.width = c.height = 100;
+  c.near_plane = 0.5f;
+  c.far_plane = 1000.0f;
+  View v;
+  EXPECT_TRUE(make_view(c, v));
+  return v;
+}
+
+LodType lod_type(uint32_t min, uint32_t max, uint32_t triangles) {
+  LodType t;
+  t.min_vertices = min;
+  t.max_vertices = max;
+  t.triangles = triangles;
+  t.levels = {max, max / 2, max / 4};
+  t.level_count = 3;
+  return t;
+}
+
+struct Crowd {
+  std::vector<LodType> types;
+  std::vector<uint32_t> type;
+  std::vector<float> spheres;
+  std::vector<uint8_t> visible;
+  std::vector<double> weights;
+  std::vector<uint32_t> vertex_count;
+  LodStats stats;
+  View view = test_view();
+
+  // An instance straight ahead at distance d with radius r.
+  void add(uint32_t t, float d, float r, bool is_visible = true) {
+    type.push_back(t);
+    spheres.insert(spheres.end(), {0.0f, 0.0f, -d, r});
+    visible.push_back(is_visible ? 1 : 0);
+  }
+
+  bool run(const LodSettings& settings) {
+    weights.assign(type.size(), -1.0);
+    vertex_count.assign(type.size(), 12345);
+    LodSelectJob job;
+    job.settings = settings;
+    job.view = &view;
+    job.types = types;
+    job.type = type;
+    job.spheres = spheres;
+    job.visible = visible;
+    job.weights = weights;
+    job.vertex_count = vertex_count;
+    job.stats = &stats;
+    return job.Run();
+  }
+};
+
+LodSettings settings(uint32_t budget, float alpha = 2.0f, float min_t = 0.5f) {
+  LodSettings s;
+  s.budget = budget;
+  s.alpha = alpha;
+  s.min_t = min_t;
+  return s;
+}
+
+// The formula written out directly (std::pow, no logarithms): w_i^(1/α).
+double root_weight(const View& v, float d, float r, uint32_t triangles, double alpha) {
+  const double beta = alpha - 1.0;
+  const double distance = std::max<double>(d, v.near_plane);
+  const double px = double(v.focal_pixels) * double(r) / distance;
+  const double area = std::min(kPi * px * px, double(v.width) * v.height);
+  const double w = beta * (area / distance) * std::pow(double(triangles), beta);
+  return std::pow(w, 1.0 / alpha);
+}
+
+// Two instances of one type (P = 1000, LoD range 100..1000), radius 1, at 10 and 40 units,
+// α = 2 (β = 1): A = π (50 / D)², w = (A / D) · 1000, so
+//   near: A = 78.54, w = 7853.98, w^½ = 88.623;  far: A = 4.909, w = 122.72, w^½ = 11.078
+// — a ratio of exactly 8, so vc_near = 8/9 N and vc_far = 1/9 N.
+Crowd two_instances() {
+  Crowd c;
+  c.types = {lod_type(100, 1000, 1000)};
+  c.add(0, 10.0f, 1.0f);
+  c.add(0, 40.0f, 1.0f);
+  return c;
+}
+
+TEST(LodSelectJob, HandComputedWeights) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(1000)));
+  EXPECT_NEAR(c.weights[0], 88.6227, 1e-3);
+  EXPECT_NEAR(c.weights[1], 11.0778, 1e-3);
+  EXPECT_NEAR(c.weights[0] / c.weights[1], 8.0, 1e-9);
+  EXPECT_NEAR(c.stats.weight_sum, 99.7005, 1e-3);
+  EXPECT_NEAR(c.weights[0], root_weight(c.view, 10.0f, 1.0f, 1000, 2.0), 1e-9);
+}
+
+TEST(LodSelectJob, InRangeStays) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(1000)));
+  EXPECT_EQ(c.vertex_count[0], 888u);  // 8/9 · 1000 = 888.9
+  EXPECT_EQ(c.vertex_count[1], 111u);  // 1/9 · 1000 = 111.1
+  EXPECT_EQ(c.stats.in_range, 2u);
+  EXPECT_EQ(c.stats.selected_vertices, 999u);
+}
+
+TEST(LodSelectJob, AboveMaxClampsToMax) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(2000)));
+  EXPECT_EQ(c.vertex_count[0], 1000u);  // 1777.8 > max
+  EXPECT_EQ(c.vertex_count[1], 222u);   // 222.2: the surplus is not redistributed
+  EXPECT_EQ(c.stats.at_max, 1u);
+}
+
+TEST(LodSelectJob, BelowMinAboveMinTIsPromotedToMin) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(815)));  // far: 90.56, 90.56 / 100 in [0.5, 1)
+  EXPECT_EQ(c.vertex_count[0], 724u);  // 724.4
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  EXPECT_EQ(c.stats.promoted, 1u);
+  EXPECT_EQ(c.stats.selected_vertices, 824u);  // the promotion exceeds N by 9
+}
+
+TEST(LodSelectJob, BelowMinTIsNotDrawn) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(365)));  // far: 40.56, 40.56 / 100 < 0.5
+  EXPECT_EQ(c.vertex_count[0], 324u);  // 324.4
+  EXPECT_EQ(c.vertex_count[1], 0u);
+  EXPECT_EQ(c.stats.dropped, 1u);
+  EXPECT_EQ(c.stats.drawn, 1u);
+}
+
+TEST(LodSelectJob, MinTBoundsDecideBetweenPromotionAndDropping) {
+  Crowd c = two_instances();
+  ASSERT_TRUE(c.run(settings(365, 2.0f, 0.0f)));  // MinT 0: everything visible is drawn
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  ASSERT_TRUE(c.run(settings(815, 2.0f, 1.0f)));  // MinT 1: nothing is promoted
+  EXPECT_EQ(c.vertex_count[1], 0u);
+  ASSERT_TRUE(c.run(settings(815, 2.0f, 0.90f)));  // 0.9056 >= 0.90: promoted
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  ASSERT_TRUE(c.run(settings(815, 2.0f, 0.91f)));  // 0.9056 < 0.91: dropped
+  EXPECT_EQ(c.vertex_count[1], 0u);
+}
+
+// α = 3 (β = 2), P = 10, radius 1 at 5 and 10 units: A = π·10² and π·5²,
+// w = 2 · (A / D) · 10² = 12566.4 and 1570.80, w^(1/3) = 23.2489 and 11.6245 (ratio 2).
+TEST(LodSelectJob, HandComputedAlphaThree) {
+  Crowd c;
+  c.types = {lod_type(10, 100000, 10)};
+  c.add(0, 5.0f, 1.0f);
+  c.add(0, 10.0f, 1.0f);
+  ASSERT_TRUE(c.run(settings(301, 3.0f)));
+  EXPECT_NEAR(c.weights[0], 23.2489, 1e-3);
+  EXPECT_NEAR(c.weights[1], 11.6245, 1e-3);
+  EXPECT_EQ(c.vertex_count[0], 200u);  // 200.67
+  EXPECT_EQ(c.vertex_count[1], 100u);  // 100.33
+}
+
+TEST(LodSelectJob, AreaIsCappedAtTheScreenAndDistanceAtTheNearPlane) {
+  Crowd c;
+  c.types = {lod_type(10, 100000, 100)};
+  c.add(0, 0.1f, 3.0f);  // the camera is inside this sphere
+  c.add(0, 20.0f, 1.0f);
+  ASSERT_TRUE(c.run(settings(1000)));
+  double area = 0, distance = 0;
+  lod_area_distance(c.view, &c.spheres[0], &area, &distance);
+  EXPECT_DOUBLE_EQ(distance, 0.5);     // the near plane
+  EXPECT_DOUBLE_EQ(area, 100.0 * 100.0);  // the whole screen
+  EXPECT_NEAR(c.weights[0], std::sqrt(1.0 * (10000.0 / 0.5) * 100.0), 1e-6);
+}
+
+TEST(LodSelectJob, MatchesTheFormulaOnARandomCrowd) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float alpha : {1.5f, 2.0f, 3.0f, 6.0f}) {
+    Crowd c;
+    c.types = {lod_type(67, 2477, 4472), lod_type(40, 1300, 1856), lod_type(200, 5000, 10116)};
+    for (int i = 0; i < 300; ++i)
+      c.add(static_cast<uint32_t>(i % 3), 2.0f + 200.0f * u(rng), 0.5f + u(rng), u(rng) < 0.8f);
+    const LodSettings s = settings(200000, alpha, 0.3f);
+    ASSERT_TRUE(c.run(s));
+    double sum = 0.0;
+    std::vector<double> root(c.type.size(), 0.0);
+    for (size_t i = 0; i < c.type.size(); ++i) {
+      if (!c.visible[i]) continue;
+      root[i] = root_weight(c.view, -c.spheres[4 * i + 2], c.spheres[4 * i + 3], c.types[c.type[i]].triangles, alpha);
+      sum += root[i];
+    }
+    EXPECT_NEAR(c.stats.weight_sum / sum, 1.0, 1e-9);
+    for (size_t i = 0; i < c.type.size(); ++i) {
+      const LodType& t = c.types[c.type[i]];
+      const double vc = c.visible[i] ? s.budget * root[i] / sum : 0.0;
+      uint32_t expected = 0;
+      if (!c.visible[i]) expected = 0;
+      else if (vc > t.max_vertices) expected = t.max_vertices;
+      else if (vc >= t.min_vertices) expected = static_cast<uint32_t>(std::floor(vc));
+      else if (vc / t.min_vertices >= s.min_t) expected = t.min_vertices;
+      // note: tolerate a floor on the other side of an integer (log/exp vs pow rounding).
+      EXPECT_NEAR(double(c.vertex_count[i]), double(expected), 1.0) << "alpha " << alpha << " instance " << i;
+      EXPECT_EQ(c.vertex_count[i] == 0, expected == 0) << "alpha " << alpha << " instance " << i;
+    }
+  }
+}
+
+TEST(LodSelectJob, BudgetIsRespectedWithoutPromotion) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (uint32_t budget : {1000u, 50000u, 400000u, 5000000u}) {
+    Crowd c;
+    c.types = {lod_type(67, 2477, 4472), lod_type(40, 1300, 1856)};
+    for (int i = 0; i < 500; ++i) c.add(static_cast<uint32_t>(i % 2), 1.0f + 300.0f * u(rng), 1.0f);
+    ASSERT_TRUE(c.run(settings(budget, 2.5f, 1.0f)));  // MinT = 1: no promotion
+    EXPECT_LE(c.stats.selected_vertices, budget) << "budget " << budget;
+    uint64_t sum = 0;
+    for (uint32_t n : c.vertex_count) sum += n;
+    EXPECT_EQ(sum, c.stats.selected_vertices);
+    // With promotion the excess is at most what promotions add.
+    ASSERT_TRUE(c.run(settings(budget, 2.5f, 0.25f)));
+    uint64_t allowance = budget;
+    for (size_t i = 0; i < c.type.size(); ++i) {
+      const double vc = budget * c.weights[i] / c.stats.weight_sum;
+      const LodType& t = c.types[c.type[i]];
+      if (vc < t.min_vertices && c.vertex_count[i] == t.min_vertices)
+        allowance += static_cast<uint64_t>(std::ceil(t.min_vertices - vc));
+    }
+    EXPECT_LE(c.stats.selected_vertices, allowance) << "budget " << budget;
+  }
+}
+
+TEST(LodSelectJob, CulledInstancesGetNothingAndDoNotShareTheBudget) {
+  Crowd c = two_instances();
+  c.add(0, 5.0f, 1.0f, false);  // culled: would take most of the budget
+  ASSERT_TRUE(c.run(settings(1000)));
+  EXPECT_EQ(c.vertex_count[2], 0u);
+  EXPECT_EQ(c.weights[2], 0.0);
+  EXPECT_EQ(c.vertex_count[0], 888u);
+  EXPECT_EQ(c.vertex_count[1], 111u);
+  EXPECT_EQ(c.stats.visible, 2u);
+}
+
+TEST(LodSelectJob, FullModeDrawsEveryVisibleInstanceAtMax) {
+  Crowd c = two_instances();
+  c.add(0, 5.0f, 1.0f, false);
+  LodSettings s = settings(1);
+  s.mode = LodMode::kFull;
+  ASSERT_TRUE(c.run(s));
+  EXPECT_EQ(c.vertex_count[0], 1000u);
+  EXPECT_EQ(c.vertex_count[1], 1000u);
+  EXPECT_EQ(c.vertex_count[2], 0u);
+}
+
+TEST(LodSelectJob, DiscreteModeSnapsDownToALevel) {
+  Crowd c = two_instances();  // levels 1000, 500, 250
+  c.add(0, 80.0f, 1.0f);
+  LodSettings s = settings(1000);
+  s.mode = LodMode::kDiscrete;
+  ASSERT_TRUE(c.run(s));
+  // Continuous: 888 -> 500; 111 (in range, below every level) -> 250, the coarsest level;
+  // the third is dropped by the continuous rule and stays dropped.
+  EXPECT_EQ(c.vertex_count[0], 500u);
+  EXPECT_EQ(c.vertex_count[1], 250u);
+  EXPECT_EQ(c.vertex_count[2], 0u);
+  ASSERT_TRUE(c.run(settings(1000)));
+  EXPECT_EQ(c.vertex_count[2], 0u);
+}
+
+TEST(LodSelectJob, ZeroAreaOrNoTrianglesGetsNoWeight) {
+  Crowd c;
+  c.types = {lod_type(0, 10, 0), lod_type(1, 10, 10)};
+  c.add(0, 5.0f, 1.0f);
+  c.add(1, 5.0f, 0.0f);
+  ASSERT_TRUE(c.run(settings(100)));
+  EXPECT_EQ(c.weights[0], 0.0);
+  EXPECT_EQ(c.weights[1], 0.0);
+  EXPECT_EQ(c.vertex_count[1], 0u);  // vc 0 / min 1 < MinT
+}
+
+TEST(LodSelectJob, SettingsChecks) {
+  std::string why;
+  EXPECT_TRUE(check_lod_settings(LodSettings{}, &why));
+  LodSettings s;
+  s.budget = 0;
+  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_NE(why.find("budget"), std::string::npos);
+  s = LodSettings{};
+  s.alpha = 1.0f;
+  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_NE(why.find("alpha"), std::string::npos);
+  s.alpha = std::nanf("");
+  EXPECT_FALSE(check_lod_settings(s));
+  s = LodSettings{};
+  s.min_t = 1.5f;
+  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_NE(why.find("min_t"), std::string::npos);
+  s = LodSettings{};
+  s.discrete_levels[1] = 1.0f;
+  EXPECT_FALSE(check_lod_settings(s, &why));
+  s = LodSettings{};
+  s.discrete_level_count = 0;
+  EXPECT_FALSE(check_lod_settings(s, &why));
+}
+
+TEST(LodSelectJob, JobValidity) {
+  Crowd c = two_instances();
+  c.weights.assign(2, 0.0);
+  c.vertex_count.assign(2, 0);
+  LodSelectJob job;
+  job.view = &c.view;
+  job.types = c.types;
+  job.type = c.type;
+  job.spheres = c.spheres;
+  job.visible = c.visible;
+  job.weights = c.weights;
+  job.vertex_count = c.vertex_count;
+  EXPECT_TRUE(job.Validate());
+  EXPECT_TRUE(job.Run());  // stats may be null
+  LodSelectJob bad = job;
+  bad.view = nullptr;
+  EXPECT_FALSE(bad.Validate());
+  EXPECT_FALSE(bad.Run());
+  bad = job;
+  bad.settings.budget = 0;
+  EXPECT_FALSE(bad.Validate());
+  bad = job;
+  bad.spheres = Span<const float>(c.spheres.data(), 7);
+  EXPECT_FALSE(bad.Validate());
+  bad = job;
+  bad.weights = Span<double>(c.weights.data(), 1);
+  EXPECT_FALSE(bad.Validate());
+  bad = job;
+  bad.vertex_count = Span<uint32_t>(c.vertex_count.data(), 1);
+  EXPECT_FALSE(bad.Validate());
+  bad = job;
+  bad.visible = Span<const uint8_t>(c.visible.data(), 1);
+  EXPECT_FALSE(bad.Validate());
+  std::vector<uint32_t> bad_type{0, 1};
+  bad = job;
+  bad.type = bad_type;
+  EXPECT_FALSE(bad.Validate());
+  std::vector<LodType> inverted{lod_type(1000, 100, 10)};
+  bad = job;
+  bad.types = inverted;
+  EXPECT_FALSE(bad.Validate());
+  std::vector<LodType> no_levels{lod_type(100, 1000, 1000)};
+  no_levels[0].level_count = 0;
+  bad = job;
+  bad.types = no_levels;
+  EXPECT_TRUE(bad.Validate());  // levels matter in discrete mode only
+  bad.settings.mode = LodMode::kDiscrete;
+  EXPECT_FALSE(bad.Validate());
+}
+
+}  // namespace
+}  // namespace crowdbake::runtime
