@@ -76,7 +76,8 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
   EXPECT_EQ(j["input"]["vertices"], 3);
   EXPECT_EQ(j["output"]["bytes"], std::filesystem::file_size(output));
-  EXPECT_EQ(j["settings"]["simplify"]["samples"], 64);
+  EXPECT_EQ(j["settings"]["simplify"]["samples"], 16);
+  EXPECT_EQ(j["settings"]["simplify"]["form"], "exact");
   EXPECT_FALSE(j["stages"].empty());
   EXPECT_EQ(j["lod"]["max_vertices"], 3);
   bool geometry = false;
