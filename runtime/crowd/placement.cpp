@@ -1,0 +1,286 @@
+// Free-standing crowd placement by capacity-constrained centroidal power diagrams
+// (crowd-patches paper, Wang, Shao, Chen 2017, §2.1 eqs. 3–8 and Algorithm 1; Lloyd 1982;
+// capacity by Newton steps on power weights as in Balzer et al. 2009 and de Goes et al. 2012).
+#include "crowdbake/runtime/crowd/placement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <limits>
+#include <sstream>
+
+#include "polygon.h"
+#include "power_cells.h"
+#include "power_diagram.h"
+#include "random.h"
+
+namespace crowdbake::crowd {
+namespace {
+
+using glm::dvec2;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kFormationTurns = 24;  // rotations tried per group formation
+constexpr int kRepairRounds = 200;   // min-distance passes before giving up
+constexpr int kMaxPeople = 10'000'000;
+
+std::string Num(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+Status BadOption(const std::string& what) {
+  return Status::Error(Status::Code::kInvalidArgument, "placement: " + what);
+}
+
+// Moves p inside the polygon when it is outside (centroids of non-convex patches).
+dvec2 IntoRegion(const std::vector<dvec2>& region, const dvec2& p, const dvec2& towards,
+                 double inset) {
+  if (detail::Inside(region, p)) return p;
+  dvec2 nearest;
+  detail::BoundaryDistance(region, p, &nearest);
+  for (double t = inset; t < 1e6 * inset; t *= 2.0) {
+    const dvec2 d = towards - nearest;
+    const double len = glm::length(d);
+    const dvec2 q = len > 0.0 ? nearest + std::min(t, len) * d / len : nearest;
+    if (detail::Inside(region, q)) return q;
+  }
+  return towards;
+}
+
+// Smallest distance between two points among pairs closer than `cell`; `cell` if none.
+double MinPairDistance(const std::vector<dvec2>& points, double cell,
+                       std::vector<std::pair<uint32_t, uint32_t>>* close_pairs = nullptr,
+                       double limit = 0.0) {
+  std::vector<std::pair<std::pair<int64_t, int64_t>, uint32_t>> keyed(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    keyed[i] = {{static_cast<int64_t>(std::floor(points[i].x / cell)),
+                 static_cast<int64_t>(std::floor(points[i].y / cell))},
+                static_cast<uint32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  double best = cell;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto key = keyed[i].first;
+    const uint32_t a = keyed[i].second;
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const std::pair<int64_t, int64_t> k{key.first + dx, key.second + dy};
+        auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(k, 0u));
+        for (; it != keyed.end() && it->first == k; ++it) {
+          const uint32_t b = it->second;
+          if (b <= a) continue;
+          const double d = glm::length(points[b] - points[a]);
+          best = std::min(best, d);
+          if (close_pairs && d < limit) close_pairs->emplace_back(a, b);
+        }
+      }
+  }
+  if (close_pairs) std::sort(close_pairs->begin(), close_pairs->end());
+  return best;
+}
+
+}  // namespace
+
+Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
+  // Options.
+  if (o.people < 0 || o.people > kMaxPeople)
+    return BadOption("people = " + std::to_string(o.people) + " must be in [0, " +
+                     std::to_string(kMaxPeople) + "]");
+  if (!std::isfinite(o.min_distance_m) || o.min_distance_m <= 0.0)
+    return BadOption("min_distance_m = " + Num(o.min_distance_m) + " must be finite and > 0");
+  if (!std::isfinite(o.group_spacing_m) || o.group_spacing_m < o.min_distance_m)
+    return BadOption("group_spacing_m = " + Num(o.group_spacing_m) +
+                     " must be finite and >= min_distance_m (" + Num(o.min_distance_m) + ")");
+  if (Status s = ValidateGroupMix(o.groups); !s.ok()) return BadOption(s.message());
+  if (o.max_iterations < 0) return BadOption("max_iterations must be >= 0");
+  if (o.weight_iterations < 0) return BadOption("weight_iterations must be >= 0");
+  if (!std::isfinite(o.capacity_tolerance) || o.capacity_tolerance <= 0.0)
+    return BadOption("capacity_tolerance = " + Num(o.capacity_tolerance) + " must be > 0");
+  if (!std::isfinite(o.move_tolerance) || o.move_tolerance <= 0.0)
+    return BadOption("move_tolerance = " + Num(o.move_tolerance) + " must be > 0");
+  if (const std::string why = detail::CheckSimplePolygon(o.region); !why.empty())
+    return BadOption("region " + why);
+
+  std::vector<dvec2> region = o.region;
+  if (detail::SignedArea(region) < 0.0) std::reverse(region.begin(), region.end());
+  const double area = detail::SignedArea(region);
+  const double d = o.min_distance_m;
+  const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
+  if (area < packing)
+    return Status::Error(Status::Code::kInfeasible,
+                         "placement: the region's " + Num(area) + " m² cannot hold " +
+                             std::to_string(o.people) + " people " + Num(d) +
+                             " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
+
+  Placement out;
+  out.backend = detail::PowerBackendName();
+  if (o.people == 0) {
+    *result = std::move(out);
+    return Status::Ok();
+  }
+
+  // Groups and their capacities (paper eq. 7: patch area ∝ people in it).
+  out.group_size = DrawGroupSizes(o.groups, o.people, o.seed);
+  const size_t groups = out.group_size.size();
+  std::vector<double> capacity(groups);  // local units: the region has area 1
+  for (size_t g = 0; g < groups; ++g)
+    capacity[g] = static_cast<double>(out.group_size[g]) / static_cast<double>(o.people);
+
+  // note: work in a frame centred on the region with unit area; far-from-origin and tiny or
+  // huge regions then behave the same.
+  dvec2 lo = region[0], hi = region[0];
+  for (const dvec2& p : region) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const dvec2 centre = 0.5 * (lo + hi);
+  const double scale = std::sqrt(area);
+  std::vector<dvec2> local(region.size());
+  for (size_t k = 0; k < region.size(); ++k) local[k] = (region[k] - centre) / scale;
+  const dvec2 llo = (lo - centre) / scale, lhi = (hi - centre) / scale;
+
+  detail::Rng rng(o.seed, detail::kStreamPlacement);
+  std::vector<dvec2> sites;
+  sites.reserve(groups);
+  const uint64_t max_attempts = 1000 * static_cast<uint64_t>(groups) + 100000;
+  for (uint64_t attempt = 0; sites.size() < groups; ++attempt) {
+    if (attempt >= max_attempts)
+      return Status::Error(Status::Code::kInfeasible,
+                           "placement: could not sample starting points inside the region");
+    const dvec2 p(rng.Range(llo.x, lhi.x), rng.Range(llo.y, lhi.y));
+    if (detail::Inside(local, p)) sites.push_back(p);
+  }
+
+  // Lloyd iterations on the capacity-constrained power diagram.
+  std::vector<double> weights(groups, 0.0);
+  detail::Cells cells;
+  std::string error;
+  const double spacing = std::sqrt(1.0 / static_cast<double>(groups));
+  double bound = 0.0;  // Σ v²/(2π): no patch of area v has a smaller second moment (a disc)
+  for (double v : capacity) bound += v * v / (2.0 * kPi);
+  const double to_m4 = scale * scale * scale * scale;
+  double capacity_norm = 0.0;
+  for (double v : capacity) capacity_norm += v * v;
+  for (int it = 0; it < o.max_iterations; ++it) {
+    if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+                              &weights, &cells, &error))
+      return Status::Error(Status::Code::kInternal, "placement: " + error);
+    double energy = 0.0, cap_error = 0.0, max_move = 0.0;
+    for (size_t g = 0; g < groups; ++g) {
+      energy += cells.moment[g];
+      cap_error += (cells.area[g] - capacity[g]) * (cells.area[g] - capacity[g]);
+      if (cells.area[g] <= 0.0) continue;
+      const dvec2 target = IntoRegion(local, cells.centroid[g], sites[g], 1e-6 * spacing);
+      max_move = std::max(max_move, glm::length(target - sites[g]));
+      sites[g] = target;
+    }
+    out.energy.push_back(energy * to_m4);
+    out.capacity_error.push_back(cap_error / capacity_norm);
+    out.max_move.push_back(max_move / spacing);
+    out.iterations = it + 1;
+    if (max_move / spacing < o.move_tolerance) {
+      out.converged = true;
+      break;
+    }
+  }
+  if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+                            &weights, &cells, &error) ||
+      !detail::ComputeCells(local, sites, weights, true, &cells, &error))
+    return Status::Error(Status::Code::kInternal, "placement: " + error);
+  out.energy_bound = bound * to_m4;
+
+  // Back to metres.
+  out.sites.resize(groups);
+  out.weights.resize(groups);
+  out.capacity.resize(groups);
+  out.area.resize(groups);
+  out.patches.resize(groups);
+  for (size_t g = 0; g < groups; ++g) {
+    out.sites[g] = centre + sites[g] * scale;
+    out.weights[g] = weights[g] * scale * scale;
+    out.capacity[g] = capacity[g] * area;
+    out.area[g] = cells.area[g] * area;
+    for (const dvec2& p : cells.polygons[g]) out.patches[g].push_back(centre + p * scale);
+  }
+
+  // Formations: a regular polygon of side group_spacing_m around the site, members facing
+  // its centre, turned so the member nearest the patch border is as far inside as possible.
+  detail::Rng turn_rng(o.seed, detail::kStreamFormation);
+  const double s = o.group_spacing_m;
+  for (size_t g = 0; g < groups; ++g) {
+    const int n = out.group_size[g];
+    const dvec2 c = out.sites[g];
+    const std::vector<dvec2>& patch = out.patches[g].empty() ? region : out.patches[g];
+    out.group_first.push_back(static_cast<uint32_t>(out.positions.size()));
+    const double start = turn_rng.Next() * 2.0 * kPi;
+    if (n == 1) {
+      out.positions.push_back(c);
+      out.facing.push_back(dvec2(std::cos(start), std::sin(start)));
+      out.group_of.push_back(static_cast<uint32_t>(g));
+      if (detail::SignedDistance(patch, c) < 0.0) ++out.members_outside_patch;
+      continue;
+    }
+    const double radius = s / (2.0 * std::sin(kPi / n));
+    double best_score = -std::numeric_limits<double>::infinity(), best_turn = start;
+    for (int k = 0; k < kFormationTurns; ++k) {
+      const double turn = start + (2.0 * kPi / n) * k / kFormationTurns;
+      double score = std::numeric_limits<double>::infinity();
+      for (int m = 0; m < n; ++m) {
+        const double a = turn + 2.0 * kPi * m / n;
+        score = std::min(
+            score, detail::SignedDistance(patch, c + radius * dvec2(std::cos(a), std::sin(a))));
+      }
+      if (score > best_score) best_score = score, best_turn = turn;
+    }
+    for (int m = 0; m < n; ++m) {
+      const double a = best_turn + 2.0 * kPi * m / n;
+      const dvec2 dir(std::cos(a), std::sin(a));
+      const dvec2 p = c + radius * dir;
+      out.positions.push_back(p);
+      out.facing.push_back(-dir);
+      out.group_of.push_back(static_cast<uint32_t>(g));
+      if (detail::SignedDistance(patch, p) < 0.0) ++out.members_outside_patch;
+    }
+  }
+
+  // Keep everyone inside the region, then push apart any pair closer than the minimum.
+  const dvec2 region_centroid = detail::Centroid(region);
+  for (size_t i = 0; i < out.positions.size(); ++i)
+    out.positions[i] = IntoRegion(region, out.positions[i], out.sites[out.group_of[i]], 1e-6 * d);
+  const double goal = d * (1.0 + 1e-9);
+  for (int round = 0;; ++round) {
+    std::vector<std::pair<uint32_t, uint32_t>> close;
+    MinPairDistance(out.positions, 2.0 * d, &close, goal);
+    if (close.empty()) break;
+    if (round == kRepairRounds) {
+      const auto [a, b] = close.front();
+      return Status::Error(
+          Status::Code::kInfeasible,
+          "placement: characters " + std::to_string(a) + " and " + std::to_string(b) + " stay " +
+              Num(glm::length(out.positions[a] - out.positions[b])) +
+              " m apart (< min_distance_m " + Num(d) + ") after " + std::to_string(kRepairRounds) +
+              " separation passes; the region is too crowded (" + Num(o.people / area) +
+              " people/m²)");
+    }
+    if (round == 0) out.repaired_pairs = static_cast<int>(close.size());
+    for (const auto& [a, b] : close) {
+      dvec2 delta = out.positions[b] - out.positions[a];
+      double len = glm::length(delta);
+      if (len < 1e-12 * d) {
+        const double angle = detail::Uniform(o.seed, a, b) * 2.0 * kPi;
+        delta = dvec2(std::cos(angle), std::sin(angle));
+        len = 1.0;
+      }
+      const dvec2 push = (0.5 * (goal - len) + 1e-3 * d) * delta / len;
+      out.positions[a] -= push;
+      out.positions[b] += push;
+    }
+    for (dvec2& p : out.positions) p = IntoRegion(region, p, region_centroid, 1e-6 * d);
+  }
+  out.min_pair_distance = out.positions.size() < 2
+                              ? 0.0
+                              : MinPairDistance(out.positions, std::max(2.0 * d, scale * spacing));
+  *result = std::move(out);
+  return Status::Ok();
+}
+
+}  // namespace crowdbake::crowd
