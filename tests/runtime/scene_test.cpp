@@ -3,6 +3,8 @@
 #include "crowdbake/runtime/scene.h"
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -290,6 +292,25 @@ TEST(Scene, SeveralCharacterTypesFromBakedAndHandBuiltPacks) {
     EXPECT_EQ(scene.clips[scene.instances.clip[i]].type, 1u);
     EXPECT_EQ(scene.instances.neck_height[i], scene.types[1].pack.contents().partition.neck_height);
   }
+}
+
+TEST(Scene, DocumentedExampleLoads) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  // The first json block of docs/scene-format.md, with the baked spectator as its pack.
+  std::ifstream in(std::string(CROWDBAKE_SOURCE_DIR) + "/docs/scene-format.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t start = doc.find("```json\n");
+  ASSERT_NE(start, std::string::npos);
+  const size_t end = doc.find("```", start + 8);
+  SceneFiles files;
+  files.add_spectator();
+  Scene scene;
+  const Status s = files.load(doc.substr(start + 8, end - start - 8), scene, SceneLoadOptions{kPackTables});
+  ASSERT_TRUE(s) << s.message();
+  EXPECT_GT(scene.instances.size(), 201u + 4000u);  // 4800 seats, 8% empty
+  EXPECT_LT(scene.instances.size(), 201u + 4800u);
+  EXPECT_EQ(scene.camera_path.size(), 2u);
+  EXPECT_EQ(scene.types[0].texture_variants.upper_body, 6u);
 }
 
 // ---- Bad scene files ------------------------------------------------------------------
