@@ -8,7 +8,7 @@
 // Determinism: decisions happen on a fixed tick grid (k · tick_s) and every random draw is a
 // hash of (seed, individual or group, a per-individual counter), so the output at a given
 // time depends only on the definitions and the seed, never on how often or at which times
-// Run() was called before (tests check 24, 60 fps and one jump give identical results).
+// Run() was called before (tests check that 24, 60 and 1 fps give identical results).
 //
 // Order inside a tick at time T: (1) clips that end at or before T finish and pick their
 // successor with the decisions of the previous tick; (2) every individual's share of
