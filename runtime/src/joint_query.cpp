@@ -10,6 +10,8 @@ namespace {
 Status prepare(const Scene& scene, uint32_t instance, float time, const Pack** pack,
                const PackClip** clip, FrameChoice& frame, float world[12]) {
   const InstanceArrays& in = scene.instances;
+  if (!in.consistent())
+    return {StatusCode::kInvalidArgument, "instance arrays have inconsistent lengths"};
   if (instance >= in.size())
     return {StatusCode::kInvalidArgument,
             "instance " + std::to_string(instance) + " out of range (" + std::to_string(in.size()) +

@@ -284,17 +284,19 @@ bool Pack::is_open() const { return impl_ != nullptr; }
 
 Status Pack::load(uint32_t parts) {
   if (!impl_) return {StatusCode::kInvalidArgument, "Pack::load: the pack is not open"};
+  uint32_t current = 0;
   try {
     for (uint32_t part : {kPackGeometry, kPackAnimation, kPackPartition}) {
       if (!(parts & part) || (impl_->loaded & part)) continue;
+      current = part;
       if (Status s = impl_->load_part(part); !s) return s;
     }
     return {};
   } catch (const std::bad_alloc&) {
-    impl_->clear(parts);
+    impl_->clear(current);
     return {StatusCode::kOutOfMemory, impl_->name + ": out of memory while loading"};
   } catch (const std::exception& e) {
-    impl_->clear(parts);
+    impl_->clear(current);
     return {StatusCode::kInvalidPack, impl_->name + ": unexpected error while loading: " + e.what()};
   }
 }

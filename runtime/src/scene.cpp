@@ -7,6 +7,14 @@
 
 namespace crowdbake::runtime {
 
+bool InstanceArrays::consistent() const {
+  const size_t n = type.size();
+  return position.size() == 3 * n && rotation.size() == 4 * n && scale.size() == n &&
+         clip.size() == n && speed.size() == n && time_offset.size() == n &&
+         textures.size() == n && neck_height.size() == n && waist_height.size() == n &&
+         color.size() == 3 * n;
+}
+
 void InstanceArrays::clear() { *this = InstanceArrays{}; }
 
 void InstanceArrays::reserve(size_t n) {

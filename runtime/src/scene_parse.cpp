@@ -615,7 +615,7 @@ std::string clip_list(const Pack& pack) {
   return out;
 }
 
-Resolved resolve(const Scene& scene, const RawScene& raw, const RawAttributes& a) {
+Resolved resolve(const Scene& scene, const RawAttributes& a) {
   Resolved r;
   if (a.type.empty()) {
     if (scene.types.size() != 1)
@@ -657,7 +657,6 @@ Resolved resolve(const Scene& scene, const RawScene& raw, const RawAttributes& a
   if (r.waist > r.neck)
     fail(a.path + (a.waist_height ? ".waist_height" : ".neck_height"),
          "waist height " + show(r.waist) + " is above neck height " + show(r.neck));
-  (void)raw;
   return r;
 }
 
@@ -706,7 +705,7 @@ void build_instances(const RawScene& raw, Scene& scene) {
   for (const RawGenerator& g : raw.generators) total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
   out.reserve(static_cast<size_t>(total));
   for (const RawInstance& ri : raw.instances) {
-    const Resolved r = resolve(scene, raw, ri.a);
+    const Resolved r = resolve(scene, ri.a);
     Random rng(0);
     Instance in = make_instance(scene, ri.a, r, rng);
     in.position = ri.position;
@@ -714,7 +713,7 @@ void build_instances(const RawScene& raw, Scene& scene) {
     out.add(in);
   }
   for (const RawGenerator& g : raw.generators) {
-    const Resolved r = resolve(scene, raw, g.a);
+    const Resolved r = resolve(scene, g.a);
     if (g.grid) {
       const float yaw = g.yaw_degrees * kPi / 180.0f;
       const float c = std::cos(yaw), s = std::sin(yaw);

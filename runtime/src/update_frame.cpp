@@ -19,6 +19,7 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
   if (!make_view(scene.camera_at_time(time), state.view, &why)) return invalid(why);
   if (!check_lod_settings(scene.lod, &why)) return invalid("lod: " + why);
   const InstanceArrays& in = scene.instances;
+  if (!in.consistent()) return invalid("instance arrays have inconsistent lengths");
   const size_t n = in.size();
   state.time = time;
   state.row0.resize(n);
@@ -100,6 +101,7 @@ Status reconstruct_lod(const Scene& scene, uint32_t type, uint32_t vertices,
 Status skin_instance(const Scene& scene, uint32_t instance, float time, uint32_t vertices,
                      std::vector<float>& positions, std::vector<float>* normals) {
   const InstanceArrays& in = scene.instances;
+  if (!in.consistent()) return invalid("instance arrays have inconsistent lengths");
   if (instance >= in.size()) return invalid("instance " + std::to_string(instance) + " out of range");
   if (in.clip[instance] >= scene.clips.size() || in.type[instance] >= scene.types.size())
     return invalid("instance " + std::to_string(instance) + " has a bad type or clip index");

@@ -155,6 +155,16 @@ TEST(UpdateFrame, RejectsBadInput) {
   scene.instances.speed.pop_back();
   EXPECT_EQ(update_frame(scene, 0.0f, state).code(), StatusCode::kInvalidArgument);
   ASSERT_TRUE(stadium(scene, kPackTables));
+  scene.instances.clip.pop_back();  // shorter than the type array the loops run over
+  s = update_frame(scene, 0.0f, state);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("inconsistent lengths"), std::string::npos) << s.message();
+  std::vector<float> positions;
+  EXPECT_EQ(skin_instance(scene, 0, 0.0f, 10, positions).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(stadium(scene, kPackTables));
+  scene.instances.type[3] = 9;  // no such type
+  EXPECT_EQ(update_frame(scene, 0.0f, state).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(stadium(scene, kPackTables));
   scene.lod.budget = 0;
   EXPECT_EQ(update_frame(scene, 0.0f, state).code(), StatusCode::kInvalidArgument);
 }

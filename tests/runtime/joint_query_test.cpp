@@ -152,6 +152,9 @@ TEST(JointQuery, Errors) {
   s = joint_world_matrix(scene, 0, 3, 0.0f, m);
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("joint 3"), std::string::npos);
+  Scene broken = small_scene();
+  broken.instances.rotation.pop_back();
+  EXPECT_EQ(joint_world_matrix(broken, 0, 0, 0.0f, m).code(), StatusCode::kInvalidArgument);
   std::vector<float> short_out(12);
   EXPECT_EQ(joint_world_matrices(scene, 0, 0.0f, short_out).code(), StatusCode::kInvalidArgument);
   scene.types[0].pack.release(kPackAnimation);

@@ -512,7 +512,11 @@ TEST(Scene, BuiltFromCode) {
   EXPECT_EQ(back.textures, in.textures);
   EXPECT_EQ(back.color, in.color);
   expect_consistent(scene.instances);
+  EXPECT_TRUE(scene.instances.consistent());
+  scene.instances.color.pop_back();
+  EXPECT_FALSE(scene.instances.consistent());
   scene.instances.clear();
+  EXPECT_TRUE(scene.instances.consistent());
   EXPECT_EQ(scene.instances.size(), 0u);
 }
 

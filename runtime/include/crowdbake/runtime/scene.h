@@ -33,6 +33,8 @@ struct TextureVariants {
   uint32_t head = 1, upper_body = 1, trousers = 1;  // each 1..256
 };
 
+// note: Scene::clips points into each type's pack: add types with add_character_type and do
+// not replace a type's pack afterwards.
 struct CharacterType {
   std::string name;
   std::string pack_path;  // as opened (scene files: resolved against the scene's folder)
@@ -75,6 +77,9 @@ struct InstanceArrays {
   std::vector<float> color;        // 3 per instance: hue shift (deg), saturation, brightness
 
   size_t size() const { return type.size(); }
+  // True when every array has the length size() instances need (3 or 4 per instance for
+  // vectors). The CPU reference path refuses inconsistent arrays.
+  bool consistent() const;
   void clear();
   void reserve(size_t n);
   void add(const Instance& instance);
