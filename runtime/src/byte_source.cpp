@@ -31,10 +31,10 @@ class FileSource final : public ByteSource {
                                           " bytes at offset " + std::to_string(offset) +
                                           " failed: " + std::strerror(errno)};
       if (got == 0)
-        return {StatusCode::kIoError,
-                path_ + ": file ended at " + std::to_string(offset + done) + " bytes while reading " +
-                    std::to_string(count) + " bytes at offset " + std::to_string(offset) +
-                    " (was it truncated while open?)"};
+        return {StatusCode::kIoError, path_ + ": file ended at " + std::to_string(offset + done) +
+                                          " bytes while reading " + std::to_string(count) +
+                                          " bytes at offset " + std::to_string(offset) +
+                                          " (was it truncated while open?)"};
       done += static_cast<size_t>(got);
     }
     return {};

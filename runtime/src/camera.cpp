@@ -95,10 +95,9 @@ bool make_view(const Camera& camera, View& out, std::string* why) {
   // |x| <= z·tan_x and |y| <= z·tan_y; the planes pass through the eye.
   const float tan_x = v.tan_half_fov_y * v.aspect;
   const float tan_y = v.tan_half_fov_y;
-  const Vec3 normals[4] = {add(v.right, scaled(v.forward, tan_x)),
-                           add(scaled(v.right, -1.0f), scaled(v.forward, tan_x)),
-                           add(v.up, scaled(v.forward, tan_y)),
-                           add(scaled(v.up, -1.0f), scaled(v.forward, tan_y))};
+  const Vec3 normals[4] = {
+      add(v.right, scaled(v.forward, tan_x)), add(scaled(v.right, -1.0f), scaled(v.forward, tan_x)),
+      add(v.up, scaled(v.forward, tan_y)), add(scaled(v.up, -1.0f), scaled(v.forward, tan_y))};
   for (int i = 0; i < 4; ++i) set_plane(v.planes, i, normals[i], -dot(normals[i], v.eye));
   set_plane(v.planes, 4, v.forward, -dot(v.forward, v.eye) - v.near_plane);
   set_plane(v.planes, 5, scaled(v.forward, -1.0f), dot(v.forward, v.eye) + v.far_plane);

@@ -15,8 +15,8 @@ bool sphere_visible(const float planes[24], const float c[3], float radius) {
 
 bool CullJob::Validate() const {
   const size_t n = type.size();
-  if (planes.size() != 24 || world.size() != 12 * n || scale.size() != n ||
-      visible.size() != n || spheres.size() != 4 * n)
+  if (planes.size() != 24 || world.size() != 12 * n || scale.size() != n || visible.size() != n ||
+      spheres.size() != 4 * n)
     return false;
   for (uint32_t t : type)
     if (t >= bounds.size()) return false;

@@ -105,7 +105,8 @@ void frame_root_motion(const PackClip& clip, const FrameChoice& frame, float out
       tz = iz, tx = ix, theta = -theta, c = -c;
     }
     const double half = 0.5 * theta;
-    const double ratio = std::fabs(std::sin(half)) < 1e-12 ? c : std::sin(c * half) / std::sin(half);
+    const double ratio =
+        std::fabs(std::sin(half)) < 1e-12 ? c : std::sin(c * half) / std::sin(half);
     const double phase = (c - 1.0) * half;
     const double sz = ratio * std::cos(phase), sx = ratio * std::sin(phase);
     const double cz = tz * sz - tx * sx, cx = tz * sx + tx * sz;  // t_c = w_t · sum

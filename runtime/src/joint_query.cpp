@@ -13,9 +13,9 @@ Status prepare(const Scene& scene, uint32_t instance, float time, const Pack** p
   if (!in.consistent())
     return {StatusCode::kInvalidArgument, "instance arrays have inconsistent lengths"};
   if (instance >= in.size())
-    return {StatusCode::kInvalidArgument,
-            "instance " + std::to_string(instance) + " out of range (" + std::to_string(in.size()) +
-                " instances)"};
+    return {StatusCode::kInvalidArgument, "instance " + std::to_string(instance) +
+                                              " out of range (" + std::to_string(in.size()) +
+                                              " instances)"};
   if (in.clip[instance] >= scene.clips.size() || in.type[instance] >= scene.types.size())
     return {StatusCode::kInvalidArgument,
             "instance " + std::to_string(instance) + " has a bad type or clip index"};
@@ -67,9 +67,9 @@ Status joint_world_matrices(const Scene& scene, uint32_t instance, float time, S
   if (Status s = prepare(scene, instance, time, &pack, &clip, frame, world); !s) return s;
   const uint32_t joints = pack->counts().joints;
   if (out.size() != 12 * size_t{joints})
-    return {StatusCode::kInvalidArgument, "output holds " + std::to_string(out.size()) +
-                                              " floats, " + std::to_string(joints) +
-                                              " joints need " + std::to_string(12 * size_t{joints})};
+    return {StatusCode::kInvalidArgument,
+            "output holds " + std::to_string(out.size()) + " floats, " + std::to_string(joints) +
+                " joints need " + std::to_string(12 * size_t{joints})};
   for (uint32_t j = 0; j < joints; ++j)
     if (Status s = joint_matrix(*pack, *clip, frame, world, j, &out[12 * size_t{j}]); !s) return s;
   return {};

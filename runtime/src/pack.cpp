@@ -72,8 +72,8 @@ struct Pack::Impl {
   PackCounts counts;
   PackContents contents;
   uint32_t loaded = 0;
-  std::vector<float> bind;         // 12 per joint
-  std::vector<uint8_t> bind_ok;    // 1 per joint
+  std::vector<float> bind;       // 12 per joint
+  std::vector<uint8_t> bind_ok;  // 1 per joint
 
   Status fail(const std::string& what) const {
     return {StatusCode::kInvalidPack, name + ": " + what};
@@ -101,7 +101,8 @@ struct Pack::Impl {
     const uint64_t size = source->size();
     // Header first: it says where the table is. A short or odd header goes to
     // read_pack_chunks as is, which reports the precise problem.
-    std::vector<uint8_t> front(static_cast<size_t>(std::min<uint64_t>(size, pack_format::kHeaderSize)));
+    std::vector<uint8_t> front(
+        static_cast<size_t>(std::min<uint64_t>(size, pack_format::kHeaderSize)));
     if (Status s = source->read(0, front.size(), front.data()); !s) return s;
     if (front.size() == pack_format::kHeaderSize) {
       const uint32_t chunk_count = load_u32(&front[16]);
@@ -135,8 +136,8 @@ struct Pack::Impl {
     // has checked the payload holds exactly name, settings and those counts.
     if (head.size() < 24) return fail("chunk HEAD: too short for its counts");
     const uint8_t* c = head.data() + head.size() - 24;
-    counts = {load_u32(c), load_u32(c + 4), load_u32(c + 8), load_u32(c + 12), load_u32(c + 16),
-              load_u32(c + 20)};
+    counts = {load_u32(c),      load_u32(c + 4),  load_u32(c + 8),
+              load_u32(c + 12), load_u32(c + 16), load_u32(c + 20)};
     for (uint32_t tag : kTableTags)
       if (tag != pack_format::kTagHead)
         if (Status s = read_chunk(tag); !s) return s;
@@ -170,8 +171,8 @@ struct Pack::Impl {
       if (prog.collapse_to.size() != counts.vertices)
         return count_mismatch("PROG", "vertices", counts.vertices, prog.collapse_to.size());
       if (prog.triangle_count.back() != counts.triangles)
-        return fail("chunk PROG: triangle_count[" + std::to_string(counts.vertices) + "] = " +
-                    std::to_string(prog.triangle_count.back()) + ", HEAD says " +
+        return fail("chunk PROG: triangle_count[" + std::to_string(counts.vertices) +
+                    "] = " + std::to_string(prog.triangle_count.back()) + ", HEAD says " +
                     std::to_string(counts.triangles) + " triangles");
     }
     bind.assign(size_t{12} * p.joints.size(), 0.0f);
@@ -269,7 +270,8 @@ Status Pack::open(std::unique_ptr<ByteSource> source, Pack& out, uint32_t parts)
     return {StatusCode::kOutOfMemory, "out of memory while opening a pack"};
   } catch (const std::exception& e) {
     out.impl_.reset();
-    return {StatusCode::kInvalidPack, std::string("unexpected error while opening a pack: ") + e.what()};
+    return {StatusCode::kInvalidPack,
+            std::string("unexpected error while opening a pack: ") + e.what()};
   }
 }
 
@@ -297,7 +299,8 @@ Status Pack::load(uint32_t parts) {
     return {StatusCode::kOutOfMemory, impl_->name + ": out of memory while loading"};
   } catch (const std::exception& e) {
     impl_->clear(current);
-    return {StatusCode::kInvalidPack, impl_->name + ": unexpected error while loading: " + e.what()};
+    return {StatusCode::kInvalidPack,
+            impl_->name + ": unexpected error while loading: " + e.what()};
   }
 }
 

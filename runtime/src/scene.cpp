@@ -1,18 +1,18 @@
 // Scene helpers shared by scene.json loading and crowds built from code.
+#include "crowdbake/runtime/scene.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include "crowdbake/runtime/reconstruct_job.h"
-#include "crowdbake/runtime/scene.h"
 
 namespace crowdbake::runtime {
 
 bool InstanceArrays::consistent() const {
   const size_t n = type.size();
   return position.size() == 3 * n && rotation.size() == 4 * n && scale.size() == n &&
-         clip.size() == n && speed.size() == n && time_offset.size() == n &&
-         textures.size() == n && neck_height.size() == n && waist_height.size() == n &&
-         color.size() == 3 * n;
+         clip.size() == n && speed.size() == n && time_offset.size() == n && textures.size() == n &&
+         neck_height.size() == n && waist_height.size() == n && color.size() == 3 * n;
 }
 
 void InstanceArrays::clear() { *this = InstanceArrays{}; }
@@ -110,8 +110,8 @@ LodType make_lod_type(const Pack& pack, const LodSettings& settings) {
   t.level_count = std::min(settings.discrete_level_count, kMaxDiscreteLevels);
   for (uint32_t k = 0; k < t.level_count; ++k) {
     const double wanted = std::floor(double{settings.discrete_levels[k]} * t.max_vertices);
-    const uint32_t n = static_cast<uint32_t>(
-        std::clamp(wanted, static_cast<double>(t.min_vertices), static_cast<double>(t.max_vertices)));
+    const uint32_t n = static_cast<uint32_t>(std::clamp(wanted, static_cast<double>(t.min_vertices),
+                                                        static_cast<double>(t.max_vertices)));
     t.levels[k] = usable_vertices(view, n);
   }
   return t;

@@ -12,10 +12,9 @@
 #include <fstream>
 #include <initializer_list>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "crowdbake/runtime/scene.h"
 
@@ -93,18 +92,19 @@ double number(const json& v, const std::string& path) {
 double number_at_least(const json& v, const std::string& path, double lo, bool inclusive) {
   const double d = number(v, path);
   if (inclusive ? d < lo : d <= lo)
-    fail(path, std::string("must be ") + (inclusive ? ">= " : "> ") + show(lo) + ", got " + show(d));
+    fail(path,
+         std::string("must be ") + (inclusive ? ">= " : "> ") + show(lo) + ", got " + show(d));
   return d;
 }
 
 int64_t integer(const json& v, const std::string& path, int64_t lo, int64_t hi) {
-  if (!v.is_number_integer())
-    fail(path, "expected an integer, got " + describe(v));
+  if (!v.is_number_integer()) fail(path, "expected an integer, got " + describe(v));
   if (v.is_number_unsigned()) {
     const uint64_t u = v.get<uint64_t>();
     if (lo > 0 && u < static_cast<uint64_t>(lo))
       fail(path, "must be at least " + std::to_string(lo) + ", got " + v.dump());
-    if (u > static_cast<uint64_t>(hi)) fail(path, "must be at most " + std::to_string(hi) + ", got " + v.dump());
+    if (u > static_cast<uint64_t>(hi))
+      fail(path, "must be at most " + std::to_string(hi) + ", got " + v.dump());
     return static_cast<int64_t>(u);
   }
   const int64_t i = v.get<int64_t>();
@@ -146,8 +146,8 @@ struct Range {
 Range range(const json& v, const std::string& path, double lo, bool inclusive) {
   if (v.is_array()) {
     if (v.size() != 2)
-      fail(path, "expected a number or a range [min, max], got an array of " +
-                     std::to_string(v.size()));
+      fail(path,
+           "expected a number or a range [min, max], got an array of " + std::to_string(v.size()));
     const double a = number_at_least(v[0], item_path(path, 0), lo, inclusive);
     const double b = number_at_least(v[1], item_path(path, 1), lo, inclusive);
     if (b < a) fail(path, "range [" + show(a) + ", " + show(b) + "] has max < min");
@@ -208,13 +208,13 @@ struct RawType {
 // Attributes shared by listed instances and generators (generators allow ranges).
 struct RawAttributes {
   std::string path;
-  std::string type;  // empty: the only type
+  std::string type;                // empty: the only type
   std::vector<std::string> clips;  // empty: clip 0; several: one drawn per instance
   Range speed{1.0f, 1.0f};
   Range time_offset{0.0f, 0.0f};
   Range scale{1.0f, 1.0f};
   RawTextures textures;
-  Vec3 color{0.0f, 1.0f, 1.0f};         // listed instances
+  Vec3 color{0.0f, 1.0f, 1.0f};            // listed instances
   Vec3 color_variation{0.0f, 0.0f, 0.0f};  // generators: ± hue (deg), saturation, brightness
   std::optional<float> neck_height, waist_height;
 };
@@ -261,18 +261,24 @@ void check_view(const Camera& camera, const std::string& path) {
 
 void parse_camera(const json& v, RawScene& s) {
   const std::string path = "camera";
-  check_object(v, path, {"position", "target", "up", "fov_degrees", "near", "far", "resolution", "path"});
+  check_object(v, path,
+               {"position", "target", "up", "fov_degrees", "near", "far", "resolution", "path"});
   Camera& c = s.camera;
   const json* keys = find(v, "path");
   const bool has_path = keys != nullptr;
-  if (const json* p = find(v, "position")) c.position = numbers<3>(*p, path + ".position");
-  else if (!has_path) fail(path + ".position", "missing (required unless camera.path is given)");
-  if (const json* p = find(v, "target")) c.target = numbers<3>(*p, path + ".target");
-  else if (!has_path) fail(path + ".target", "missing (required unless camera.path is given)");
+  if (const json* p = find(v, "position"))
+    c.position = numbers<3>(*p, path + ".position");
+  else if (!has_path)
+    fail(path + ".position", "missing (required unless camera.path is given)");
+  if (const json* p = find(v, "target"))
+    c.target = numbers<3>(*p, path + ".target");
+  else if (!has_path)
+    fail(path + ".target", "missing (required unless camera.path is given)");
   if (const json* p = find(v, "up")) c.up = numbers<3>(*p, path + ".up");
   if (const json* p = find(v, "fov_degrees")) {
     const double fov = number(*p, path + ".fov_degrees");
-    if (!(fov > 0.0 && fov < 180.0)) fail(path + ".fov_degrees", "must be in (0, 180), got " + show(fov));
+    if (!(fov > 0.0 && fov < 180.0))
+      fail(path + ".fov_degrees", "must be in (0, 180), got " + show(fov));
     c.fov_y_degrees = static_cast<float>(fov);
   }
   if (const json* p = find(v, "near"))
@@ -280,9 +286,11 @@ void parse_camera(const json& v, RawScene& s) {
   if (const json* p = find(v, "far")) {
     c.far_plane = static_cast<float>(number(*p, path + ".far"));
     if (!(c.far_plane > c.near_plane))
-      fail(path + ".far", "must be beyond near (" + show(c.near_plane) + "), got " + show(c.far_plane));
+      fail(path + ".far",
+           "must be beyond near (" + show(c.near_plane) + "), got " + show(c.far_plane));
   } else if (!(c.far_plane > c.near_plane)) {
-    fail(path + ".near", "must be below far (" + show(c.far_plane) + "), got " + show(c.near_plane));
+    fail(path + ".near",
+         "must be below far (" + show(c.far_plane) + "), got " + show(c.near_plane));
   }
   if (const json* p = find(v, "resolution")) {
     const std::string rp = path + ".resolution";
@@ -293,7 +301,9 @@ void parse_camera(const json& v, RawScene& s) {
     uint32_t size[2];
     for (int i = 0; i < 2; ++i) {
       const json& e = (*p)[i];
-      if (!e.is_number_integer()) fail(item_path(rp, i), "expected an integer " + std::string(names[i]) + ", got " + describe(e));
+      if (!e.is_number_integer())
+        fail(item_path(rp, i),
+             "expected an integer " + std::string(names[i]) + ", got " + describe(e));
       const bool negative = !e.is_number_unsigned() && e.get<int64_t>() < 0;
       const uint64_t value = negative ? 0 : e.get<uint64_t>();
       if (negative || value < 1 || value > kMaxResolution)
@@ -311,7 +321,8 @@ void parse_camera(const json& v, RawScene& s) {
       const std::string kp = item_path(path + ".path", i);
       check_object(arr[i], kp, {"time", "position", "target"});
       CameraKey key;
-      key.time = static_cast<float>(number_at_least(require(arr[i], "time", kp), kp + ".time", 0.0, true));
+      key.time =
+          static_cast<float>(number_at_least(require(arr[i], "time", kp), kp + ".time", 0.0, true));
       key.position = numbers<3>(require(arr[i], "position", kp), kp + ".position");
       key.target = numbers<3>(require(arr[i], "target", kp), kp + ".target");
       if (!s.path.empty() && !(key.time > s.path.back().time))
@@ -335,16 +346,21 @@ void parse_lod(const json& v, RawScene& s) {
   LodSettings& l = s.lod;
   if (const json* p = find(v, "mode")) {
     const std::string mode = string(*p, path + ".mode");
-    if (mode == "continuous") l.mode = LodMode::kContinuous;
-    else if (mode == "discrete") l.mode = LodMode::kDiscrete;
-    else if (mode == "full") l.mode = LodMode::kFull;
-    else fail(path + ".mode", "unknown mode \"" + mode + "\" (expected continuous, discrete or full)");
+    if (mode == "continuous")
+      l.mode = LodMode::kContinuous;
+    else if (mode == "discrete")
+      l.mode = LodMode::kDiscrete;
+    else if (mode == "full")
+      l.mode = LodMode::kFull;
+    else
+      fail(path + ".mode", "unknown mode \"" + mode + "\" (expected continuous, discrete or full)");
   }
   if (const json* p = find(v, "budget"))
     l.budget = static_cast<uint32_t>(integer(*p, path + ".budget", 1, UINT32_MAX));
   if (const json* p = find(v, "alpha")) {
     const double a = number(*p, path + ".alpha");
-    if (!(a > 1.0)) fail(path + ".alpha", "must be > 1 (beta = alpha - 1 must be positive), got " + show(a));
+    if (!(a > 1.0))
+      fail(path + ".alpha", "must be > 1 (beta = alpha - 1 must be positive), got " + show(a));
     l.alpha = static_cast<float>(a);
   }
   if (const json* p = find(v, "min_t")) {
@@ -356,10 +372,12 @@ void parse_lod(const json& v, RawScene& s) {
     const std::string lp = path + ".discrete_levels";
     const json& arr = array(*p, lp);
     if (arr.empty() || arr.size() > kMaxDiscreteLevels)
-      fail(lp, "needs 1 to " + std::to_string(kMaxDiscreteLevels) + " levels, got " + std::to_string(arr.size()));
+      fail(lp, "needs 1 to " + std::to_string(kMaxDiscreteLevels) + " levels, got " +
+                   std::to_string(arr.size()));
     for (size_t i = 0; i < arr.size(); ++i) {
       const double f = number(arr[i], item_path(lp, i));
-      if (!(f > 0.0 && f <= 1.0)) fail(item_path(lp, i), "must be a fraction in (0, 1], got " + show(f));
+      if (!(f > 0.0 && f <= 1.0))
+        fail(item_path(lp, i), "must be a fraction in (0, 1], got " + show(f));
       if (i > 0 && !(f < l.discrete_levels[i - 1]))
         fail(item_path(lp, i), "levels must be strictly decreasing (" + show(f) + " follows " +
                                    show(l.discrete_levels[i - 1]) + ")");
@@ -374,11 +392,16 @@ void parse_animation(const json& v, RawScene& s) {
   check_object(v, path, {"interpolation", "root_motion"});
   if (const json* p = find(v, "interpolation")) {
     const std::string mode = string(*p, path + ".interpolation");
-    if (mode == "nearest") s.animation.filter = FrameFilter::kNearest;
-    else if (mode == "linear") s.animation.filter = FrameFilter::kLinear;
-    else fail(path + ".interpolation", "unknown interpolation \"" + mode + "\" (expected nearest or linear)");
+    if (mode == "nearest")
+      s.animation.filter = FrameFilter::kNearest;
+    else if (mode == "linear")
+      s.animation.filter = FrameFilter::kLinear;
+    else
+      fail(path + ".interpolation",
+           "unknown interpolation \"" + mode + "\" (expected nearest or linear)");
   }
-  if (const json* p = find(v, "root_motion")) s.animation.root_motion = boolean(*p, path + ".root_motion");
+  if (const json* p = find(v, "root_motion"))
+    s.animation.root_motion = boolean(*p, path + ".root_motion");
 }
 
 void parse_types(const json& v, RawScene& s) {
@@ -393,7 +416,8 @@ void parse_types(const json& v, RawScene& s) {
     t.name = string(require(arr[i], "name", tp), tp + ".name");
     if (t.name.empty()) fail(tp + ".name", "must not be empty");
     for (const RawType& other : s.types)
-      if (other.name == t.name) fail(tp + ".name", "\"" + t.name + "\" is already the name of " + other.path);
+      if (other.name == t.name)
+        fail(tp + ".name", "\"" + t.name + "\" is already the name of " + other.path);
     t.pack = string(require(arr[i], "pack", tp), tp + ".pack");
     if (t.pack.empty()) fail(tp + ".pack", "must not be empty");
     if (const json* p = find(arr[i], "texture_variants")) {
@@ -420,7 +444,8 @@ void parse_textures(const json& v, const std::string& path, bool allow_random, R
   check_object(v, path, {"head", "upper_body", "trousers"});
   const char* names[3] = {"head", "upper_body", "trousers"};
   for (int k = 0; k < 3; ++k)
-    if (const json* q = find(v, names[k])) out.value[k] = integer(*q, path + "." + names[k], 0, 255);
+    if (const json* q = find(v, names[k]))
+      out.value[k] = integer(*q, path + "." + names[k], 0, 255);
 }
 
 // Keys every instance description (listed or generated) may have.
@@ -436,7 +461,8 @@ void parse_attributes(const json& v, const std::string& path, bool generator, Ra
   if (clips) {
     const json& arr = array(*clips, path + ".clips");
     if (arr.empty()) fail(path + ".clips", "needs at least one clip name");
-    for (size_t i = 0; i < arr.size(); ++i) a.clips.push_back(string(arr[i], item_path(path + ".clips", i)));
+    for (size_t i = 0; i < arr.size(); ++i)
+      a.clips.push_back(string(arr[i], item_path(path + ".clips", i)));
   }
   const auto value_or_range = [&](const char* key, double lo, bool inclusive, Range& out) {
     const json* p = find(v, key);
@@ -451,20 +477,26 @@ void parse_attributes(const json& v, const std::string& path, bool generator, Ra
   value_or_range("speed", 0.0, true, a.speed);
   value_or_range("time_offset", 0.0, true, a.time_offset);
   value_or_range("scale", 0.0, false, a.scale);
-  if (const json* p = find(v, "textures")) parse_textures(*p, path + ".textures", generator, a.textures);
-  if (const json* p = find(v, "neck_height")) a.neck_height = static_cast<float>(number(*p, path + ".neck_height"));
-  if (const json* p = find(v, "waist_height")) a.waist_height = static_cast<float>(number(*p, path + ".waist_height"));
+  if (const json* p = find(v, "textures"))
+    parse_textures(*p, path + ".textures", generator, a.textures);
+  if (const json* p = find(v, "neck_height"))
+    a.neck_height = static_cast<float>(number(*p, path + ".neck_height"));
+  if (const json* p = find(v, "waist_height"))
+    a.waist_height = static_cast<float>(number(*p, path + ".waist_height"));
   if (!generator) {
     if (const json* p = find(v, "color")) {
       const std::string cp = path + ".color";
       check_object(*p, cp, {"hue", "saturation", "brightness"});
       if (const json* q = find(*p, "hue")) {
         const double h = number(*q, cp + ".hue");
-        if (!(h >= -180.0 && h <= 180.0)) fail(cp + ".hue", "must be in [-180, 180] degrees, got " + show(h));
+        if (!(h >= -180.0 && h <= 180.0))
+          fail(cp + ".hue", "must be in [-180, 180] degrees, got " + show(h));
         a.color[0] = static_cast<float>(h);
       }
-      if (const json* q = find(*p, "saturation")) a.color[1] = static_cast<float>(number_at_least(*q, cp + ".saturation", 0.0, true));
-      if (const json* q = find(*p, "brightness")) a.color[2] = static_cast<float>(number_at_least(*q, cp + ".brightness", 0.0, true));
+      if (const json* q = find(*p, "saturation"))
+        a.color[1] = static_cast<float>(number_at_least(*q, cp + ".saturation", 0.0, true));
+      if (const json* q = find(*p, "brightness"))
+        a.color[2] = static_cast<float>(number_at_least(*q, cp + ".brightness", 0.0, true));
     }
   } else if (const json* p = find(v, "color_variation")) {
     const std::string cp = path + ".color_variation";
@@ -488,12 +520,14 @@ void parse_instances(const json& v, RawScene& s) {
   const std::string path = "instances";
   const json& arr = array(v, path);
   if (arr.size() > kMaxInstances)
-    fail(path, std::to_string(arr.size()) + " instances exceed the limit of " + std::to_string(kMaxInstances));
+    fail(path, std::to_string(arr.size()) + " instances exceed the limit of " +
+                   std::to_string(kMaxInstances));
   s.instances.reserve(arr.size());
   for (size_t i = 0; i < arr.size(); ++i) {
     const std::string ip = item_path(path, i);
-    check_object(arr[i], ip, {"type", "position", "rotation", "yaw_degrees", "scale", "clip", "speed",
-                              "time_offset", "textures", "neck_height", "waist_height", "color"});
+    check_object(arr[i], ip,
+                 {"type", "position", "rotation", "yaw_degrees", "scale", "clip", "speed",
+                  "time_offset", "textures", "neck_height", "waist_height", "color"});
     RawInstance r;
     parse_attributes(arr[i], ip, false, r.a);
     r.position = numbers<3>(require(arr[i], "position", ip), ip + ".position");
@@ -502,7 +536,8 @@ void parse_instances(const json& v, RawScene& s) {
     if (rotation && yaw) fail(ip + ".yaw_degrees", "give either rotation or yaw_degrees, not both");
     if (rotation) {
       std::array<float, 4> q = numbers<4>(*rotation, ip + ".rotation");
-      const double len = std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] + double{q[3]} * q[3]);
+      const double len = std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] +
+                                   double{q[3]} * q[3]);
       if (!(len > 1e-6)) fail(ip + ".rotation", "quaternion [x, y, z, w] must not be zero");
       for (float& c : q) c = static_cast<float>(c / len);
       r.rotation = q;
@@ -521,35 +556,45 @@ void parse_generators(const json& v, RawScene& s) {
     const std::string kind = string(require(arr[i], "kind", gp), gp + ".kind");
     RawGenerator g;
     if (kind == "seat_grid") {
-      check_object(arr[i], gp, {"kind", "type", "seed", "origin", "rows", "columns", "spacing", "row_rise",
-                                "yaw_degrees", "empty_probability", "clip", "clips", "speed", "time_offset",
-                                "scale", "textures", "color_variation", "neck_height", "waist_height"});
+      check_object(arr[i], gp,
+                   {"kind", "type", "seed", "origin", "rows", "columns", "spacing", "row_rise",
+                    "yaw_degrees", "empty_probability", "clip", "clips", "speed", "time_offset",
+                    "scale", "textures", "color_variation", "neck_height", "waist_height"});
       g.grid = true;
       if (const json* p = find(arr[i], "origin")) g.origin = numbers<3>(*p, gp + ".origin");
-      g.rows = static_cast<uint32_t>(integer(require(arr[i], "rows", gp), gp + ".rows", 1, kMaxInstances));
-      g.columns = static_cast<uint32_t>(integer(require(arr[i], "columns", gp), gp + ".columns", 1, kMaxInstances));
+      g.rows = static_cast<uint32_t>(
+          integer(require(arr[i], "rows", gp), gp + ".rows", 1, kMaxInstances));
+      g.columns = static_cast<uint32_t>(
+          integer(require(arr[i], "columns", gp), gp + ".columns", 1, kMaxInstances));
       if (uint64_t{g.rows} * g.columns > kMaxInstances)
         fail(gp, std::to_string(g.rows) + " rows x " + std::to_string(g.columns) +
-                     " columns exceed the limit of " + std::to_string(kMaxInstances) + " instances");
-      const std::array<float, 2> spacing = numbers<2>(require(arr[i], "spacing", gp), gp + ".spacing");
+                     " columns exceed the limit of " + std::to_string(kMaxInstances) +
+                     " instances");
+      const std::array<float, 2> spacing =
+          numbers<2>(require(arr[i], "spacing", gp), gp + ".spacing");
       for (int k = 0; k < 2; ++k)
         if (!(spacing[k] > 0.0f))
           fail(item_path(gp + ".spacing", k), "must be > 0, got " + show(spacing[k]));
       g.spacing[0] = spacing[0];
       g.spacing[1] = spacing[1];
-      if (const json* p = find(arr[i], "row_rise")) g.row_rise = static_cast<float>(number(*p, gp + ".row_rise"));
-      if (const json* p = find(arr[i], "yaw_degrees")) g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
+      if (const json* p = find(arr[i], "row_rise"))
+        g.row_rise = static_cast<float>(number(*p, gp + ".row_rise"));
+      if (const json* p = find(arr[i], "yaw_degrees"))
+        g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
       if (const json* p = find(arr[i], "empty_probability")) {
         const double e = number(*p, gp + ".empty_probability");
-        if (!(e >= 0.0 && e <= 1.0)) fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
+        if (!(e >= 0.0 && e <= 1.0))
+          fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
         g.empty_probability = static_cast<float>(e);
       }
     } else if (kind == "scatter") {
-      check_object(arr[i], gp, {"kind", "type", "seed", "count", "rectangle", "y", "yaw_degrees", "clip",
-                                "clips", "speed", "time_offset", "scale", "textures", "color_variation",
-                                "neck_height", "waist_height"});
+      check_object(arr[i], gp,
+                   {"kind", "type", "seed", "count", "rectangle", "y", "yaw_degrees", "clip",
+                    "clips", "speed", "time_offset", "scale", "textures", "color_variation",
+                    "neck_height", "waist_height"});
       g.grid = false;
-      g.count = static_cast<uint32_t>(integer(require(arr[i], "count", gp), gp + ".count", 0, kMaxInstances));
+      g.count = static_cast<uint32_t>(
+          integer(require(arr[i], "count", gp), gp + ".count", 0, kMaxInstances));
       const std::string rp = gp + ".rectangle";
       const json& rect = require(arr[i], "rectangle", gp);
       check_object(rect, rp, {"min", "max"});
@@ -563,9 +608,12 @@ void parse_generators(const json& v, RawScene& s) {
       if (const json* p = find(arr[i], "y")) g.y = static_cast<float>(number(*p, gp + ".y"));
       g.random_yaw = true;
       if (const json* p = find(arr[i], "yaw_degrees")) {
-        if (p->is_string() && p->get<std::string>() == "random") g.random_yaw = true;
-        else if (p->is_number()) g.random_yaw = false, g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
-        else fail(gp + ".yaw_degrees", "expected a number or \"random\", got " + describe(*p));
+        if (p->is_string() && p->get<std::string>() == "random")
+          g.random_yaw = true;
+        else if (p->is_number())
+          g.random_yaw = false, g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
+        else
+          fail(gp + ".yaw_degrees", "expected a number or \"random\", got " + describe(*p));
       }
     } else {
       fail(gp + ".kind", "unknown generator \"" + kind + "\" (expected seat_grid or scatter)");
@@ -579,11 +627,14 @@ void parse_generators(const json& v, RawScene& s) {
 
 RawScene parse_raw(const json& root) {
   RawScene s;
-  check_object(root, "", {"version", "camera", "lod", "animation", "character_types", "instances", "generators"});
+  check_object(
+      root, "",
+      {"version", "camera", "lod", "animation", "character_types", "instances", "generators"});
   if (const json* p = find(root, "version")) {
     const int64_t version = integer(*p, "version", 0, INT32_MAX);
     if (version != 1)
-      fail("version", "unsupported scene version " + std::to_string(version) + " (this build reads 1)");
+      fail("version",
+           "unsupported scene version " + std::to_string(version) + " (this build reads 1)");
   }
   parse_camera(require(root, "camera", ""), s);
   if (const json* p = find(root, "lod")) parse_lod(*p, s);
@@ -592,7 +643,8 @@ RawScene parse_raw(const json& root) {
   if (const json* p = find(root, "instances")) parse_instances(*p, s);
   if (const json* p = find(root, "generators")) parse_generators(*p, s);
   uint64_t total = s.instances.size();
-  for (const RawGenerator& g : s.generators) total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
+  for (const RawGenerator& g : s.generators)
+    total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
   if (total > kMaxInstances)
     fail("generators", "the scene would hold " + std::to_string(total) +
                            " instances, above the limit of " + std::to_string(kMaxInstances));
@@ -636,8 +688,8 @@ Resolved resolve(const Scene& scene, const RawAttributes& a) {
     const int32_t c = scene.find_clip(r.type, a.clips[k]);
     if (c < 0)
       fail(several ? item_path(a.path + ".clips", k) : a.path + ".clip",
-           "character type '" + type.name + "' has no clip \"" + a.clips[k] + "\" (its clips: " +
-               clip_list(type.pack) + ")");
+           "character type '" + type.name + "' has no clip \"" + a.clips[k] +
+               "\" (its clips: " + clip_list(type.pack) + ")");
     r.clips.push_back(static_cast<uint32_t>(c));
   }
   if (r.clips.empty()) r.clips.push_back(type.first_clip);
@@ -648,8 +700,9 @@ Resolved resolve(const Scene& scene, const RawAttributes& a) {
     for (int k = 0; k < 3; ++k)
       if (a.textures.value[k] >= counts[k])
         fail(a.textures.path + "." + names[k],
-             "variant " + std::to_string(a.textures.value[k]) + " is out of range: character type '" +
-                 type.name + "' has " + std::to_string(counts[k]) + " " + names[k] +
+             "variant " + std::to_string(a.textures.value[k]) +
+                 " is out of range: character type '" + type.name + "' has " +
+                 std::to_string(counts[k]) + " " + names[k] +
                  " variant(s) (character_types texture_variants)");
   const PartitionMask& part = type.pack.contents().partition;
   r.neck = a.neck_height.value_or(part.neck_height);
@@ -674,9 +727,11 @@ Instance make_instance(const Scene& scene, const RawAttributes& a, const Resolve
   const uint32_t counts[3] = {v.head, v.upper_body, v.trousers};
   for (int k = 0; k < 3; ++k) {
     const uint32_t drawn = rng.below(counts[k]);
-    in.textures[k] = static_cast<uint8_t>(a.textures.random ? drawn : static_cast<uint32_t>(a.textures.value[k]));
+    in.textures[k] = static_cast<uint8_t>(
+        a.textures.random ? drawn : static_cast<uint32_t>(a.textures.value[k]));
   }
-  const float h = rng.unit() * 2.0f - 1.0f, s = rng.unit() * 2.0f - 1.0f, b = rng.unit() * 2.0f - 1.0f;
+  const float h = rng.unit() * 2.0f - 1.0f, s = rng.unit() * 2.0f - 1.0f,
+              b = rng.unit() * 2.0f - 1.0f;
   in.color = {a.color[0] + h * a.color_variation[0], a.color[1] * (1.0f + s * a.color_variation[1]),
               a.color[2] * (1.0f + b * a.color_variation[2])};
   in.neck_height = r.neck;
@@ -684,12 +739,14 @@ Instance make_instance(const Scene& scene, const RawAttributes& a, const Resolve
   return in;
 }
 
-void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoadOptions& options, Scene& scene) {
+void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoadOptions& options,
+                Scene& scene) {
   for (const RawType& t : raw.types) {
     std::filesystem::path p(t.pack);
     if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
     Pack pack;
-    const Status s = Pack::open_file(p.lexically_normal().string(), pack, options.pack_parts | kPackPartition);
+    const Status s =
+        Pack::open_file(p.lexically_normal().string(), pack, options.pack_parts | kPackPartition);
     if (!s) fail(t.path + ".pack", s.message(), s.code());
     if (pack.contents().clips.empty())
       fail(t.path + ".pack", pack.source_name() + ": the pack has no clips to play");
@@ -702,7 +759,8 @@ void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoa
 void build_instances(const RawScene& raw, Scene& scene) {
   InstanceArrays& out = scene.instances;
   uint64_t total = raw.instances.size();
-  for (const RawGenerator& g : raw.generators) total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
+  for (const RawGenerator& g : raw.generators)
+    total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
   out.reserve(static_cast<size_t>(total));
   for (const RawInstance& ri : raw.instances) {
     const Resolved r = resolve(scene, ri.a);
@@ -729,7 +787,8 @@ void build_instances(const RawScene& raw, Scene& scene) {
           // crowd faces +Z of the grid (the spectator faces +Z), turned by yaw about +Y.
           const float lx = static_cast<float>(col) * g.spacing[0];
           const float lz = -static_cast<float>(row) * g.spacing[1];
-          in.position = {g.origin[0] + c * lx + s * lz, g.origin[1] + static_cast<float>(row) * g.row_rise,
+          in.position = {g.origin[0] + c * lx + s * lz,
+                         g.origin[1] + static_cast<float>(row) * g.row_rise,
                          g.origin[2] - s * lx + c * lz};
           in.rotation = rotation;
           out.add(in);
@@ -751,7 +810,8 @@ void build_instances(const RawScene& raw, Scene& scene) {
   }
 }
 
-Status build(const json& root, const std::string& base_dir, const SceneLoadOptions& options, Scene& out) {
+Status build(const json& root, const std::string& base_dir, const SceneLoadOptions& options,
+             Scene& out) {
   const RawScene raw = parse_raw(root);
   Scene scene;
   scene.camera = raw.camera;
@@ -775,7 +835,8 @@ Status parse_scene(std::string_view text, const std::string& name, const std::st
     } catch (const json::parse_error& e) {
       std::string what = e.what();
       const size_t bracket = what.find("] ");
-      if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) what = what.substr(bracket + 2);
+      if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos)
+        what = what.substr(bracket + 2);
       return {StatusCode::kInvalidScene, name + ": not valid JSON: " + what};
     }
     return build(root, base_dir, options, out);

@@ -73,8 +73,10 @@ bool SkinJob::Run() const {
     if (out_normals.empty()) continue;
     const float* nv = &normals[3 * v];
     float ln[3], wn[3];
-    for (int r = 0; r < 3; ++r) ln[r] = m[4 * r] * nv[0] + m[4 * r + 1] * nv[1] + m[4 * r + 2] * nv[2];
-    for (int r = 0; r < 3; ++r) wn[r] = w[4 * r] * ln[0] + w[4 * r + 1] * ln[1] + w[4 * r + 2] * ln[2];
+    for (int r = 0; r < 3; ++r)
+      ln[r] = m[4 * r] * nv[0] + m[4 * r + 1] * nv[1] + m[4 * r + 2] * nv[2];
+    for (int r = 0; r < 3; ++r)
+      wn[r] = w[4 * r] * ln[0] + w[4 * r + 1] * ln[1] + w[4 * r + 2] * ln[2];
     const float len = std::sqrt(wn[0] * wn[0] + wn[1] * wn[1] + wn[2] * wn[2]);
     const float inv = len > 0.0f ? 1.0f / len : 0.0f;
     for (int r = 0; r < 3; ++r) out_normals[3 * v + r] = wn[r] * inv;

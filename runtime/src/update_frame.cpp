@@ -67,7 +67,8 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
   cull.spheres = state.spheres;
   cull.visible = state.visible;
   cull.visible_count = &state.visible_count;
-  if (!cull.Run()) return invalid("instance arrays are inconsistent (sizes or type indices) for culling");
+  if (!cull.Run())
+    return invalid("instance arrays are inconsistent (sizes or type indices) for culling");
 
   LodSelectJob lod;
   lod.settings = scene.lod;
@@ -85,7 +86,8 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
 
 Status reconstruct_lod(const Scene& scene, uint32_t type, uint32_t vertices,
                        std::vector<uint32_t>& triangles) {
-  if (type >= scene.types.size()) return invalid("type index " + std::to_string(type) + " out of range");
+  if (type >= scene.types.size())
+    return invalid("type index " + std::to_string(type) + " out of range");
   const Pack& pack = scene.types[type].pack;
   if (!pack.has(kPackGeometry))
     return {StatusCode::kNotLoaded, pack.source_name() + ": geometry is not loaded"};
@@ -94,7 +96,8 @@ Status reconstruct_lod(const Scene& scene, uint32_t type, uint32_t vertices,
   job.vertices = vertices;
   triangles.resize(3 * size_t{lod_triangle_count(job.mesh, vertices)});
   job.output = triangles;
-  if (!job.Run()) return invalid(pack.source_name() + ": progressive arrays rejected by reconstruction");
+  if (!job.Run())
+    return invalid(pack.source_name() + ": progressive arrays rejected by reconstruction");
   return {};
 }
 
@@ -102,7 +105,8 @@ Status skin_instance(const Scene& scene, uint32_t instance, float time, uint32_t
                      std::vector<float>& positions, std::vector<float>* normals) {
   const InstanceArrays& in = scene.instances;
   if (!in.consistent()) return invalid("instance arrays have inconsistent lengths");
-  if (instance >= in.size()) return invalid("instance " + std::to_string(instance) + " out of range");
+  if (instance >= in.size())
+    return invalid("instance " + std::to_string(instance) + " out of range");
   if (in.clip[instance] >= scene.clips.size() || in.type[instance] >= scene.types.size())
     return invalid("instance " + std::to_string(instance) + " has a bad type or clip index");
   const Pack& pack = scene.types[in.type[instance]].pack;
@@ -122,7 +126,8 @@ Status skin_instance(const Scene& scene, uint32_t instance, float time, uint32_t
   pj.row1 = clip.first_row + frame.frame1;
   pj.blend = frame.blend;
   pj.palette = palette;
-  if (!pj.Run()) return invalid(pack.source_name() + ": animation texture rejected by the palette job");
+  if (!pj.Run())
+    return invalid(pack.source_name() + ": animation texture rejected by the palette job");
   const uint32_t n = std::min(vertices, c.geometry.vertex_count());
   positions.resize(3 * size_t{n});
   SkinJob sj;

@@ -1,9 +1,9 @@
 // AnimateJob: validity rules and that Run() is animate_instance per instance.
 #include "crowdbake/runtime/animate_job.h"
 
-#include <vector>
-
 #include <gtest/gtest.h>
+
+#include <vector>
 
 #include "crowdbake/runtime/frame.h"
 
@@ -26,7 +26,8 @@ struct Fixture {
     walk.frame_count = 5;
     walk.fps = 10.0f;
     walk.looping = true;
-    for (uint32_t k = 0; k < 5; ++k) walk.root_motion.insert(walk.root_motion.end(), {0.1f * k, 0.3f * k, 0.05f * k});
+    for (uint32_t k = 0; k < 5; ++k)
+      walk.root_motion.insert(walk.root_motion.end(), {0.1f * k, 0.3f * k, 0.05f * k});
     wave.name = "wave";
     wave.first_row = 5;
     wave.frame_count = 3;
@@ -126,7 +127,8 @@ TEST(AnimateJob, RunMatchesAnimateInstance) {
 TEST(AnimateJob, RowsAreAbsoluteTextureRows) {
   Fixture f;
   ASSERT_TRUE(f.job(1.0f / 30.0f, FrameFilter::kNearest).Run());
-  // Instance 1 plays "wave" (rows 5..7) at speed 2 from 0.1 s: (1/30 + 0.1) * 30 * 2 = 8 -> last frame.
+  // Instance 1 plays "wave" (rows 5..7) at speed 2 from 0.1 s: (1/30 + 0.1) * 30 * 2 = 8 -> last
+  // frame.
   EXPECT_EQ(f.row0[1], 7u);
 }
 

@@ -1,10 +1,10 @@
 // Camera: views, paths, frustum planes and matrices.
 #include "crowdbake/runtime/camera.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace crowdbake::runtime {
 namespace {

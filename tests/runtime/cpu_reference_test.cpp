@@ -2,10 +2,10 @@
 // selection), reconstruct_lod and skin_instance, on packs baked by the real pipeline.
 #include "crowdbake/runtime/cpu_reference.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/runtime/frame.h"
 #include "crowdbake/runtime/reconstruct_job.h"
@@ -17,15 +17,18 @@ namespace crowdbake::runtime {
 namespace {
 
 // A stand of spectators (20 rows x 30 seats) seen from the pitch, plus one behind the camera.
-Status stadium(Scene& scene, uint32_t parts = kPackAll, const std::string& lod = R"({"budget": 300000, "min_t": 1})") {
+Status stadium(Scene& scene, uint32_t parts = kPackAll,
+               const std::string& lod = R"({"budget": 300000, "min_t": 1})") {
   test::TempDir dir;
   const std::string json = std::string(R"({
     "camera": {"path": [{"time": 0, "position": [8, 6, 25], "target": [8, 4, -5]},
                         {"time": 10, "position": [8, 6, 15], "target": [8, 4, -5]}],
                "resolution": [1280, 720], "fov_degrees": 50},
     "lod": )") + lod + R"(,
-    "character_types": [{"name": "spectator", "pack": ")" + test::BakedPacks::get().spectator() + R"("},
-                        {"name": "kid", "pack": ")" + test::BakedPacks::get().spectator_f32() + R"("}],
+    "character_types": [{"name": "spectator", "pack": ")" +
+                           test::BakedPacks::get().spectator() + R"("},
+                        {"name": "kid", "pack": ")" +
+                           test::BakedPacks::get().spectator_f32() + R"("}],
     "instances": [{"type": "kid", "position": [8, 0, 40], "clip": "walk"}],
     "generators": [
       {"kind": "seat_grid", "type": "spectator", "rows": 20, "columns": 30, "spacing": [0.6, 0.9],
@@ -65,8 +68,8 @@ TEST(UpdateFrame, RunsTheJobsOverTheWholeScene) {
     }
     // Frame choice: exactly choose_frame for the instance's clip.
     const PackClip& clip = *scene.clips[scene.instances.clip[i]].clip;
-    const FrameChoice f = choose_frame(clip, 2.5f, scene.instances.speed[i], scene.instances.time_offset[i],
-                                       FrameFilter::kNearest);
+    const FrameChoice f = choose_frame(clip, 2.5f, scene.instances.speed[i],
+                                       scene.instances.time_offset[i], FrameFilter::kNearest);
     EXPECT_EQ(state.row0[i], clip.first_row + f.frame0);
     const uint32_t count = state.vertex_count[i];
     if (count > 0) {
@@ -110,10 +113,11 @@ TEST(UpdateFrame, NeedsOnlyThePackTables) {
 TEST(UpdateFrame, ModesAndBudgets) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0;
-  for (const auto& [lod, out] : {std::pair<const char*, uint64_t*>{R"({"budget": 300000, "min_t": 1})", &continuous},
-                                 {R"({"budget": 300000, "min_t": 1, "mode": "discrete"})", &discrete},
-                                 {R"({"mode": "full"})", &full},
-                                 {R"({"budget": 20000, "min_t": 1})", &small_budget}}) {
+  for (const auto& [lod, out] :
+       {std::pair<const char*, uint64_t*>{R"({"budget": 300000, "min_t": 1})", &continuous},
+        {R"({"budget": 300000, "min_t": 1, "mode": "discrete"})", &discrete},
+        {R"({"mode": "full"})", &full},
+        {R"({"budget": 20000, "min_t": 1})", &small_budget}}) {
     Scene scene;
     ASSERT_TRUE(stadium(scene, kPackTables, lod));
     FrameState state;
@@ -125,7 +129,8 @@ TEST(UpdateFrame, ModesAndBudgets) {
         if (!state.vertex_count[i]) continue;
         const LodType& t = state.lod_types[scene.instances.type[i]];
         bool on_level = false;
-        for (uint32_t k = 0; k < t.level_count; ++k) on_level = on_level || t.levels[k] == state.vertex_count[i];
+        for (uint32_t k = 0; k < t.level_count; ++k)
+          on_level = on_level || t.levels[k] == state.vertex_count[i];
         EXPECT_TRUE(on_level) << "instance " << i << " has " << state.vertex_count[i];
       }
     }
@@ -188,25 +193,29 @@ TEST(SkinInstance, MatchesThePaletteAndSkinJobs) {
       const PackClip& clip = *scene.clips[in.clip].clip;
       FrameChoice frame;
       float world[12];
-      animate_instance(clip, 3.3f, in.speed, in.time_offset, filter, true, in.position.data(), in.rotation.data(),
-                       in.scale, frame, world);
+      animate_instance(clip, 3.3f, in.speed, in.time_offset, filter, true, in.position.data(),
+                       in.rotation.data(), in.scale, frame, world);
       for (uint32_t v = 0; v < n; v += 97) {
         float m[12] = {0};
         for (int k = 0; k < 4; ++k) {
           float s[12];
-          decode_skinning_matrix(c.animation, clip.first_row + frame.frame0, clip.first_row + frame.frame1,
-                                 frame.blend, c.geometry.joints[4 * v + k], s);
+          decode_skinning_matrix(c.animation, clip.first_row + frame.frame0,
+                                 clip.first_row + frame.frame1, frame.blend,
+                                 c.geometry.joints[4 * v + k], s);
           for (int e = 0; e < 12; ++e) m[e] += c.geometry.weights[4 * v + k] * s[e];
         }
         const float* p = &c.geometry.positions[3 * v];
         for (int r = 0; r < 3; ++r) {
           float local[3];
-          for (int q = 0; q < 3; ++q) local[q] = m[4 * q] * p[0] + m[4 * q + 1] * p[1] + m[4 * q + 2] * p[2] + m[4 * q + 3];
-          const float expected = world[4 * r] * local[0] + world[4 * r + 1] * local[1] + world[4 * r + 2] * local[2] + world[4 * r + 3];
+          for (int q = 0; q < 3; ++q)
+            local[q] = m[4 * q] * p[0] + m[4 * q + 1] * p[1] + m[4 * q + 2] * p[2] + m[4 * q + 3];
+          const float expected = world[4 * r] * local[0] + world[4 * r + 1] * local[1] +
+                                 world[4 * r + 2] * local[2] + world[4 * r + 3];
           EXPECT_NEAR(positions[3 * v + r], expected, 1e-5f) << "instance " << i << " vertex " << v;
         }
-        const float len = std::sqrt(normals[3 * v] * normals[3 * v] + normals[3 * v + 1] * normals[3 * v + 1] +
-                                    normals[3 * v + 2] * normals[3 * v + 2]);
+        const float len =
+            std::sqrt(normals[3 * v] * normals[3 * v] + normals[3 * v + 1] * normals[3 * v + 1] +
+                      normals[3 * v + 2] * normals[3 * v + 2]);
         EXPECT_NEAR(len, 1.0f, 1e-5f);
       }
       // The skinned character stays inside its world bounding sphere.
@@ -216,12 +225,14 @@ TEST(SkinInstance, MatchesThePaletteAndSkinJobs) {
       for (uint32_t v = 0; v < n; ++v) {
         const float dx = positions[3 * v] - sphere[0], dy = positions[3 * v + 1] - sphere[1],
                     dz = positions[3 * v + 2] - sphere[2];
-        ASSERT_LE(std::sqrt(dx * dx + dy * dy + dz * dz), sphere[3] * 1.001f) << "instance " << i << " vertex " << v;
+        ASSERT_LE(std::sqrt(dx * dx + dy * dy + dz * dz), sphere[3] * 1.001f)
+            << "instance " << i << " vertex " << v;
       }
     }
   }
   std::vector<float> positions;
-  EXPECT_EQ(skin_instance(scene, 1u << 30, 0.0f, 10, positions).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(skin_instance(scene, 1u << 30, 0.0f, 10, positions).code(),
+            StatusCode::kInvalidArgument);
 }
 
 TEST(ReconstructLod, EqualsTheJob) {

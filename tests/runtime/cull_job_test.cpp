@@ -1,9 +1,9 @@
 // CullJob: bounding spheres carried by the world matrix, tested against the frustum.
 #include "crowdbake/runtime/cull_job.h"
 
-#include <vector>
-
 #include <gtest/gtest.h>
+
+#include <vector>
 
 #include "crowdbake/runtime/camera.h"
 
@@ -58,8 +58,8 @@ TEST(CullJob, RunCarriesBoundsThroughWorldAndScale) {
   bounds[1].radius = 0.5f;
   std::vector<uint32_t> type{0, 0, 1, 1};
   std::vector<float> world, scale{1.0f, 3.0f, 1.0f, 1.0f};
-  for (auto m : {translation(0, -1, -10), translation(12.5f, 0, -10, 3.0f), translation(10.9f, 0, -10),
-                 translation(0, 0, 3)})
+  for (auto m : {translation(0, -1, -10), translation(12.5f, 0, -10, 3.0f),
+                 translation(10.9f, 0, -10), translation(0, 0, 3)})
     world.insert(world.end(), m.begin(), m.end());
   std::vector<float> spheres(16);
   std::vector<uint8_t> visible(4);

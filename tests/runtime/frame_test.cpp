@@ -1,9 +1,9 @@
 // Frame choice (seed 000 Algorithm 2, DESIGN.md §3.6), root motion and placement.
 #include "crowdbake/runtime/frame.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace crowdbake::runtime {
 namespace {
@@ -21,7 +21,8 @@ PackClip clip(uint32_t frames, bool looping, float fps = 10.0f) {
 
 PackClip walk() {  // root motion (0.25 k, 0.5 k, 0.1 k) at frame k
   PackClip c = clip(4, true);
-  for (uint32_t k = 0; k < 4; ++k) c.root_motion.insert(c.root_motion.end(), {0.25f * k, 0.5f * k, 0.1f * k});
+  for (uint32_t k = 0; k < 4; ++k)
+    c.root_motion.insert(c.root_motion.end(), {0.25f * k, 0.5f * k, 0.1f * k});
   return c;
 }
 
@@ -53,7 +54,7 @@ TEST(FrameChoice, TimeOffsetIsAddedBeforeSpeed) {
   const PackClip c = clip(4, true);
   EXPECT_EQ(nearest(c, 0.0f, 1.0f, 0.2f).frame0, 2u);
   EXPECT_EQ(nearest(c, 0.05f, 2.0f, 0.05f).frame0, 2u);  // (0.05 + 0.05) * 10 * 2
-  FrameChoice f = nearest(c, 0.1f, 2.0f, 0.1f);           // played 4 = one whole loop
+  FrameChoice f = nearest(c, 0.1f, 2.0f, 0.1f);          // played 4 = one whole loop
   EXPECT_EQ(f.frame0, 0u);
   EXPECT_EQ(f.cycle, 1);
 }
@@ -230,7 +231,8 @@ TEST(Placement, TranslateRotateScale) {
   // +Z turns towards +X: (0, 0, 1) -> (2, 0, 0) after scaling, then translated.
   const float p[3] = {0, 0, 1};
   float out[3];
-  for (int r = 0; r < 3; ++r) out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+  for (int r = 0; r < 3; ++r)
+    out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
   EXPECT_NEAR(out[0], 3.0f, 1e-5f);
   EXPECT_NEAR(out[1], 2.0f, 1e-5f);
   EXPECT_NEAR(out[2], 3.0f, 1e-5f);
@@ -241,14 +243,16 @@ TEST(AnimateInstance, WorldIsPlacementTimesRootMotion) {
   const float position[3] = {10, 0, -4}, rotation[4] = {0, 0, 0, 1};
   FrameChoice frame;
   float world[12];
-  animate_instance(c, 0.5f, 1.0f, 0.0f, FrameFilter::kNearest, true, position, rotation, 1.0f, frame, world);
+  animate_instance(c, 0.5f, 1.0f, 0.0f, FrameFilter::kNearest, true, position, rotation, 1.0f,
+                   frame, world);
   float motion[3], placement[12], mm[12], expected[12];
   frame_root_motion(c, frame, motion);
   placement_matrix(position, rotation, 1.0f, placement);
   root_motion_matrix(motion, mm);
   compose_affine(placement, mm, expected);
   for (int k = 0; k < 12; ++k) EXPECT_EQ(world[k], expected[k]);
-  animate_instance(c, 0.5f, 1.0f, 0.0f, FrameFilter::kNearest, false, position, rotation, 1.0f, frame, world);
+  animate_instance(c, 0.5f, 1.0f, 0.0f, FrameFilter::kNearest, false, position, rotation, 1.0f,
+                   frame, world);
   for (int k = 0; k < 12; ++k) EXPECT_EQ(world[k], placement[k]);
 }
 

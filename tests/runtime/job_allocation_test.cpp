@@ -1,11 +1,11 @@
 // Every job's Run() allocates nothing (STYLE §5.12): this binary counts global operator new
 // calls while a test asks it to.
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstdlib>
 #include <new>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/runtime/animate_job.h"
 #include "crowdbake/runtime/cull_job.h"
@@ -20,7 +20,8 @@ std::atomic<bool> g_counting{false};
 std::atomic<size_t> g_allocations{0};
 
 void* counted(size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (g_counting.load(std::memory_order_relaxed))
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size ? size : 1)) return p;
   throw std::bad_alloc();
 }
@@ -54,7 +55,8 @@ TEST(Jobs, RunAllocatesNothing) {
   for (const PackClip& clip : c.clips) clips.push_back({&clip, 0});
   const size_t n = 64;
   std::vector<uint32_t> type(n, 0), clip(n), row0(n), row1(n), vertices(n);
-  std::vector<float> speed(n, 1.1f), offset(n, 0.3f), scale(n, 1.0f), position(3 * n), rotation(4 * n, 0.0f);
+  std::vector<float> speed(n, 1.1f), offset(n, 0.3f), scale(n, 1.0f), position(3 * n),
+      rotation(4 * n, 0.0f);
   std::vector<float> blend(n), world(12 * n), spheres(4 * n);
   std::vector<uint8_t> visible(n);
   std::vector<double> weights(n);

@@ -3,10 +3,10 @@
 // pack and on baked packs (float32 and quantized animation).
 #include "crowdbake/runtime/joint_query.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/runtime/cpu_reference.h"
 #include "crowdbake/runtime/frame.h"
@@ -46,7 +46,8 @@ Scene small_scene() {
 }
 
 void apply(const float m[12], const float p[3], float out[3]) {
-  for (int r = 0; r < 3; ++r) out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+  for (int r = 0; r < 3; ++r)
+    out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
 }
 
 // Every vertex with a single influence of weight 1: skinned position vs J · B⁻¹ · v.
@@ -89,7 +90,8 @@ TEST(JointQuery, RigidVerticesFollowTheirJointBakedPacks) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   for (FrameFilter filter : {FrameFilter::kNearest, FrameFilter::kLinear}) {
     Scene scene;
-    for (const std::string& path : {test::BakedPacks::get().spectator(), test::BakedPacks::get().spectator_f32()}) {
+    for (const std::string& path :
+         {test::BakedPacks::get().spectator(), test::BakedPacks::get().spectator_f32()}) {
       Pack pack;
       const Status s = Pack::open_file(path, pack, kPackAll);
       ASSERT_TRUE(s) << s.message();
@@ -117,7 +119,8 @@ TEST(JointQuery, MatchesTheBakedMatrixTimesTheBindMatrix) {
   for (int k = 0; k < 12; ++k) EXPECT_NEAR(joint[k], expected[k], 1e-6f) << k;
   // The bind matrix is the inverse of the inverse bind.
   float identity[12];
-  compose_affine(scene.types[0].pack.bind_matrix(2), scene.types[0].pack.contents().joints[2].inverse_bind.data(), identity);
+  compose_affine(scene.types[0].pack.bind_matrix(2),
+                 scene.types[0].pack.contents().joints[2].inverse_bind.data(), identity);
   const float id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   for (int k = 0; k < 12; ++k) EXPECT_NEAR(identity[k], id[k], 1e-6f);
 }

@@ -4,13 +4,13 @@
 //   2. the linker's view: this test binary links crowdbake_runtime (and formats, GTest), so
 //      its ELF dynamic section must not need libassimp, libOpenMesh or libtinygltf, and its
 //      symbol table must hold no Assimp, OpenMesh, tinygltf or pipeline code.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "runtime/runtime_test_support.h"
 
@@ -18,7 +18,8 @@ namespace crowdbake::test {
 namespace {
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -44,20 +45,25 @@ TEST(LinkDependencies, DynamicSectionOfARuntimeBinary) {
   ASSERT_EQ(run_command("readelf -d /proc/" + std::to_string(::getpid()) + "/exe", &out), 0) << out;
   ASSERT_NE(out.find("(NEEDED)"), std::string::npos) << out;
   for (const char* bad : {"assimp", "openmesh", "tinygltf"})
-    EXPECT_EQ(lower(out).find(bad), std::string::npos) << "the runtime test binary needs " << bad << ":\n" << out;
+    EXPECT_EQ(lower(out).find(bad), std::string::npos)
+        << "the runtime test binary needs " << bad << ":\n"
+        << out;
 }
 
 TEST(LinkDependencies, NoImporterOrPipelineSymbols) {
   std::string out;
-  ASSERT_EQ(run_command("nm -C /proc/" + std::to_string(::getpid()) + "/exe", &out), 0) << out.substr(0, 2000);
+  ASSERT_EQ(run_command("nm -C /proc/" + std::to_string(::getpid()) + "/exe", &out), 0)
+      << out.substr(0, 2000);
   // The binary does hold the runtime (so the check looks at the right thing).
   ASSERT_NE(out.find("crowdbake::runtime::Pack::open"), std::string::npos);
-  for (const char* bad : {"Assimp::", "aiScene", "OpenMesh::", "tinygltf::", "crowdbake_tinygltf",
-                          "crowdbake::ProgressiveMesh", "crowdbake::build_progressive_mesh",
-                          "crowdbake::build_pack", "crowdbake::bake_animation", "crowdbake::ai::"}) {
+  for (const char* bad :
+       {"Assimp::", "aiScene", "OpenMesh::", "tinygltf::", "crowdbake_tinygltf",
+        "crowdbake::ProgressiveMesh", "crowdbake::build_progressive_mesh", "crowdbake::build_pack",
+        "crowdbake::bake_animation", "crowdbake::ai::"}) {
     const size_t at = out.find(bad);
-    EXPECT_EQ(at, std::string::npos) << "found " << bad << " in: "
-                                     << (at == std::string::npos ? "" : out.substr(out.rfind('\n', at) + 1, 200));
+    EXPECT_EQ(at, std::string::npos)
+        << "found " << bad
+        << " in: " << (at == std::string::npos ? "" : out.substr(out.rfind('\n', at) + 1, 200));
   }
 }
 

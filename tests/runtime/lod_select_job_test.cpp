@@ -2,11 +2,11 @@
 // branch, the budget, culled instances, discrete and full modes.
 #include "crowdbake/runtime/lod_select_job.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace crowdbake::runtime {
 namespace {
@@ -130,7 +130,7 @@ TEST(LodSelectJob, AboveMaxClampsToMax) {
 
 TEST(LodSelectJob, BelowMinAboveMinTIsPromotedToMin) {
   Crowd c = two_instances();
-  ASSERT_TRUE(c.run(settings(815)));  // far: 90.56, 90.56 / 100 in [0.5, 1)
+  ASSERT_TRUE(c.run(settings(815)));   // far: 90.56, 90.56 / 100 in [0.5, 1)
   EXPECT_EQ(c.vertex_count[0], 724u);  // 724.4
   EXPECT_EQ(c.vertex_count[1], 100u);
   EXPECT_EQ(c.stats.promoted, 1u);
@@ -139,7 +139,7 @@ TEST(LodSelectJob, BelowMinAboveMinTIsPromotedToMin) {
 
 TEST(LodSelectJob, BelowMinTIsNotDrawn) {
   Crowd c = two_instances();
-  ASSERT_TRUE(c.run(settings(365)));  // far: 40.56, 40.56 / 100 < 0.5
+  ASSERT_TRUE(c.run(settings(365)));   // far: 40.56, 40.56 / 100 < 0.5
   EXPECT_EQ(c.vertex_count[0], 324u);  // 324.4
   EXPECT_EQ(c.vertex_count[1], 0u);
   EXPECT_EQ(c.stats.dropped, 1u);
@@ -180,7 +180,7 @@ TEST(LodSelectJob, AreaIsCappedAtTheScreenAndDistanceAtTheNearPlane) {
   ASSERT_TRUE(c.run(settings(1000)));
   double area = 0, distance = 0;
   lod_area_distance(c.view, &c.spheres[0], &area, &distance);
-  EXPECT_DOUBLE_EQ(distance, 0.5);     // the near plane
+  EXPECT_DOUBLE_EQ(distance, 0.5);        // the near plane
   EXPECT_DOUBLE_EQ(area, 100.0 * 100.0);  // the whole screen
   EXPECT_NEAR(c.weights[0], std::sqrt(1.0 * (10000.0 / 0.5) * 100.0), 1e-6);
 }
@@ -199,7 +199,8 @@ TEST(LodSelectJob, MatchesTheFormulaOnARandomCrowd) {
     std::vector<double> root(c.type.size(), 0.0);
     for (size_t i = 0; i < c.type.size(); ++i) {
       if (!c.visible[i]) continue;
-      root[i] = root_weight(c.view, -c.spheres[4 * i + 2], c.spheres[4 * i + 3], c.types[c.type[i]].triangles, alpha);
+      root[i] = root_weight(c.view, -c.spheres[4 * i + 2], c.spheres[4 * i + 3],
+                            c.types[c.type[i]].triangles, alpha);
       sum += root[i];
     }
     EXPECT_NEAR(c.stats.weight_sum / sum, 1.0, 1e-9);
@@ -207,12 +208,17 @@ TEST(LodSelectJob, MatchesTheFormulaOnARandomCrowd) {
       const LodType& t = c.types[c.type[i]];
       const double vc = c.visible[i] ? s.budget * root[i] / sum : 0.0;
       uint32_t expected = 0;
-      if (!c.visible[i]) expected = 0;
-      else if (vc > t.max_vertices) expected = t.max_vertices;
-      else if (vc >= t.min_vertices) expected = static_cast<uint32_t>(std::floor(vc));
-      else if (vc / t.min_vertices >= s.min_t) expected = t.min_vertices;
+      if (!c.visible[i])
+        expected = 0;
+      else if (vc > t.max_vertices)
+        expected = t.max_vertices;
+      else if (vc >= t.min_vertices)
+        expected = static_cast<uint32_t>(std::floor(vc));
+      else if (vc / t.min_vertices >= s.min_t)
+        expected = t.min_vertices;
       // note: tolerate a floor on the other side of an integer (log/exp vs pow rounding).
-      EXPECT_NEAR(double(c.vertex_count[i]), double(expected), 1.0) << "alpha " << alpha << " instance " << i;
+      EXPECT_NEAR(double(c.vertex_count[i]), double(expected), 1.0)
+          << "alpha " << alpha << " instance " << i;
       EXPECT_EQ(c.vertex_count[i] == 0, expected == 0) << "alpha " << alpha << " instance " << i;
     }
   }

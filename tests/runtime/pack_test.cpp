@@ -2,12 +2,12 @@
 // and clean errors for corrupt, truncated, inconsistent or missing packs.
 #include "crowdbake/runtime/pack.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstring>
 #include <memory>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/formats/pack_format.h"
 #include "runtime/runtime_test_support.h"
@@ -68,7 +68,8 @@ Entry find_chunk(const std::vector<uint8_t>& b, uint32_t tag) {
 void fix_checksums(std::vector<uint8_t>& b) {
   const std::vector<Entry> entries = table(b);
   for (const Entry& e : entries)
-    store<uint32_t>(b, e.table_at + 24, crc32c(&b[static_cast<size_t>(e.offset)], static_cast<size_t>(e.size)));
+    store<uint32_t>(b, e.table_at + 24,
+                    crc32c(&b[static_cast<size_t>(e.offset)], static_cast<size_t>(e.size)));
   const size_t at = static_cast<size_t>(load<uint64_t>(b, 24));
   uint32_t crc = crc32c(b.data(), 40);
   crc = crc32c(&b[at], 32 * entries.size(), crc);
@@ -322,7 +323,8 @@ TEST(Pack, CorruptBulkChunkFailsOnlyWhenLoaded) {
   ASSERT_TRUE(open_bytes(bytes, pack, kPackTables));  // GEOM is not read yet
   const Status s = pack.load(kPackAll);
   EXPECT_EQ(s.code(), StatusCode::kInvalidPack);
-  EXPECT_NE(s.message().find("test.crowdpack: chunk GEOM: checksum mismatch"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("test.crowdpack: chunk GEOM: checksum mismatch"), std::string::npos)
+      << s.message();
   EXPECT_FALSE(pack.has(kPackGeometry));
   EXPECT_TRUE(pack.contents().geometry.positions.empty());
   // The other parts still load.
@@ -336,22 +338,26 @@ TEST(Pack, HeadCountsMustMatchEveryChunk) {
   set_head_count(bytes, 0, 99);  // joints
   Status s = open_bytes(bytes, pack, kPackTables);
   EXPECT_EQ(s.code(), StatusCode::kInvalidPack);
-  EXPECT_NE(s.message().find("chunk SKEL: holds 3 joints, HEAD says 99"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk SKEL: holds 3 joints, HEAD says 99"), std::string::npos)
+      << s.message();
 
   bytes = test::small_pack_bytes();
   set_head_count(bytes, 1, 2);  // clips
   s = open_bytes(bytes, pack, kPackTables);
-  EXPECT_NE(s.message().find("chunk CLIP: holds 3 clips, HEAD says 2"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk CLIP: holds 3 clips, HEAD says 2"), std::string::npos)
+      << s.message();
 
   bytes = test::small_pack_bytes();
   set_head_count(bytes, 5, 7);  // animation rows: clip "pose" uses row 7
   s = open_bytes(bytes, pack, kPackTables);
-  EXPECT_NE(s.message().find("chunk CLIP: clip 2 'pose' uses rows 7..7"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk CLIP: clip 2 'pose' uses rows 7..7"), std::string::npos)
+      << s.message();
 
   bytes = test::small_pack_bytes();
   set_head_count(bytes, 3, 35);  // vertices (PROG holds 36)
   s = open_bytes(bytes, pack, kPackTables);
-  EXPECT_NE(s.message().find("chunk PROG: holds 36 vertices, HEAD says 35"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk PROG: holds 36 vertices, HEAD says 35"), std::string::npos)
+      << s.message();
 
   // Without progressive data GEOM is the first chunk to disagree, when it is loaded.
   PackContents flat = test::make_small_pack();
@@ -362,14 +368,16 @@ TEST(Pack, HeadCountsMustMatchEveryChunk) {
   set_head_count(bytes, 3, 37);
   ASSERT_TRUE(open_bytes(bytes, pack, kPackTables));
   s = pack.load(kPackGeometry);
-  EXPECT_NE(s.message().find("chunk GEOM: holds 36 vertices, HEAD says 37"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk GEOM: holds 36 vertices, HEAD says 37"), std::string::npos)
+      << s.message();
   EXPECT_FALSE(pack.has(kPackGeometry));
 
   bytes = test::small_pack_bytes();
   set_head_count(bytes, 5, 9);  // animation rows: the texture holds 8
   ASSERT_TRUE(open_bytes(bytes, pack, kPackTables));
   s = pack.load(kPackAnimation);
-  EXPECT_NE(s.message().find("chunk ANIM: holds 8 rows, HEAD says 9"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("chunk ANIM: holds 8 rows, HEAD says 9"), std::string::npos)
+      << s.message();
 }
 
 TEST(Pack, MissingChunk) {

@@ -3,9 +3,9 @@
 // baked by the real pipeline.
 #include "crowdbake/runtime/reconstruct_job.h"
 
-#include <vector>
-
 #include <gtest/gtest.h>
+
+#include <vector>
 
 #include "crowdbake/runtime/pack.h"
 #include "runtime/runtime_test_support.h"
@@ -67,7 +67,8 @@ TEST(ReconstructJob, EveryLevelOfTheHandBuiltPack) { check_every_n(test::make_sm
 
 TEST(ReconstructJob, EveryLevelOfBakedPacks) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
-  for (const std::string& path : {test::BakedPacks::get().spectator(), test::BakedPacks::get().spectator_f32()}) {
+  for (const std::string& path :
+       {test::BakedPacks::get().spectator(), test::BakedPacks::get().spectator_f32()}) {
     Pack pack;
     const Status s = Pack::open_file(path, pack, kPackGeometry);
     ASSERT_TRUE(s) << s.message();
@@ -75,7 +76,8 @@ TEST(ReconstructJob, EveryLevelOfBakedPacks) {
     check_every_n(pack.contents());
     // The bake's levels are real meshes: no triangle collapses to a line or a point.
     const ProgressiveView view = progressive_view(pack.contents());
-    for (uint32_t n : {pack.min_vertices(), pack.max_vertices() / 3, pack.max_vertices() / 2, pack.max_vertices()}) {
+    for (uint32_t n : {pack.min_vertices(), pack.max_vertices() / 3, pack.max_vertices() / 2,
+                       pack.max_vertices()}) {
       std::vector<uint32_t> out(3 * size_t{lod_triangle_count(view, n)});
       ReconstructJob job;
       job.mesh = view;
@@ -142,7 +144,8 @@ TEST(ReconstructJob, GroupsRoundDown) {
   ASSERT_TRUE(job.Run());
   EXPECT_EQ(triangles, 2u);
   // Corner 3 -> 2 (3 >= 3); the rest stay.
-  EXPECT_EQ(std::vector<uint32_t>(out.begin(), out.begin() + 6), (std::vector<uint32_t>{0, 1, 2, 0, 2, 2}));
+  EXPECT_EQ(std::vector<uint32_t>(out.begin(), out.begin() + 6),
+            (std::vector<uint32_t>{0, 1, 2, 0, 2, 2}));
   job.vertices = 2;
   ASSERT_TRUE(job.Run());
   EXPECT_EQ(triangles, 1u);

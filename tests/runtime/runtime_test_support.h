@@ -3,6 +3,7 @@
 // a ByteSource that records every read.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,8 +17,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack.h"
@@ -34,9 +33,11 @@ inline std::string quote(const std::string& s) {
 // Runs a shell command; returns its exit code, its output in *log.
 inline int run_command(const std::string& command, std::string* log) {
   static int counter = 0;
-  const auto out = std::filesystem::temp_directory_path() /
-                   ("crowdbake-runtime-cmd-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  const int status = std::system((command + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
+  const auto out =
+      std::filesystem::temp_directory_path() /
+      ("crowdbake-runtime-cmd-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const int status =
+      std::system((command + " >" + quote(out.string()) + " 2>&1 </dev/null").c_str());
   std::ifstream in(out);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::filesystem::remove(out);
@@ -95,10 +96,10 @@ class BakedPacks {
   std::string spectator_, spectator_f32_, error_;
 };
 
-#define CROWDBAKE_REQUIRE_BAKED_PACKS()                                               \
-  do {                                                                                \
-    ASSERT_TRUE(::crowdbake::test::BakedPacks::get().error().empty())                 \
-        << ::crowdbake::test::BakedPacks::get().error();                              \
+#define CROWDBAKE_REQUIRE_BAKED_PACKS()                               \
+  do {                                                                \
+    ASSERT_TRUE(::crowdbake::test::BakedPacks::get().error().empty()) \
+        << ::crowdbake::test::BakedPacks::get().error();              \
   } while (0)
 
 inline std::vector<uint8_t> read_file(const std::string& path) {
@@ -108,7 +109,8 @@ inline std::vector<uint8_t> read_file(const std::string& path) {
 
 inline void write_file(const std::filesystem::path& path, const std::vector<uint8_t>& bytes) {
   std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
 }
 
 inline void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -200,7 +202,8 @@ inline PackContents make_small_pack(uint32_t grid = 6, uint32_t seed = 7) {
   for (uint32_t y = 0; y < n; ++y)
     for (uint32_t x = 0; x < n; ++x) {
       const uint32_t index = y * n + x;
-      g.positions.insert(g.positions.end(), {0.3f * x - 0.75f, 1.8f * y / (n - 1), 0.05f * unit(rng)});
+      g.positions.insert(g.positions.end(),
+                         {0.3f * x - 0.75f, 1.8f * y / (n - 1), 0.05f * unit(rng)});
       g.normals.insert(g.normals.end(), {0.0f, 0.0f, 1.0f});
       g.uvs.insert(g.uvs.end(), {float(x) / (n - 1), float(y) / (n - 1)});
       if (index < 3) {
@@ -243,8 +246,8 @@ inline PackContents make_small_pack(uint32_t grid = 6, uint32_t seed = 7) {
   }
   for (uint32_t m = 0; m <= vertices; ++m) {
     const uint32_t k = m < p.min_vertices ? 0 : m - p.min_vertices;
-    p.triangle_count.push_back(2 + static_cast<uint32_t>(uint64_t{triangles - 2} * k /
-                                                         (vertices - p.min_vertices)));
+    p.triangle_count.push_back(
+        2 + static_cast<uint32_t>(uint64_t{triangles - 2} * k / (vertices - p.min_vertices)));
   }
 
   std::vector<double> matrices;

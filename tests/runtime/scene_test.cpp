@@ -2,13 +2,13 @@
 // settings, pack paths, scenes built from code, and a clear error for every bad input.
 #include "crowdbake/runtime/scene.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "runtime/runtime_test_support.h"
 #include "temp_dir.h"
@@ -25,7 +25,8 @@ class SceneFiles {
     test::write_file(dir_ / "packs/small.crowdpack", test::small_pack_bytes());
   }
   void add_spectator() {
-    std::filesystem::copy_file(test::BakedPacks::get().spectator(), dir_ / "packs/spectator.crowdpack");
+    std::filesystem::copy_file(test::BakedPacks::get().spectator(),
+                               dir_ / "packs/spectator.crowdpack");
   }
   std::string write(const std::string& json, const std::string& name = "scene.json") {
     const auto path = dir_ / name;
@@ -43,7 +44,8 @@ class SceneFiles {
 };
 
 const char* kCamera = R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0]})";
-const char* kSmallType = R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack"}])";
+const char* kSmallType =
+    R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack"}])";
 
 // A minimal valid scene with `extra` spliced in (",\n" separated).
 std::string scene_with(const std::string& extra, const std::string& camera = kCamera,
@@ -63,7 +65,8 @@ void expect_error(const std::string& json, std::initializer_list<const char*> fr
   ASSERT_FALSE(s) << json;
   EXPECT_EQ(s.code(), code) << s.message();
   EXPECT_EQ(s.message().rfind(files.dir().path().string() + "/scene.json: ", 0), 0u) << s.message();
-  for (const char* f : fragments) EXPECT_NE(s.message().find(f), std::string::npos) << "'" << f << "' not in: " << s.message();
+  for (const char* f : fragments)
+    EXPECT_NE(s.message().find(f), std::string::npos) << "'" << f << "' not in: " << s.message();
   EXPECT_EQ(scene.types.size(), 1u);
 }
 
@@ -84,14 +87,17 @@ void expect_consistent(const InstanceArrays& a) {
 TEST(Scene, ListedInstances) {
   SceneFiles files;
   Scene scene;
-  const Status s = files.load(scene_with(R"("instances": [
+  const Status s = files.load(
+      scene_with(R"("instances": [
     {"position": [1, 0, 2]},
     {"position": [-1, 0.5, 3], "yaw_degrees": 90, "scale": 1.25, "clip": "wave", "speed": 1.5,
      "time_offset": 0.25, "textures": {"head": 1, "trousers": 2}, "neck_height": 1.6,
      "waist_height": 1.0, "color": {"hue": -20, "saturation": 0.5, "brightness": 1.25}},
     {"type": "small", "position": [0, 0, 0], "rotation": [0, 0, 2, 0], "clip": "pose"}
-  ])", kCamera, R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack",
-     "texture_variants": {"head": 2, "upper_body": 1, "trousers": 3}}])"), scene);
+  ])",
+                 kCamera, R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack",
+     "texture_variants": {"head": 2, "upper_body": 1, "trousers": 3}}])"),
+      scene);
   ASSERT_TRUE(s) << s.message();
   ASSERT_EQ(scene.types.size(), 1u);
   EXPECT_EQ(scene.types[0].name, "small");
@@ -128,11 +134,12 @@ TEST(Scene, ListedInstances) {
 TEST(Scene, SettingsAndCameraPath) {
   SceneFiles files;
   Scene scene;
-  const Status s = files.load(scene_with(
-      R"("version": 1,
+  const Status s = files.load(
+      scene_with(
+          R"("version": 1,
          "lod": {"mode": "discrete", "budget": 250000, "alpha": 2.5, "min_t": 0.25, "discrete_levels": [1, 0.4, 0.1]},
          "animation": {"interpolation": "linear", "root_motion": false})",
-      R"("camera": {"up": [0, 1, 0], "fov_degrees": 40, "near": 0.5, "far": 300, "resolution": [640, 360],
+          R"("camera": {"up": [0, 1, 0], "fov_degrees": 40, "near": 0.5, "far": 300, "resolution": [640, 360],
                     "path": [{"time": 0, "position": [0, 2, 30], "target": [0, 1, 0]},
                              {"time": 4, "position": [0, 2, 10], "target": [0, 1, 0]}]})"),
       scene);
@@ -164,7 +171,8 @@ const char* kGenerators = R"("generators": [
     {"kind": "scatter", "type": "small", "count": 40, "rectangle": {"min": [-10, -4], "max": [10, 4]},
      "y": 0.5, "seed": 9, "clip": "pose", "waist_height": 0.8}
   ])";
-const char* kVariantTypes = R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack",
+const char* kVariantTypes =
+    R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack",
      "texture_variants": {"head": 4, "upper_body": 3, "trousers": 2}}])";
 
 TEST(Scene, GeneratedSeatGridAndScatter) {
@@ -186,7 +194,8 @@ TEST(Scene, GeneratedSeatGridAndScatter) {
     EXPECT_NEAR(col, std::round(col), 1e-4f);
     EXPECT_NEAR(row, std::round(row), 1e-4f);
     EXPECT_NEAR(in.position[1], 0.4f * std::round(row), 1e-5f);
-    EXPECT_TRUE(taken.insert({int(std::round(row)), int(std::round(col))}).second) << "seat used twice";
+    EXPECT_TRUE(taken.insert({int(std::round(row)), int(std::round(col))}).second)
+        << "seat used twice";
     EXPECT_GE(in.speed, 0.8f);
     EXPECT_LT(in.speed, 1.2f);
     EXPECT_GE(in.time_offset, 0.0f);
@@ -239,8 +248,10 @@ TEST(Scene, EmptySeatProbabilityExtremes) {
   SceneFiles files;
   for (const auto& [p, expected] : {std::pair<const char*, size_t>{"0", 12}, {"1", 0}}) {
     Scene scene;
-    const std::string json = scene_with(std::string(R"("generators": [{"kind": "seat_grid", "rows": 3, "columns": 4,
-        "spacing": [1, 1], "empty_probability": )") + p + "}]");
+    const std::string json =
+        scene_with(std::string(R"("generators": [{"kind": "seat_grid", "rows": 3, "columns": 4,
+        "spacing": [1, 1], "empty_probability": )") +
+                   p + "}]");
     const Status s = files.load(json, scene);
     ASSERT_TRUE(s) << s.message();
     EXPECT_EQ(scene.instances.size(), expected) << "p = " << p;
@@ -250,7 +261,8 @@ TEST(Scene, EmptySeatProbabilityExtremes) {
 TEST(Scene, PackPathsAreRelativeToTheSceneFile) {
   SceneFiles files;
   const std::string path = files.write(
-      scene_with("", kCamera, R"("character_types": [{"name": "small", "pack": "../packs/small.crowdpack"}])"),
+      scene_with("", kCamera,
+                 R"("character_types": [{"name": "small", "pack": "../packs/small.crowdpack"}])"),
       "scenes/stadium.json");
   Scene scene;
   const Status s = load_scene(path, scene);
@@ -258,7 +270,8 @@ TEST(Scene, PackPathsAreRelativeToTheSceneFile) {
   EXPECT_EQ(scene.types[0].pack_path, (files.dir().path() / "packs/small.crowdpack").string());
   // The same scene from the folder above does not find the pack.
   const std::string moved = files.write(
-      scene_with("", kCamera, R"("character_types": [{"name": "small", "pack": "../packs/small.crowdpack"}])"));
+      scene_with("", kCamera,
+                 R"("character_types": [{"name": "small", "pack": "../packs/small.crowdpack"}])"));
   const Status missing = load_scene(moved, scene);
   EXPECT_EQ(missing.code(), StatusCode::kIoError);
 }
@@ -268,12 +281,13 @@ TEST(Scene, SeveralCharacterTypesFromBakedAndHandBuiltPacks) {
   SceneFiles files;
   files.add_spectator();
   Scene scene;
-  const Status s = files.load(scene_with(R"("instances": [
+  const Status s = files.load(
+      scene_with(R"("instances": [
       {"type": "spectator", "position": [0, 0, 0], "clip": "cheer"},
       {"type": "small", "position": [2, 0, 0], "clip": "wave"}],
     "generators": [{"kind": "scatter", "type": "spectator", "count": 5, "seed": 1,
                     "rectangle": {"min": [-5, -5], "max": [5, 5]}, "clips": ["idle", "clap", "walk"]}])",
-      kCamera, R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack"},
+                 kCamera, R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack"},
                                       {"name": "spectator", "pack": "packs/spectator.crowdpack"}])"),
       scene, SceneLoadOptions{kPackTables});
   ASSERT_TRUE(s) << s.message();
@@ -305,7 +319,8 @@ TEST(Scene, DocumentedExampleLoads) {
   SceneFiles files;
   files.add_spectator();
   Scene scene;
-  const Status s = files.load(doc.substr(start + 8, end - start - 8), scene, SceneLoadOptions{kPackTables});
+  const Status s =
+      files.load(doc.substr(start + 8, end - start - 8), scene, SceneLoadOptions{kPackTables});
   ASSERT_TRUE(s) << s.message();
   EXPECT_GT(scene.instances.size(), 201u + 4000u);  // 4800 seats, 8% empty
   EXPECT_LT(scene.instances.size(), 201u + 4800u);
@@ -316,7 +331,8 @@ TEST(Scene, DocumentedExampleLoads) {
 // ---- Bad scene files ------------------------------------------------------------------
 
 TEST(SceneErrors, MissingPack) {
-  expect_error(scene_with("", kCamera, R"("character_types": [{"name": "a", "pack": "packs/nope.crowdpack"}])"),
+  expect_error(scene_with("", kCamera,
+                          R"("character_types": [{"name": "a", "pack": "packs/nope.crowdpack"}])"),
                {"character_types[0].pack: ", "packs/nope.crowdpack: cannot open: No such file"},
                StatusCode::kIoError);
 }
@@ -335,46 +351,67 @@ TEST(SceneErrors, CorruptPack) {
 
 TEST(SceneErrors, UnknownClipName) {
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "clip": "dance"}])"),
-               {"instances[0].clip: ", "character type 'small' has no clip \"dance\"", "its clips: walk, wave, pose"});
-  expect_error(scene_with(R"("generators": [{"kind": "scatter", "count": 3, "rectangle": {"min": [0, 0], "max": [1, 1]},
+               {"instances[0].clip: ", "character type 'small' has no clip \"dance\"",
+                "its clips: walk, wave, pose"});
+  expect_error(
+      scene_with(
+          R"("generators": [{"kind": "scatter", "count": 3, "rectangle": {"min": [0, 0], "max": [1, 1]},
                                              "clips": ["walk", "jump"]}])"),
-               {"generators[0].clips[1]: ", "no clip \"jump\""});
+      {"generators[0].clips[1]: ", "no clip \"jump\""});
 }
 
 TEST(SceneErrors, BudgetZero) {
   expect_error(scene_with(R"("lod": {"budget": 0})"), {"lod.budget: must be at least 1, got 0"});
   expect_error(scene_with(R"("lod": {"budget": -5})"), {"lod.budget: must be at least 1, got -5"});
-  expect_error(scene_with(R"("lod": {"budget": 5000000000})"), {"lod.budget: must be at most 4294967295"});
+  expect_error(scene_with(R"("lod": {"budget": 5000000000})"),
+               {"lod.budget: must be at most 4294967295"});
 }
 
 TEST(SceneErrors, ResolutionZeroOrHuge) {
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [0, 720]})"),
-               {"camera.resolution: width must be 1..16384 pixels, got 0"});
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [1280, 100000]})"),
-               {"camera.resolution: height must be 1..16384 pixels, got 100000"});
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [1280]})"),
-               {"camera.resolution: expected [width, height] in pixels, got an array of 1"});
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [-3, 10]})"),
-               {"camera.resolution: width must be 1..16384 pixels, got -3"});
+  expect_error(
+      scene_with(
+          "", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [0, 720]})"),
+      {"camera.resolution: width must be 1..16384 pixels, got 0"});
+  expect_error(
+      scene_with(
+          "",
+          R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [1280, 100000]})"),
+      {"camera.resolution: height must be 1..16384 pixels, got 100000"});
+  expect_error(
+      scene_with(
+          "", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [1280]})"),
+      {"camera.resolution: expected [width, height] in pixels, got an array of 1"});
+  expect_error(
+      scene_with(
+          "", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "resolution": [-3, 10]})"),
+      {"camera.resolution: width must be 1..16384 pixels, got -3"});
 }
 
 TEST(SceneErrors, NegativeTimes) {
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "time_offset": -1}])"),
                {"instances[0].time_offset: must be >= 0, got -1"});
-  expect_error(scene_with("", R"("camera": {"path": [{"time": -0.5, "position": [0, 1, 5], "target": [0, 1, 0]}]})"),
-               {"camera.path[0].time: must be >= 0, got -0.5"});
-  expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
+  expect_error(
+      scene_with(
+          "",
+          R"("camera": {"path": [{"time": -0.5, "position": [0, 1, 5], "target": [0, 1, 0]}]})"),
+      {"camera.path[0].time: must be >= 0, got -0.5"});
+  expect_error(
+      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
                                              "time_offset": [-1, 2]}])"),
-               {"generators[0].time_offset[0]: must be >= 0, got -1"});
+      {"generators[0].time_offset[0]: must be >= 0, got -1"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "speed": -2}])"),
                {"instances[0].speed: must be >= 0, got -2"});
 }
 
 TEST(SceneErrors, WrongTypes) {
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "fov_degrees": "wide"})"),
-               {"camera.fov_degrees: expected a number, got string \"wide\""});
-  expect_error(scene_with(R"("lod": {"budget": 2.5})"), {"lod.budget: expected an integer, got number 2.5"});
-  expect_error(scene_with(R"("instances": {"position": [0, 0, 0]})"), {"instances: expected an array, got object"});
+  expect_error(
+      scene_with(
+          "", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "fov_degrees": "wide"})"),
+      {"camera.fov_degrees: expected a number, got string \"wide\""});
+  expect_error(scene_with(R"("lod": {"budget": 2.5})"),
+               {"lod.budget: expected an integer, got number 2.5"});
+  expect_error(scene_with(R"("instances": {"position": [0, 0, 0]})"),
+               {"instances: expected an array, got object"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0]}])"),
                {"instances[0].position: expected an array of 3 numbers, got an array of 2"});
   expect_error(scene_with(R"("instances": [{"position": [0, "1", 0]}])"),
@@ -394,7 +431,8 @@ TEST(SceneErrors, UnknownAndMissingKeys) {
   expect_error(scene_with(R"("lights": [])"), {"lights: unknown key"});
   expect_error(std::string("{") + kSmallType + "}", {"camera: missing (required)"});
   expect_error(std::string("{") + kCamera + "}", {"character_types: missing (required)"});
-  expect_error(scene_with(R"("instances": [{"clip": "walk"}])"), {"instances[0].position: missing (required)"});
+  expect_error(scene_with(R"("instances": [{"clip": "walk"}])"),
+               {"instances[0].position: missing (required)"});
   expect_error(scene_with("", R"("camera": {"target": [0, 1, 0]})"),
                {"camera.position: missing (required unless camera.path is given)"});
   expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 2, "columns": 2}])"),
@@ -402,51 +440,66 @@ TEST(SceneErrors, UnknownAndMissingKeys) {
 }
 
 TEST(SceneErrors, NotJson) {
-  expect_error("{\"camera\": {\"position\": [0, 1, 2],}", {"scene.json: not valid JSON: parse error at line 1"});
+  expect_error("{\"camera\": {\"position\": [0, 1, 2],}",
+               {"scene.json: not valid JSON: parse error at line 1"});
   expect_error("", {"not valid JSON"});
 }
 
 TEST(SceneErrors, NamesThatDoNotResolve) {
   const char* two_types = R"("character_types": [{"name": "a", "pack": "packs/small.crowdpack"},
                                                  {"name": "b", "pack": "packs/small.crowdpack"}])";
-  expect_error(scene_with(R"("instances": [{"position": [0, 0, 0]}])", kCamera, two_types),
-               {"instances[0].type: missing (required when the scene has several character types)"});
-  expect_error(scene_with(R"("instances": [{"type": "c", "position": [0, 0, 0]}])", kCamera, two_types),
-               {"instances[0].type: unknown character type \"c\" (types: a, b)"});
-  expect_error(scene_with("", kCamera, R"("character_types": [{"name": "a", "pack": "packs/small.crowdpack"},
+  expect_error(
+      scene_with(R"("instances": [{"position": [0, 0, 0]}])", kCamera, two_types),
+      {"instances[0].type: missing (required when the scene has several character types)"});
+  expect_error(
+      scene_with(R"("instances": [{"type": "c", "position": [0, 0, 0]}])", kCamera, two_types),
+      {"instances[0].type: unknown character type \"c\" (types: a, b)"});
+  expect_error(
+      scene_with("", kCamera, R"("character_types": [{"name": "a", "pack": "packs/small.crowdpack"},
                                                              {"name": "a", "pack": "packs/small.crowdpack"}])"),
-               {"character_types[1].name: \"a\" is already the name of character_types[0]"});
-  expect_error(scene_with("", kCamera, R"("character_types": [])"), {"character_types: needs at least one"});
+      {"character_types[1].name: \"a\" is already the name of character_types[0]"});
+  expect_error(scene_with("", kCamera, R"("character_types": [])"),
+               {"character_types: needs at least one"});
 }
 
 TEST(SceneErrors, OutOfRangeValues) {
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"head": 3}}])"),
-               {"instances[0].textures.head: variant 3 is out of range: character type 'small' has 1 head variant(s)"});
+               {"instances[0].textures.head: variant 3 is out of range: character type 'small' has "
+                "1 head variant(s)"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "waist_height": 1.7}])"),
                {"instances[0].waist_height: waist height 1.7 is above neck height 1.5"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "scale": 0}])"),
                {"instances[0].scale: must be > 0, got 0"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "rotation": [0, 0, 0, 0]}])"),
                {"instances[0].rotation: quaternion [x, y, z, w] must not be zero"});
-  expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "rotation": [0, 0, 0, 1], "yaw_degrees": 3}])"),
-               {"give either rotation or yaw_degrees"});
+  expect_error(
+      scene_with(
+          R"("instances": [{"position": [0, 0, 0], "rotation": [0, 0, 0, 1], "yaw_degrees": 3}])"),
+      {"give either rotation or yaw_degrees"});
   expect_error(scene_with(R"("lod": {"alpha": 1})"), {"lod.alpha: must be > 1"});
   expect_error(scene_with(R"("lod": {"min_t": 2})"), {"lod.min_t: must be in [0, 1], got 2"});
   expect_error(scene_with(R"("lod": {"discrete_levels": [0.5, 1]})"),
                {"lod.discrete_levels[1]: levels must be strictly decreasing"});
-  expect_error(scene_with(R"("version": 2)"), {"version: unsupported scene version 2 (this build reads 1)"});
-  expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 5000, "columns": 5000, "spacing": [1, 1]}])"),
-               {"generators[0]: 5000 rows x 5000 columns exceed the limit of 16777216 instances"});
+  expect_error(scene_with(R"("version": 2)"),
+               {"version: unsupported scene version 2 (this build reads 1)"});
+  expect_error(
+      scene_with(
+          R"("generators": [{"kind": "seat_grid", "rows": 5000, "columns": 5000, "spacing": [1, 1]}])"),
+      {"generators[0]: 5000 rows x 5000 columns exceed the limit of 16777216 instances"});
   expect_error(scene_with(R"("generators": [{"kind": "ring", "count": 4}])"),
                {"generators[0].kind: unknown generator \"ring\" (expected seat_grid or scatter)"});
-  expect_error(scene_with(R"("generators": [{"kind": "scatter", "count": 3, "rectangle": {"min": [0, 0], "max": [0, 1]}}])"),
-               {"generators[0].rectangle: max must exceed min in x"});
-  expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
+  expect_error(
+      scene_with(
+          R"("generators": [{"kind": "scatter", "count": 3, "rectangle": {"min": [0, 0], "max": [0, 1]}}])"),
+      {"generators[0].rectangle: max must exceed min in x"});
+  expect_error(
+      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
                                              "empty_probability": 1.5}])"),
-               {"generators[0].empty_probability: must be in [0, 1], got 1.5"});
-  expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
+      {"generators[0].empty_probability: must be in [0, 1], got 1.5"});
+  expect_error(
+      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1, "spacing": [1, 1],
                                              "speed": [2, 1]}])"),
-               {"generators[0].speed: range [2, 1] has max < min"});
+      {"generators[0].speed: range [2, 1] has max < min"});
 }
 
 TEST(SceneErrors, UnusableCamera) {
@@ -454,14 +507,20 @@ TEST(SceneErrors, UnusableCamera) {
                {"camera: camera position and target are the same point"});
   expect_error(scene_with("", R"("camera": {"position": [0, 1, 0], "target": [0, 0, 0]})"),
                {"camera: camera up direction is zero or parallel to the view direction"});
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "fov_degrees": 180})"),
-               {"camera.fov_degrees: must be in (0, 180), got 180"});
-  expect_error(scene_with("", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "near": 10, "far": 5})"),
-               {"camera.far: must be beyond near (10), got 5"});
-  expect_error(scene_with("", R"("camera": {"path": [{"time": 1, "position": [0, 1, 5], "target": [0, 1, 0]},
+  expect_error(
+      scene_with("",
+                 R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "fov_degrees": 180})"),
+      {"camera.fov_degrees: must be in (0, 180), got 180"});
+  expect_error(
+      scene_with(
+          "", R"("camera": {"position": [0, 5, 20], "target": [0, 1, 0], "near": 10, "far": 5})"),
+      {"camera.far: must be beyond near (10), got 5"});
+  expect_error(
+      scene_with("", R"("camera": {"path": [{"time": 1, "position": [0, 1, 5], "target": [0, 1, 0]},
                                                      {"time": 1, "position": [0, 1, 6], "target": [0, 1, 0]}]})"),
-               {"camera.path[1].time: keys must be in increasing time order (1 follows 1)"});
-  expect_error(scene_with("", R"("camera": {"path": []})"), {"camera.path: needs at least one key"});
+      {"camera.path[1].time: keys must be in increasing time order (1 follows 1)"});
+  expect_error(scene_with("", R"("camera": {"path": []})"),
+               {"camera.path: needs at least one key"});
 }
 
 TEST(SceneErrors, MissingSceneFile) {
@@ -487,14 +546,16 @@ TEST(Scene, BuiltFromCode) {
   EXPECT_EQ(scene.find_clip(5, "wave"), -1);
   Pack again;
   ASSERT_TRUE(Pack::open(make_memory_source(test::small_pack_bytes()), again));
-  EXPECT_EQ(add_character_type(scene, "small", std::move(again)).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(add_character_type(scene, "small", std::move(again)).code(),
+            StatusCode::kInvalidArgument);
   EXPECT_EQ(add_character_type(scene, "closed", Pack{}).code(), StatusCode::kInvalidArgument);
   Pack third;
   ASSERT_TRUE(Pack::open(make_memory_source(test::small_pack_bytes()), third));
   EXPECT_EQ(add_character_type(scene, "", std::move(third)).code(), StatusCode::kInvalidArgument);
   Pack fourth;
   ASSERT_TRUE(Pack::open(make_memory_source(test::small_pack_bytes()), fourth));
-  EXPECT_EQ(add_character_type(scene, "v", std::move(fourth), {0, 1, 1}).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(add_character_type(scene, "v", std::move(fourth), {0, 1, 1}).code(),
+            StatusCode::kInvalidArgument);
 
   Instance in;
   in.position = {1, 2, 3};

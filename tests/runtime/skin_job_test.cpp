@@ -1,10 +1,10 @@
 // PaletteJob and SkinJob: decoding through the codec, linear blend skinning, validity.
 #include "crowdbake/runtime/skin_job.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "runtime/runtime_test_support.h"
 
@@ -43,7 +43,8 @@ TEST(PaletteJob, BlendGoesThroughTheCodec) {
     float a[12], b[12];  // float32 rows blend entry by entry
     test::small_pack_matrix(1, j, a);
     test::small_pack_matrix(2, j, b);
-    for (int k = 0; k < 12; ++k) EXPECT_NEAR(palette[12 * j + k], 0.75f * a[k] + 0.25f * b[k], 1e-6f);
+    for (int k = 0; k < 12; ++k)
+      EXPECT_NEAR(palette[12 * j + k], 0.75f * a[k] + 0.25f * b[k], 1e-6f);
   }
 }
 
@@ -83,7 +84,7 @@ TEST(PaletteJob, JobValidity) {
 
 TEST(SkinJob, LinearBlendSkinningThenWorld) {
   // Two joints: a translation by (1, 0, 0) and a rotation of 90 degrees about +Y.
-  const std::vector<float> palette = {1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0,  //
+  const std::vector<float> palette = {1, 0, 0, 1, 0, 1, 0, 0, 0,  0, 1, 0,  //
                                       0, 0, 1, 0, 0, 1, 0, 0, -1, 0, 0, 0};
   const std::vector<float> positions = {0, 0, 1, 2, 0, 0};
   const std::vector<float> normals = {0, 0, 1, 1, 0, 0};

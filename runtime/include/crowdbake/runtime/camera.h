@@ -16,7 +16,7 @@ using Vec3 = std::array<float, 3>;
 struct Camera {
   Vec3 position{0.0f, 1.6f, 10.0f};
   Vec3 target{0.0f, 1.0f, 0.0f};
-  Vec3 up{0.0f, 1.0f, 0.0f};  // need not be orthogonal to the view direction, not parallel
+  Vec3 up{0.0f, 1.0f, 0.0f};    // need not be orthogonal to the view direction, not parallel
   float fov_y_degrees = 50.0f;  // vertical field of view, in (0, 180)
   float near_plane = 0.1f;      // > 0
   float far_plane = 1000.0f;    // > near_plane
@@ -43,8 +43,9 @@ Camera camera_at(const Camera& base, Span<const CameraKey> path, float time);
 struct View {
   Vec3 eye{}, forward{}, right{}, up{};  // orthonormal basis; forward points at the target
   float tan_half_fov_y = 0.0f;
-  float aspect = 1.0f;        // width / height
-  float focal_pixels = 0.0f;  // (height / 2) / tan(fov_y / 2): pixels covered by 1 unit at distance 1
+  float aspect = 1.0f;  // width / height
+  float focal_pixels =
+      0.0f;  // (height / 2) / tan(fov_y / 2): pixels covered by 1 unit at distance 1
   float near_plane = 0.0f, far_plane = 0.0f;
   uint32_t width = 0, height = 0;
   // Six planes (a, b, c, d) with unit normals pointing inside: a point p is inside when

@@ -18,18 +18,18 @@ namespace crowdbake::runtime {
 // are resized only when the instance count changes.
 struct FrameState {
   float time = 0.0f;
-  View view;                        // the camera at `time`
-  std::vector<uint32_t> row0, row1;  // texture rows (AnimateJob)
-  std::vector<float> blend;          // weight of row1
-  std::vector<float> world;          // 12 per instance: placement · root motion
-  std::vector<float> spheres;        // 4 per instance: world bounding sphere (CullJob)
-  std::vector<uint8_t> visible;      // 1 visible, 0 culled
-  std::vector<double> weights;       // w_i^(1/α) (LodSelectJob's pass 1)
+  View view;                           // the camera at `time`
+  std::vector<uint32_t> row0, row1;    // texture rows (AnimateJob)
+  std::vector<float> blend;            // weight of row1
+  std::vector<float> world;            // 12 per instance: placement · root motion
+  std::vector<float> spheres;          // 4 per instance: world bounding sphere (CullJob)
+  std::vector<uint8_t> visible;        // 1 visible, 0 culled
+  std::vector<double> weights;         // w_i^(1/α) (LodSelectJob's pass 1)
   std::vector<uint32_t> vertex_count;  // selected vertices, 0 = not drawn (LodSelectJob)
   uint32_t visible_count = 0;
   LodStats lod;
-  std::vector<LodType> lod_types;     // per type
-  std::vector<TypeBounds> bounds;     // per type
+  std::vector<LodType> lod_types;  // per type
+  std::vector<TypeBounds> bounds;  // per type
 };
 
 // Runs the crowd update, culling and LoD selection for the scene at `time` (the scene's

@@ -59,8 +59,7 @@ void frame_root_motion(const PackClip& clip, const FrameChoice& frame, float out
 // position: 3 floats
 // rotation: unit quaternion (x, y, z, w)
 // scale: uniform scale
-void placement_matrix(const float position[3], const float rotation[4], float scale,
-                      float out[12]);
+void placement_matrix(const float position[3], const float rotation[4], float scale, float out[12]);
 
 // One instance's frame and world matrix: choose_frame, then placement · M(root motion)
 // (placement alone when apply_root_motion is false). The crowd update job runs exactly this.

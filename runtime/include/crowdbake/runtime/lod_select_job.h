@@ -81,13 +81,13 @@ struct LodType {
 
 // Counts of one selection (for profiling and tests).
 struct LodStats {
-  uint32_t visible = 0;        // m
-  uint32_t drawn = 0;          // instances with n_i > 0
-  uint32_t at_max = 0;         // vc_i > max_i, clamped to max_i
-  uint32_t in_range = 0;       // vc_i kept
-  uint32_t promoted = 0;       // vc_i / min_i in [MinT, 1), raised to min_i
-  uint32_t dropped = 0;        // vc_i / min_i < MinT, not drawn
-  double weight_sum = 0.0;     // Σ w_j^(1/α) (pass 1's reduction)
+  uint32_t visible = 0;            // m
+  uint32_t drawn = 0;              // instances with n_i > 0
+  uint32_t at_max = 0;             // vc_i > max_i, clamped to max_i
+  uint32_t in_range = 0;           // vc_i kept
+  uint32_t promoted = 0;           // vc_i / min_i in [MinT, 1), raised to min_i
+  uint32_t dropped = 0;            // vc_i / min_i < MinT, not drawn
+  double weight_sum = 0.0;         // Σ w_j^(1/α) (pass 1's reduction)
   uint64_t selected_vertices = 0;  // Σ n_i
 };
 

@@ -46,7 +46,7 @@ struct ReconstructJob {
   // Output: at least 3 · lod_triangle_count(mesh, vertices) indices; the first
   // 3 · *triangle_count_out are written.
   Span<uint32_t> output;
-  uint32_t* triangle_count_out = nullptr;  // may be null
+  uint32_t* triangle_count_out = nullptr;   // may be null
   uint32_t* usable_vertices_out = nullptr;  // may be null: receives n'
 
   // False when: triangles is not a multiple of 3; the progressive arrays are neither all

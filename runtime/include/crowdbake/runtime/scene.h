@@ -50,31 +50,31 @@ struct AnimationSettings {
 
 // One instance, for building crowds from code (InstanceArrays::add / get).
 struct Instance {
-  uint32_t type = 0;                    // index into Scene::types
-  Vec3 position{0.0f, 0.0f, 0.0f};      // world units
+  uint32_t type = 0;                                      // index into Scene::types
+  Vec3 position{0.0f, 0.0f, 0.0f};                        // world units
   std::array<float, 4> rotation{0.0f, 0.0f, 0.0f, 1.0f};  // unit quaternion x, y, z, w
-  float scale = 1.0f;                   // uniform, > 0
-  uint32_t clip = 0;                    // index into Scene::clips (a clip of `type`)
-  float speed = 1.0f;                   // playback speed, >= 0
-  float time_offset = 0.0f;             // seconds, >= 0
+  float scale = 1.0f;                                     // uniform, > 0
+  uint32_t clip = 0;                         // index into Scene::clips (a clip of `type`)
+  float speed = 1.0f;                        // playback speed, >= 0
+  float time_offset = 0.0f;                  // seconds, >= 0
   std::array<uint8_t, 3> textures{0, 0, 0};  // variant per region: head, upper body, trousers
-  float neck_height = 0.0f;             // partition heights along the pack's up axis, bind
-  float waist_height = 0.0f;            // pose, model units (waist <= neck)
-  Vec3 color{0.0f, 1.0f, 1.0f};         // hue shift (degrees), saturation and brightness scales
+  float neck_height = 0.0f;                  // partition heights along the pack's up axis, bind
+  float waist_height = 0.0f;                 // pose, model units (waist <= neck)
+  Vec3 color{0.0f, 1.0f, 1.0f};  // hue shift (degrees), saturation and brightness scales
 };
 
 struct InstanceArrays {
   std::vector<uint32_t> type;
-  std::vector<float> position;     // 3 per instance
-  std::vector<float> rotation;     // 4 per instance: x, y, z, w
+  std::vector<float> position;  // 3 per instance
+  std::vector<float> rotation;  // 4 per instance: x, y, z, w
   std::vector<float> scale;
-  std::vector<uint32_t> clip;      // index into Scene::clips
+  std::vector<uint32_t> clip;  // index into Scene::clips
   std::vector<float> speed;
   std::vector<float> time_offset;
   std::vector<uint32_t> textures;  // head | upper_body << 8 | trousers << 16
   std::vector<float> neck_height;
   std::vector<float> waist_height;
-  std::vector<float> color;        // 3 per instance: hue shift (deg), saturation, brightness
+  std::vector<float> color;  // 3 per instance: hue shift (deg), saturation, brightness
 
   size_t size() const { return type.size(); }
   // True when every array has the length size() instances need (3 or 4 per instance for

@@ -23,14 +23,15 @@ void decode_skinning_matrix(const AnimationTexture& texture, uint32_t row0, uint
 
 struct PaletteJob {
   const AnimationTexture* texture = nullptr;
-  uint32_t row0 = 0;    // texture row (AnimateJob's row0)
-  uint32_t row1 = 0;    // row blended in (AnimateJob's row1)
-  float blend = 0.0f;   // weight of row1; 0 decodes row0 alone
+  uint32_t row0 = 0;   // texture row (AnimateJob's row0)
+  uint32_t row1 = 0;   // row blended in (AnimateJob's row1)
+  float blend = 0.0f;  // weight of row1; 0 decodes row0 alone
   // Output: 12 floats (3x4 row-major) per joint, texture->joints joints.
   Span<float> palette;
 
   // False when: texture is null or fails check_animation_texture's layout rules (size,
-  // encoding); a row is >= texture->rows; palette is not 12 · joints floats; blend is not in [0, 1].
+  // encoding); a row is >= texture->rows; palette is not 12 · joints floats; blend is not in [0,
+  // 1].
   bool Validate() const;
   // Validates, then decodes. Allocates nothing.
   bool Run() const;

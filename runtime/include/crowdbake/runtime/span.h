@@ -17,8 +17,8 @@ class Span {
   constexpr Span(T (&array)[N]) : data_(array), size_(N) {}  // NOLINT: implicit on purpose
   // Any contiguous container with data() and size() (std::vector, std::array, Span<U>):
   // Span<const T> binds to const containers, Span<T> only to mutable ones.
-  template <typename C, typename = std::enable_if_t<std::is_convertible_v<
-                            decltype(std::declval<C&>().data()), T*>>>
+  template <typename C, typename = std::enable_if_t<
+                            std::is_convertible_v<decltype(std::declval<C&>().data()), T*>>>
   constexpr Span(C& container)  // NOLINT: implicit on purpose
       : data_(container.data()), size_(container.size()) {}
 
