@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
-
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -15,7 +14,8 @@ int max_influences(const SkinnedAsset& asset) {
   int most = 0;
   for (const Primitive& p : asset.primitives)
     for (const auto& w : p.weights)
-      most = std::max<int>(most, static_cast<int>(std::count_if(w.begin(), w.end(), [](float x) { return x > 0.0f; })));
+      most = std::max<int>(most, static_cast<int>(std::count_if(w.begin(), w.end(),
+                                                                [](float x) { return x > 0.0f; })));
   return most;
 }
 
@@ -46,7 +46,8 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
                                {"has_uvs", !p.uvs.empty()}});
   j["clips"] = nlohmann::json::array();
   for (const Clip& c : asset.clips)
-    j["clips"].push_back({{"name", c.name}, {"duration", c.duration}, {"keyframes", c.keyframes()}});
+    j["clips"].push_back(
+        {{"name", c.name}, {"duration", c.duration}, {"keyframes", c.keyframes()}});
   j["warnings"] = asset.warnings;
   return j;
 }
@@ -54,14 +55,17 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
 void print_text(const SkinnedAsset& asset) {
   const Skeleton& s = asset.skeleton;
   std::printf("%s\n", asset.source.c_str());
-  std::printf("  skeleton   %zu joints, depth %d, root %s\n", s.joints.size(), s.depth(), root_name(s).c_str());
-  std::printf("  meshes     %zu primitives, %zu vertices, %zu triangles, max %d influences (source had %d)\n",
-              asset.primitives.size(), asset.vertex_count(), asset.triangle_count(), max_influences(asset),
-              asset.stats.max_influences);
+  std::printf("  skeleton   %zu joints, depth %d, root %s\n", s.joints.size(), s.depth(),
+              root_name(s).c_str());
+  std::printf(
+      "  meshes     %zu primitives, %zu vertices, %zu triangles, max %d influences (source had "
+      "%d)\n",
+      asset.primitives.size(), asset.vertex_count(), asset.triangle_count(), max_influences(asset),
+      asset.stats.max_influences);
   for (const Primitive& p : asset.primitives)
-    std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s\n", p.name.c_str(), p.material,
-                p.vertex_count(), p.triangle_count(), p.normals.empty() ? "  no normals" : "",
-                p.uvs.empty() ? "  no uvs" : "");
+    std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s\n", p.name.c_str(),
+                p.material, p.vertex_count(), p.triangle_count(),
+                p.normals.empty() ? "  no normals" : "", p.uvs.empty() ? "  no uvs" : "");
   std::printf("  clips      %zu\n", asset.clips.size());
   for (const Clip& c : asset.clips)
     std::printf("    %-32s %8.3f s  %4d keyframes\n", c.name.c_str(), c.duration, c.keyframes());

@@ -1,12 +1,11 @@
 // crowdbake: flags in, calls into the libraries, errors out as one line each.
 // Exit codes: 0 success, 1 bad input, 2 usage, 3 output could not be written.
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
-
-#include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 #include "crowdbake/pipeline/error.h"
@@ -19,97 +18,124 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
                      "default: the one with the most skinned vertices");
   command.add_option("--importer", options.importer, "auto, gltf or assimp")
       ->transform(CLI::CheckedTransformer(
-          std::map<std::string, crowdbake::ImporterKind>{{"auto", crowdbake::ImporterKind::kAuto},
-                                                        {"gltf", crowdbake::ImporterKind::kGltf},
-                                                        {"assimp", crowdbake::ImporterKind::kAssimp}},
+          std::map<std::string, crowdbake::ImporterKind>{
+              {"auto", crowdbake::ImporterKind::kAuto},
+              {"gltf", crowdbake::ImporterKind::kGltf},
+              {"assimp", crowdbake::ImporterKind::kAssimp}},
           CLI::ignore_case));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"crowdbake: bake skinned characters into crowd packs and render crowds", "crowdbake"};
+  CLI::App app{"crowdbake: bake skinned characters into crowd packs and render crowds",
+               "crowdbake"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "crowdbake " CROWDBAKE_VERSION);
 
   crowdbake::cli::InspectSettings inspect;
-  CLI::App* inspect_cmd = app.add_subcommand("inspect", "Describe a character file: skeleton, meshes, clips, warnings");
-  inspect_cmd->add_option("FILE", inspect.input,
-                          "Character file (.gltf, .glb, .fbx, or anything Assimp reads) or a .crowdpack")
+  CLI::App* inspect_cmd =
+      app.add_subcommand("inspect", "Describe a character file: skeleton, meshes, clips, warnings");
+  inspect_cmd
+      ->add_option("FILE", inspect.input,
+                   "Character file (.gltf, .glb, .fbx, or anything Assimp reads) or a .crowdpack")
       ->required();
   inspect_cmd->add_flag("--json", inspect.json, "Print one JSON object to stdout");
   add_import_options(*inspect_cmd, inspect.import);
 
   crowdbake::cli::LodSettings lod;
-  CLI::App* lod_cmd = app.add_subcommand(
-      "lod", "Simplify a character with the pose-aware metric and write one level of detail as a skinned .glb");
+  CLI::App* lod_cmd = app.add_subcommand("lod",
+                                         "Simplify a character with the pose-aware metric and "
+                                         "write one level of detail as a skinned .glb");
   lod_cmd->add_option("INPUT", lod.input, "Character file")->required();
   lod_cmd->add_option("-o,--output", lod.output, "Output .glb")->required();
   auto* ratio = lod_cmd->add_option("--ratio", lod.ratio, "Kept fraction of vertices, in (0, 1]");
   auto* count = lod_cmd->add_option("--vertices", lod.vertices, "Kept number of vertices");
   ratio->excludes(count);
   count->excludes(ratio);
-  lod_cmd->add_option("--samples", lod.simplify.samples, "Poses S, bind pose included (1 = classic QEM)");
+  lod_cmd->add_option("--samples", lod.simplify.samples,
+                      "Poses S, bind pose included (1 = classic QEM)");
   lod_cmd->add_option("--seed", lod.simplify.seed, "Seed of the pose sampler");
   lod_cmd->add_option("--pose-source", lod.simplify.pose_source, "sampled or clips")
       ->transform(CLI::CheckedTransformer(std::map<std::string, crowdbake::PoseSource>{
           {"sampled", crowdbake::PoseSource::kSampled}, {"clips", crowdbake::PoseSource::kClips}}));
-  lod_cmd->add_option("--form", lod.simplify.form, "DQEM form: pullback (one quadric per vertex) or exact")
+  lod_cmd
+      ->add_option("--form", lod.simplify.form,
+                   "DQEM form: pullback (one quadric per vertex) or exact")
       ->transform(CLI::CheckedTransformer(std::map<std::string, crowdbake::DqemForm>{
           {"pullback", crowdbake::DqemForm::kPullback}, {"exact", crowdbake::DqemForm::kExact}}));
-  lod_cmd->add_option("--ranges", lod.simplify.ranges_file, "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
+  lod_cmd->add_option("--ranges", lod.simplify.ranges_file,
+                      "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
   lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");
   add_import_options(*lod_cmd, lod.import);
 
   crowdbake::cli::BenchSettings bench;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks (see docs/accuracy.md)");
   bench_cmd->require_subcommand(1);
-  CLI::App* bench_simplify_cmd =
-      bench_cmd->add_subcommand("simplify", "Animated error vs. simplification time: DQEM settings and two peers");
-  bench_simplify_cmd->add_option("--assets", bench.assets, "Folder with MANIFEST.json (default ../shared/assets)");
-  bench_simplify_cmd->add_option("--out", bench.out, "Folder for accuracy.csv and accuracy.json (default docs/data)");
-  bench_simplify_cmd->add_option("--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
-  bench_simplify_cmd->add_option("--plot-script", bench.plot_script, "gnuplot script (default scripts/plot-accuracy.gp)");
-  bench_simplify_cmd->add_flag("--quick", bench.quick, "Fewer configurations and frames (CI smoke test)");
-  bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only, "Only the generated spectator");
+  CLI::App* bench_simplify_cmd = bench_cmd->add_subcommand(
+      "simplify", "Animated error vs. simplification time: DQEM settings and two peers");
+  bench_simplify_cmd->add_option("--assets", bench.assets,
+                                 "Folder with MANIFEST.json (default ../shared/assets)");
+  bench_simplify_cmd->add_option("--out", bench.out,
+                                 "Folder for accuracy.csv and accuracy.json (default docs/data)");
+  bench_simplify_cmd->add_option(
+      "--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
+  bench_simplify_cmd->add_option("--plot-script", bench.plot_script,
+                                 "gnuplot script (default scripts/plot-accuracy.gp)");
+  bench_simplify_cmd->add_flag("--quick", bench.quick,
+                               "Fewer configurations and frames (CI smoke test)");
+  bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only,
+                               "Only the generated spectator");
   bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
 
   crowdbake::cli::BakeCommandSettings bake;
-  CLI::App* bake_cmd = app.add_subcommand("bake", "Bake a character into a .crowdpack (progressive mesh, animation "
-                                                  "texture, partition mask, Draco geometry)");
+  CLI::App* bake_cmd =
+      app.add_subcommand("bake",
+                         "Bake a character into a .crowdpack (progressive mesh, animation "
+                         "texture, partition mask, Draco geometry)");
   bake_cmd->add_option("INPUT", bake.input, "Character file")->required();
   bake_cmd->add_option("-o,--output", bake.output, "Output .crowdpack")->required();
   bake_cmd->add_option("--config", bake.config, "Bake settings (JSON, docs/bake-config.md)");
-  bake_cmd->add_option("--jobs", bake.jobs, "Threads (0 = all cores); the pack is the same for any value");
-  bake_cmd->add_option("--depfile", bake.depfile, "Write a Make/Ninja depfile listing every file read");
-  bake_cmd->add_option("--report", bake.report, "Write a JSON report (stats, timings, settings, chunk sizes)");
+  bake_cmd->add_option("--jobs", bake.jobs,
+                       "Threads (0 = all cores); the pack is the same for any value");
+  bake_cmd->add_option("--depfile", bake.depfile,
+                       "Write a Make/Ninja depfile listing every file read");
+  bake_cmd->add_option("--report", bake.report,
+                       "Write a JSON report (stats, timings, settings, chunk sizes)");
   bake_cmd->add_flag("--quiet", bake.quiet, "No progress and no summary");
   add_import_options(*bake_cmd, bake.import);
 
   crowdbake::cli::DiffSettings diff;
-  CLI::App* diff_cmd = app.add_subcommand(
-      "diff",
-      "Compare two packs semantically (docs/pack-diff.md). Exit 0: equal within tolerance, 1: different, "
-      "2: error (a missing or corrupt pack is 2, not 1)");
+  CLI::App* diff_cmd = app.add_subcommand("diff",
+                                          "Compare two packs semantically (docs/pack-diff.md). "
+                                          "Exit 0: equal within tolerance, 1: different, "
+                                          "2: error (a missing or corrupt pack is 2, not 1)");
   diff_cmd->add_option("A", diff.a, "First .crowdpack")->required();
   diff_cmd->add_option("B", diff.b, "Second .crowdpack")->required();
   diff_cmd->add_flag("--json", diff.json, "Print one JSON object to stdout");
-  diff_cmd->add_option("--tolerance", diff.tolerance,
-                       "Float comparisons: lengths (positions, translations, bounds, heights, root motion x/z) as "
-                       "|a-b| / bbox diagonal <= T, everything else (3x3 matrix parts, rotations, normals, UVs, "
-                       "weights, yaw, fps) as |a-b| <= T; default 0 = exact. Names, counts, indices, order, "
-                       "progressive arrays and mask texels always compare exactly")
+  diff_cmd
+      ->add_option(
+          "--tolerance", diff.tolerance,
+          "Float comparisons: lengths (positions, translations, bounds, heights, root motion x/z) "
+          "as "
+          "|a-b| / bbox diagonal <= T, everything else (3x3 matrix parts, rotations, normals, UVs, "
+          "weights, yaw, fps) as |a-b| <= T; default 0 = exact. Names, counts, indices, order, "
+          "progressive arrays and mask texels always compare exactly")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
             char* end = nullptr;
             const double t = std::strtod(text.c_str(), &end);
-            return end != text.c_str() && *end == 0 && std::isfinite(t) && t >= 0 ? "" : "must be a number >= 0";
+            return end != text.c_str() && *end == 0 && std::isfinite(t) && t >= 0
+                       ? ""
+                       : "must be a number >= 0";
           },
           "T>=0"));
-  diff_cmd->add_option("--ignore", diff.ignore, "Sections whose differences do not count (comma-separated)")
+  diff_cmd
+      ->add_option("--ignore", diff.ignore,
+                   "Sections whose differences do not count (comma-separated)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"header", "settings", "skeleton", "clips", "materials", "bounds", "geometry",
-                             "progressive", "animation", "partition"}));
+      ->check(CLI::IsMember({"header", "settings", "skeleton", "clips", "materials", "bounds",
+                             "geometry", "progressive", "animation", "partition"}));
 
   try {
     app.parse(argc, argv);
@@ -135,7 +161,8 @@ int main(int argc, char** argv) {
     std::cerr << "error: out of memory\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "error: internal error: " << e.what() << " (please report this with the input file)\n";
+    std::cerr << "error: internal error: " << e.what()
+              << " (please report this with the input file)\n";
     return 1;
   }
   return 2;

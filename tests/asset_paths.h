@@ -3,10 +3,10 @@
 // skip, saying why, where the folder is absent.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace crowdbake::test {
 
@@ -19,11 +19,10 @@ inline bool have_shared_assets() {
 
 }  // namespace crowdbake::test
 
-#define CROWDBAKE_REQUIRE_SHARED_ASSETS()                                                  \
-  do {                                                                                     \
-    if (!::crowdbake::test::have_shared_assets())                                          \
-      GTEST_SKIP() << "shared test characters not found at "                               \
-                   << ::crowdbake::test::shared_assets()                                   \
-                   << " (they ship beside the repository in CI; set "                      \
-                      "-DCROWDBAKE_SHARED_ASSETS=<dir> to point at a copy)";               \
+#define CROWDBAKE_REQUIRE_SHARED_ASSETS()                                                          \
+  do {                                                                                             \
+    if (!::crowdbake::test::have_shared_assets())                                                  \
+      GTEST_SKIP() << "shared test characters not found at " << ::crowdbake::test::shared_assets() \
+                   << " (they ship beside the repository in CI; set "                              \
+                      "-DCROWDBAKE_SHARED_ASSETS=<dir> to point at a copy)";                       \
   } while (0)

@@ -8,16 +8,17 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace crowdbake::test {
 
 class GltfBuilder {
  public:
-  nlohmann::json doc = {{"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", nlohmann::json::array()}}}}};
+  nlohmann::json doc = {{"asset", {{"version", "2.0"}}},
+                        {"scene", 0},
+                        {"scenes", {{{"nodes", nlohmann::json::array()}}}}};
 
   // Appends raw bytes as a new bufferView (4-byte aligned); returns its index.
   int add_view(const void* data, size_t bytes) {
@@ -30,7 +31,8 @@ class GltfBuilder {
   }
 
   template <typename T>
-  int add_accessor(const std::vector<T>& values, int component_type, const std::string& type, bool normalized = false) {
+  int add_accessor(const std::vector<T>& values, int component_type, const std::string& type,
+                   bool normalized = false) {
     const size_t per = components(type);
     const int view = add_view(values.data(), values.size() * sizeof(T));
     nlohmann::json acc = {{"bufferView", view},
@@ -41,8 +43,12 @@ class GltfBuilder {
     doc["accessors"].push_back(acc);
     return static_cast<int>(doc["accessors"].size()) - 1;
   }
-  int floats(const std::vector<float>& v, const std::string& type) { return add_accessor(v, 5126, type); }
-  int u16(const std::vector<uint16_t>& v, const std::string& type) { return add_accessor(v, 5123, type); }
+  int floats(const std::vector<float>& v, const std::string& type) {
+    return add_accessor(v, 5126, type);
+  }
+  int u16(const std::vector<uint16_t>& v, const std::string& type) {
+    return add_accessor(v, 5123, type);
+  }
   int u8(const std::vector<uint8_t>& v, const std::string& type, bool normalized = false) {
     return add_accessor(v, 5121, type, normalized);
   }
@@ -68,7 +74,8 @@ class GltfBuilder {
 
   std::filesystem::path write(const std::filesystem::path& path) {
     nlohmann::json out = doc;
-    out["buffers"] = {{{"byteLength", bin_.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin_)}}};
+    out["buffers"] = {{{"byteLength", bin_.size()},
+                       {"uri", "data:application/octet-stream;base64," + base64(bin_)}}};
     std::ofstream(path) << out.dump();
     return path;
   }
@@ -85,7 +92,8 @@ class GltfBuilder {
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     for (size_t i = 0; i < in.size(); i += 3) {
-      const uint32_t b = (uint32_t{in[i]} << 16) | (i + 1 < in.size() ? uint32_t{in[i + 1]} << 8 : 0u) |
+      const uint32_t b = (uint32_t{in[i]} << 16) |
+                         (i + 1 < in.size() ? uint32_t{in[i + 1]} << 8 : 0u) |
                          (i + 2 < in.size() ? uint32_t{in[i + 2]} : 0u);
       out += table[(b >> 18) & 63];
       out += table[(b >> 12) & 63];
@@ -105,10 +113,12 @@ inline GltfBuilder two_bone_character() {
   GltfBuilder b;
   const int root = b.node({{"name", "root"}, {"children", nlohmann::json::array({1})}}, true);
   b.node({{"name", "tip"}, {"translation", {0.0, 1.0, 0.0}}});
-  const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+  const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,
                                   1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
   using nlohmann::json;
-  json skin = {{"name", "body"}, {"joints", json::array({root, 1})}, {"inverseBindMatrices", b.floats(ibm, "MAT4")}};
+  json skin = {{"name", "body"},
+               {"joints", json::array({root, 1})},
+               {"inverseBindMatrices", b.floats(ibm, "MAT4")}};
   b.doc["skins"] = json::array({skin});
   json primitive;
   primitive["attributes"] = {{"POSITION", b.floats({0, 0, 0, 1, 0, 0, 0, 2, 0}, "VEC3")},
@@ -122,8 +132,9 @@ inline GltfBuilder two_bone_character() {
                   {"output", b.floats({0, 0, 0, 1, 0, 0, h, h}, "VEC4")},
                   {"interpolation", "LINEAR"}};
   json channel = {{"sampler", 0}, {"target", {{"node", 1}, {"path", "rotation"}}}};
-  b.doc["animations"] = json::array(
-      {json{{"name", "bend"}, {"samplers", json::array({sampler})}, {"channels", json::array({channel})}}});
+  b.doc["animations"] = json::array({json{{"name", "bend"},
+                                          {"samplers", json::array({sampler})},
+                                          {"channels", json::array({channel})}}});
   return b;
 }
 

@@ -1,11 +1,11 @@
 // A fresh directory per test, removed afterwards.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace crowdbake::test {
 
@@ -13,7 +13,8 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "crowdbake";
+    std::string name =
+        info ? std::string(info->test_suite_name()) + "." + info->name() : "crowdbake";
     for (char& c : name)
       if (c == '/') c = '_';
     path_ = std::filesystem::temp_directory_path() /

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "crowdbake/pipeline/error.h"
 
@@ -46,8 +45,8 @@ std::vector<int> Skeleton::roots() const {
 int Clip::keyframes() const {
   size_t most = 0;
   for (const JointChannels& c : channels)
-    most = std::max({most, c.translation.times.size(), c.rotation.times.size(),
-                     c.scale.times.size()});
+    most =
+        std::max({most, c.translation.times.size(), c.rotation.times.size(), c.scale.times.size()});
   return static_cast<int>(most);
 }
 
@@ -88,7 +87,8 @@ void validate_track(const SkinnedAsset& asset, const Clip& clip, const Track<T>&
   auto fail = [&](const std::string& why) {
     throw input_error(asset.source, "clip '" + clip.name + "', " + what + ": " + why);
   };
-  if (track.values.size() != track.times.size() * per_key) fail("value count does not match key count");
+  if (track.values.size() != track.times.size() * per_key)
+    fail("value count does not match key count");
   for (size_t k = 0; k < track.times.size(); ++k) {
     if (!std::isfinite(track.times[k])) fail("key time is NaN or infinite");
     if (k > 0 && track.times[k] < track.times[k - 1]) fail("key times are not ascending");
@@ -119,7 +119,8 @@ void validate_asset(const SkinnedAsset& asset) {
     const size_t n = p.positions.size();
     if (n == 0) fail(who + " has no vertices");
     if (p.joints.size() != n || p.weights.size() != n) fail(who + " lacks skin weights");
-    if (!p.normals.empty() && p.normals.size() != n) fail(who + " has a normal count unlike its vertex count");
+    if (!p.normals.empty() && p.normals.size() != n)
+      fail(who + " has a normal count unlike its vertex count");
     if (!p.uvs.empty() && p.uvs.size() != n) fail(who + " has a UV count unlike its vertex count");
     if (p.indices.size() % 3 != 0) fail(who + " has an index count that is not a multiple of 3");
     for (uint32_t i : p.indices)
@@ -136,8 +137,10 @@ void validate_asset(const SkinnedAsset& asset) {
     }
   }
   for (const Clip& clip : asset.clips) {
-    if (clip.channels.size() != joint_count) fail("clip '" + clip.name + "' does not cover every joint");
-    if (!std::isfinite(clip.duration) || clip.duration < 0.0) fail("clip '" + clip.name + "' has a bad duration");
+    if (clip.channels.size() != joint_count)
+      fail("clip '" + clip.name + "' does not cover every joint");
+    if (!std::isfinite(clip.duration) || clip.duration < 0.0)
+      fail("clip '" + clip.name + "' has a bad duration");
     for (size_t j = 0; j < joint_count; ++j) {
       const std::string who = "joint '" + asset.skeleton.joints[j].name + "'";
       validate_track(asset, clip, clip.channels[j].translation, who + " translation");

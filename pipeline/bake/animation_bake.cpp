@@ -365,7 +365,8 @@ AnimationBake bake_animation(const SkinnedAsset& asset, const AnimationBakeOptio
 
   if (bake.clamped_values)
     bake.warnings.push_back("animation: " + std::to_string(bake.clamped_values) +
-                            " values were out of range for the " + animation_encoding_name(options.encoding) +
+                            " values were out of range for the " +
+                            animation_encoding_name(options.encoding) +
                             " encoding (or non-finite) and were clamped; use float32");
   if (bake.position_error_bound > 1e-3 * diagonal)
     bake.warnings.push_back(

@@ -11,7 +11,8 @@
 namespace crowdbake {
 
 void check_input_file(const std::string& path, const std::string& expected) {
-  if (std::filesystem::is_directory(path)) throw input_error(path, "is a directory; pass " + expected);
+  if (std::filesystem::is_directory(path))
+    throw input_error(path, "is a directory; pass " + expected);
   std::ifstream probe(path, std::ios::binary);
   if (!probe) {
     const int err = errno;

@@ -4,12 +4,12 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstdlib>
-#include <thread>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "crowdbake/pipeline/error.h"
 

@@ -15,8 +15,8 @@ size_t locate(const std::vector<double>& times, double t, double& u) {
     u = 0.0;
     return times.size() - 1;
   }
-  const size_t k = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) -
-                                       times.begin()) - 1;
+  const size_t k =
+      static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
   const double span = times[k + 1] - times[k];
   u = span > 0.0 ? (t - times[k]) / span : 0.0;
   return k;

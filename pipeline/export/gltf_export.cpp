@@ -18,7 +18,6 @@
 // - glTF has no clip duration, so a clip whose keys end early gets a rest-valued track
 //   reaching its duration (see with_duration_keys).
 #include "crowdbake/pipeline/gltf_export.h"
-#include "crowdbake/pipeline/output_file.h"
 
 #include <algorithm>
 #include <array>
@@ -37,6 +36,7 @@
 #include <vector>
 
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/output_file.h"
 
 namespace crowdbake {
 namespace {

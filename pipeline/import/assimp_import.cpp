@@ -24,8 +24,8 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 #include "import/assimp_scene.h"
-#include "import/node_transform.h"
 #include "import/influences.h"
+#include "import/node_transform.h"
 
 namespace crowdbake {
 namespace {
@@ -455,9 +455,10 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
     // note: external textures are dependencies of a bake; embedded ones ("*N") are not files.
     aiString texture;
     for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})
-      if (scene.mMaterials[index]->GetTexture(type, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
-          texture.C_Str()[0] != '*') {
-        asset.files.push_back((std::filesystem::path(path).parent_path() / texture.C_Str()).string());
+      if (scene.mMaterials[index]->GetTexture(type, 0, &texture) == AI_SUCCESS &&
+          texture.length > 0 && texture.C_Str()[0] != '*') {
+        asset.files.push_back(
+            (std::filesystem::path(path).parent_path() / texture.C_Str()).string());
         break;
       }
   }

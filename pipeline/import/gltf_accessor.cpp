@@ -29,14 +29,22 @@ int component_size(int type) {
 
 int component_count(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
@@ -66,11 +74,16 @@ double decode(const unsigned char* p, int type, bool normalized) {
       const double v = load<uint16_t>(p);
       return normalized ? v / 65535.0 : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_INT: return load<int32_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<uint32_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return load<double>(p);
-    default: return 0.0;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+      return load<int32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return load<uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+      return load<double>(p);
+    default:
+      return 0.0;
   }
 }
 
@@ -83,13 +96,16 @@ struct View {
 View view_of(const tg::Model& model, int index, size_t element_size, const std::string& file,
              const std::string& what) {
   if (index < 0 || index >= static_cast<int>(model.bufferViews.size()))
-    throw input_error(file, what + ": bufferView index out of range; the file is corrupt, re-export it");
+    throw input_error(file,
+                      what + ": bufferView index out of range; the file is corrupt, re-export it");
   const tg::BufferView& bv = model.bufferViews[index];
   if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-    throw input_error(file, what + ": buffer index out of range; the file is corrupt, re-export it");
+    throw input_error(file,
+                      what + ": buffer index out of range; the file is corrupt, re-export it");
   const std::vector<unsigned char>& buffer = model.buffers[bv.buffer].data;
   if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
-    throw input_error(file, what + ": bufferView lies outside its buffer; the file is truncated or corrupt");
+    throw input_error(
+        file, what + ": bufferView lies outside its buffer; the file is truncated or corrupt");
   View v;
   v.data = buffer.data() + bv.byteOffset;
   v.size = bv.byteLength;
@@ -104,27 +120,32 @@ void check_range(const View& view, size_t offset, size_t count, size_t element_s
   if (view.stride != 0 && last / view.stride != count - 1)
     throw input_error(file, what + ": accessor size overflows; the file is corrupt");
   if (offset > view.size || last > view.size - offset || element_size > view.size - offset - last)
-    throw input_error(file, what + ": accessor reads past the end of its bufferView; the file is corrupt");
+    throw input_error(
+        file, what + ": accessor reads past the end of its bufferView; the file is corrupt");
 }
 
 }  // namespace
 
-AccessorData read_accessor(const tg::Model& model, int index, std::initializer_list<int> allowed_components,
-                           const std::string& file, const std::string& what) {
+AccessorData read_accessor(const tg::Model& model, int index,
+                           std::initializer_list<int> allowed_components, const std::string& file,
+                           const std::string& what) {
   if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    throw input_error(file, what + ": accessor index out of range; the file is corrupt, re-export it");
+    throw input_error(file,
+                      what + ": accessor index out of range; the file is corrupt, re-export it");
   const tg::Accessor& acc = model.accessors[index];
   const int csize = component_size(acc.componentType);
   const int ccount = component_count(acc.type);
   if (csize == 0 || ccount == 0)
     throw input_error(file, what + ": unknown accessor component type; the file is corrupt");
-  if (std::find(allowed_components.begin(), allowed_components.end(), ccount) == allowed_components.end())
+  if (std::find(allowed_components.begin(), allowed_components.end(), ccount) ==
+      allowed_components.end())
     throw input_error(file, what + ": accessor has " + std::to_string(ccount) +
                                 " components per element, which this attribute cannot have");
   // note: a limit far above any real character keeps a hostile count from allocating
   // gigabytes before the range check below can reject it.
   if (acc.count > (size_t{1} << 28))
-    throw input_error(file, what + ": accessor count " + std::to_string(acc.count) + " is implausibly large");
+    throw input_error(
+        file, what + ": accessor count " + std::to_string(acc.count) + " is implausibly large");
 
   AccessorData out;
   out.count = acc.count;
@@ -144,12 +165,15 @@ AccessorData read_accessor(const tg::Model& model, int index, std::initializer_l
 
   if (acc.sparse.isSparse && acc.sparse.count > 0) {
     const size_t n = static_cast<size_t>(acc.sparse.count);
-    if (n > acc.count) throw input_error(file, what + ": sparse count exceeds accessor count; the file is corrupt");
+    if (n > acc.count)
+      throw input_error(file, what + ": sparse count exceeds accessor count; the file is corrupt");
     const int isize = component_size(acc.sparse.indices.componentType);
     if (isize == 0 || isize > 4)
       throw input_error(file, what + ": bad sparse index type; the file is corrupt");
-    const View iv = view_of(model, acc.sparse.indices.bufferView, isize, file, what + " (sparse indices)");
-    const View vv = view_of(model, acc.sparse.values.bufferView, element_size, file, what + " (sparse values)");
+    const View iv =
+        view_of(model, acc.sparse.indices.bufferView, isize, file, what + " (sparse indices)");
+    const View vv =
+        view_of(model, acc.sparse.values.bufferView, element_size, file, what + " (sparse values)");
     // note: sparse index and value views are always tightly packed (glTF §3.6.2.3).
     const View ti{iv.data, iv.size, static_cast<size_t>(isize)};
     const View tv{vv.data, vv.size, element_size};

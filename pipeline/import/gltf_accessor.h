@@ -15,12 +15,15 @@ struct AccessorData {
   int components = 0;          // 1 (SCALAR) .. 16 (MAT4)
   std::vector<double> values;  // count * components, row of one element after another
 
-  double at(size_t element, int component) const { return values[element * components + component]; }
+  double at(size_t element, int component) const {
+    return values[element * components + component];
+  }
 };
 
 // Reads accessor `index`, requiring one of `allowed_components` per element.
 // `what` names the use ("POSITION of mesh 'body'") for error messages.
-AccessorData read_accessor(const tg::Model& model, int index, std::initializer_list<int> allowed_components,
-                           const std::string& file, const std::string& what);
+AccessorData read_accessor(const tg::Model& model, int index,
+                           std::initializer_list<int> allowed_components, const std::string& file,
+                           const std::string& what);
 
 }  // namespace crowdbake

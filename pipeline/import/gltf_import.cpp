@@ -41,7 +41,8 @@ tg::Model load_model(const std::string& path, std::vector<std::string>& warnings
                          : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   if (!ok) {
     std::string reason = err.empty() ? warn : err;
-    while (!reason.empty() && std::isspace(static_cast<unsigned char>(reason.back()))) reason.pop_back();
+    while (!reason.empty() && std::isspace(static_cast<unsigned char>(reason.back())))
+      reason.pop_back();
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     throw input_error(path, "not a readable glTF 2.0 file (" + reason +
                                 "); check that it is a complete .gltf/.glb export");
@@ -63,8 +64,10 @@ glm::dmat4 node_local(const tg::Node& n) {
     return m;
   }
   Transform t;
-  if (n.translation.size() == 3) t.translation = {n.translation[0], n.translation[1], n.translation[2]};
-  if (n.rotation.size() == 4) t.rotation = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+  if (n.translation.size() == 3)
+    t.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  if (n.rotation.size() == 4)
+    t.rotation = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
   if (n.scale.size() == 3) t.scale = {n.scale[0], n.scale[1], n.scale[2]};
   return t.matrix();
 }
@@ -93,15 +96,19 @@ NodeTree build_tree(const tg::Model& model, const std::string& path) {
     tree.local[n] = node_local(model.nodes[n]);
     for (int i = 0; i < 16; ++i)
       if (!std::isfinite(tree.local[n][i / 4][i % 4]))
-        throw input_error(path, "node '" + node_name(model, n) + "' has a NaN or infinite transform; "
-                                "fix it in the authoring tool and re-export");
+        throw input_error(path, "node '" + node_name(model, n) +
+                                    "' has a NaN or infinite transform; "
+                                    "fix it in the authoring tool and re-export");
     for (int c : model.nodes[n].children) {
       if (c < 0 || c >= count)
-        throw input_error(path, "node '" + model.nodes[n].name + "' has a child index out of range; "
-                                "the hierarchy is broken, re-export the file");
+        throw input_error(path, "node '" + model.nodes[n].name +
+                                    "' has a child index out of range; "
+                                    "the hierarchy is broken, re-export the file");
       if (tree.parent[c] != -1 || c == n)
-        throw input_error(path, "node '" + model.nodes[c].name + "' has more than one parent; "
-                                "the hierarchy is broken (glTF nodes form a tree), re-export the file");
+        throw input_error(
+            path, "node '" + model.nodes[c].name +
+                      "' has more than one parent; "
+                      "the hierarchy is broken (glTF nodes form a tree), re-export the file");
       tree.parent[c] = n;
     }
   }
@@ -116,8 +123,9 @@ NodeTree build_tree(const tg::Model& model, const std::string& path) {
   // note: nodes never reached from a root can only sit on a cycle.
   for (int n = 0; n < count; ++n)
     if (!seen[n])
-      throw input_error(path, "node '" + model.nodes[n].name + "' is part of a cycle in the node "
-                              "hierarchy; the hierarchy is broken, re-export the file");
+      throw input_error(path, "node '" + model.nodes[n].name +
+                                  "' is part of a cycle in the node "
+                                  "hierarchy; the hierarchy is broken, re-export the file");
   return tree;
 }
 
@@ -147,7 +155,8 @@ size_t skinned_vertices(const tg::Model& model, const std::vector<int>& skins) {
     if (std::find(skins.begin(), skins.end(), node.skin) == skins.end()) continue;
     for (const tg::Primitive& p : model.meshes[node.mesh].primitives) {
       auto it = p.attributes.find("POSITION");
-      if (it != p.attributes.end() && it->second >= 0 && it->second < static_cast<int>(model.accessors.size()))
+      if (it != p.attributes.end() && it->second >= 0 &&
+          it->second < static_cast<int>(model.accessors.size()))
         total += model.accessors[it->second].count;
     }
   }
@@ -156,7 +165,8 @@ size_t skinned_vertices(const tg::Model& model, const std::vector<int>& skins) {
 
 class GltfImporter {
  public:
-  GltfImporter(const std::string& path, const ImportOptions& options) : path_(path), options_(options) {
+  GltfImporter(const std::string& path, const ImportOptions& options)
+      : path_(path), options_(options) {
     asset_.source = path;
     model_ = load_model(path, asset_.warnings);
     tree_ = build_tree(model_, path);
@@ -178,7 +188,8 @@ class GltfImporter {
     asset_.files.push_back(path_);
     const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
     auto external = [&](const std::string& uri) {
-      if (!uri.empty() && uri.rfind("data:", 0) != 0) asset_.files.push_back((folder / uri).string());
+      if (!uri.empty() && uri.rfind("data:", 0) != 0)
+        asset_.files.push_back((folder / uri).string());
     };
     for (const tg::Buffer& b : model_.buffers) external(b.uri);
     for (const tg::Image& i : model_.images) external(i.uri);
@@ -186,11 +197,13 @@ class GltfImporter {
 
   void pick_character() {
     if (model_.skins.empty())
-      throw input_error(path_, "no skin: the file has no skinned mesh; crowdbake needs a character "
-                               "bound to a skeleton (export with the armature/skin included)");
+      throw input_error(path_,
+                        "no skin: the file has no skinned mesh; crowdbake needs a character "
+                        "bound to a skeleton (export with the armature/skin included)");
     for (size_t s = 0; s < model_.skins.size(); ++s) {
       if (model_.skins[s].joints.empty())
-        throw input_error(path_, "skin " + std::to_string(s) + " lists no joints; re-export the skin");
+        throw input_error(path_,
+                          "skin " + std::to_string(s) + " lists no joints; re-export the skin");
       for (int j : model_.skins[s].joints)
         if (j < 0 || j >= static_cast<int>(model_.nodes.size()))
           throw input_error(path_, "skin " + std::to_string(s) +
@@ -199,25 +212,28 @@ class GltfImporter {
     const std::vector<std::vector<int>> groups = group_skins(model_);
     int chosen = options_.character;
     if (chosen >= static_cast<int>(groups.size()))
-      throw Error(Error::Kind::kUsage, path_, "character " + std::to_string(chosen) + " requested but the file holds " +
-                                                  std::to_string(groups.size()));
+      throw Error(Error::Kind::kUsage, path_,
+                  "character " + std::to_string(chosen) + " requested but the file holds " +
+                      std::to_string(groups.size()));
     if (chosen < 0) {
       chosen = 0;
       for (size_t g = 1; g < groups.size(); ++g)
-        if (skinned_vertices(model_, groups[g]) > skinned_vertices(model_, groups[chosen])) chosen = static_cast<int>(g);
+        if (skinned_vertices(model_, groups[g]) > skinned_vertices(model_, groups[chosen]))
+          chosen = static_cast<int>(g);
     }
     skins_ = groups[chosen];
     if (groups.size() > 1)
       asset_.warnings.push_back("the file holds " + std::to_string(groups.size()) +
                                 " characters (skins with no joint in common); imported character " +
-                                std::to_string(chosen) + " (skin '" + model_.skins[skins_[0]].name + "', " +
-                                std::to_string(skinned_vertices(model_, skins_)) +
+                                std::to_string(chosen) + " (skin '" + model_.skins[skins_[0]].name +
+                                "', " + std::to_string(skinned_vertices(model_, skins_)) +
                                 " skinned vertices); choose another with --character N");
   }
 
   void build_skeleton() {
     std::set<int> joint_nodes;
-    for (int s : skins_) joint_nodes.insert(model_.skins[s].joints.begin(), model_.skins[s].joints.end());
+    for (int s : skins_)
+      joint_nodes.insert(model_.skins[s].joints.begin(), model_.skins[s].joints.end());
     joint_of_node_.assign(model_.nodes.size(), -1);
     for (int n : tree_.preorder)
       if (joint_nodes.count(n)) {
@@ -235,7 +251,8 @@ class GltfImporter {
       joint.pre_transform = tree_.relative(ancestor, tree_.parent[node]);
       if (!split_transform(tree_.local[node], joint.rest)) {
         joint.pre_transform = joint.pre_transform * tree_.local[node];
-        asset_.warnings.push_back("joint '" + joint.name + "' has a sheared matrix; kept as a static "
+        asset_.warnings.push_back("joint '" + joint.name +
+                                  "' has a sheared matrix; kept as a static "
                                   "transform, so animation of this joint is ignored");
         static_joints_.insert(node);
       }
@@ -268,16 +285,18 @@ class GltfImporter {
     const tg::Skin& skin = model_.skins[s];
     std::vector<glm::dmat4> result(skin.joints.size(), glm::dmat4(1.0));
     if (skin.inverseBindMatrices < 0) return result;
-    const AccessorData data =
-        read_accessor(model_, skin.inverseBindMatrices, {16}, path_, "inverseBindMatrices of skin " + std::to_string(s));
+    const AccessorData data = read_accessor(model_, skin.inverseBindMatrices, {16}, path_,
+                                            "inverseBindMatrices of skin " + std::to_string(s));
     if (data.count < skin.joints.size())
-      throw input_error(path_, "skin " + std::to_string(s) + " has fewer inverse bind matrices than joints; "
-                               "the file is corrupt, re-export the skin");
+      throw input_error(path_, "skin " + std::to_string(s) +
+                                   " has fewer inverse bind matrices than joints; "
+                                   "the file is corrupt, re-export the skin");
     for (size_t k = 0; k < skin.joints.size(); ++k)
       for (int i = 0; i < 16; ++i) {
         const double v = data.at(k, i);
         if (!std::isfinite(v))
-          throw input_error(path_, "inverse bind matrix of joint '" + node_name(model_, skin.joints[k]) +
+          throw input_error(path_, "inverse bind matrix of joint '" +
+                                       node_name(model_, skin.joints[k]) +
                                        "' holds NaN or infinity; re-export the skin");
         result[k][i / 4][i % 4] = v;
       }
@@ -303,10 +322,13 @@ class GltfImporter {
       }
     }
     if (needed && !consistent)
-      asset_.warnings.push_back("mesh '" + mesh + "' uses inverse bind matrices that disagree with the other "
-                                "skins of its skeleton in more than a rigid offset; its bind shape may be distorted");
+      asset_.warnings.push_back(
+          "mesh '" + mesh +
+          "' uses inverse bind matrices that disagree with the other "
+          "skins of its skeleton in more than a rigid offset; its bind shape may be distorted");
     else if (needed)
-      asset_.warnings.push_back("mesh '" + mesh + "' was moved into the shared skeleton's bind space");
+      asset_.warnings.push_back("mesh '" + mesh +
+                                "' was moved into the shared skeleton's bind space");
     return correction;
   }
 
@@ -321,8 +343,9 @@ class GltfImporter {
         const int img = model_.textures[tex].source;
         if (img >= 0 && img < static_cast<int>(model_.images.size())) {
           const tg::Image& image = model_.images[img];
-          out.base_color_texture = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name
-                                                                                        : "image" + std::to_string(img);
+          out.base_color_texture = !image.uri.empty()    ? image.uri
+                                   : !image.name.empty() ? image.name
+                                                         : "image" + std::to_string(img);
         }
       }
       asset_.materials.push_back(out);
@@ -335,26 +358,31 @@ class GltfImporter {
       const tg::Node& node = model_.nodes[n];
       if (node.mesh < 0) continue;
       if (node.mesh >= static_cast<int>(model_.meshes.size()))
-        throw input_error(path_, "node '" + node_name(model_, n) + "' references a mesh out of range; the file is corrupt");
+        throw input_error(path_, "node '" + node_name(model_, n) +
+                                     "' references a mesh out of range; the file is corrupt");
       const tg::Mesh& mesh = model_.meshes[node.mesh];
       const std::string name = mesh.name.empty() ? node_name(model_, n) : mesh.name;
       if (node.skin >= 0) {
         if (std::find(skins_.begin(), skins_.end(), node.skin) == skins_.end()) continue;
         any_skinned = true;
         const glm::dmat4 correction = bind_correction(node.skin, name);
-        for (const tg::Primitive& p : mesh.primitives) read_primitive(p, name, node.skin, correction, -1);
+        for (const tg::Primitive& p : mesh.primitives)
+          read_primitive(p, name, node.skin, correction, -1);
       } else {
         const int joint_node = n >= 0 && joint_of_node_[n] >= 0 ? n : nearest_joint_ancestor(n);
         if (joint_node < 0) {
-          asset_.warnings.push_back("mesh '" + name + "' is neither skinned nor attached to the skeleton; ignored");
+          asset_.warnings.push_back("mesh '" + name +
+                                    "' is neither skinned nor attached to the skeleton; ignored");
           continue;
         }
         const int joint = joint_of_node_[joint_node];
         // note: rigid parts move with their joint: place them where the joint is in the
         // bind pose, v = inverse(B_j^-1) * (joint -> mesh node) * v_local.
-        const glm::dmat4 place = glm::inverse(asset_.skeleton.joints[joint].inverse_bind) *
-                                 (joint_node == n ? glm::dmat4(1.0) : tree_.relative(joint_node, n));
-        for (int m = tree_.parent[n]; m >= 0 && m != joint_node; m = tree_.parent[m]) folded_nodes_.insert(m);
+        const glm::dmat4 place =
+            glm::inverse(asset_.skeleton.joints[joint].inverse_bind) *
+            (joint_node == n ? glm::dmat4(1.0) : tree_.relative(joint_node, n));
+        for (int m = tree_.parent[n]; m >= 0 && m != joint_node; m = tree_.parent[m])
+          folded_nodes_.insert(m);
         for (const tg::Primitive& p : mesh.primitives) read_primitive(p, name, -1, place, joint);
         ++asset_.stats.rigid_primitives;
         asset_.warnings.push_back("mesh '" + name + "' is not skinned; bound rigidly to joint '" +
@@ -362,14 +390,17 @@ class GltfImporter {
       }
     }
     if (!any_skinned && asset_.primitives.empty())
-      throw input_error(path_, "no mesh: the skeleton skins no geometry; export the character's mesh with its skin");
+      throw input_error(
+          path_,
+          "no mesh: the skeleton skins no geometry; export the character's mesh with its skin");
   }
 
   // skin >= 0: skinned primitive with JOINTS_n/WEIGHTS_n; otherwise rigid on joint.
-  void read_primitive(const tg::Primitive& p, const std::string& name, int skin, const glm::dmat4& to_model,
-                      int rigid_joint) {
+  void read_primitive(const tg::Primitive& p, const std::string& name, int skin,
+                      const glm::dmat4& to_model, int rigid_joint) {
     const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
       asset_.warnings.push_back("mesh '" + name + "' has a primitive of points or lines; ignored");
       return;
     }
@@ -379,35 +410,41 @@ class GltfImporter {
       return it == p.attributes.end() ? -1 : it->second;
     };
     const std::string who = "mesh '" + name + "'";
-    if (attr("POSITION") < 0) throw input_error(path_, who + " has a primitive without POSITION; re-export it");
+    if (attr("POSITION") < 0)
+      throw input_error(path_, who + " has a primitive without POSITION; re-export it");
 
     Primitive out;
     out.name = name;
     out.material = p.material;
-    const AccessorData pos = read_accessor(model_, attr("POSITION"), {3}, path_, "POSITION of " + who);
+    const AccessorData pos =
+        read_accessor(model_, attr("POSITION"), {3}, path_, "POSITION of " + who);
     const size_t n = pos.count;
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(to_model)));
     out.positions.resize(n);
     for (size_t v = 0; v < n; ++v) {
       const glm::dvec3 x(pos.at(v, 0), pos.at(v, 1), pos.at(v, 2));
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
-        throw input_error(path_, who + " has a NaN or infinite vertex position (vertex " + std::to_string(v) +
+        throw input_error(path_, who + " has a NaN or infinite vertex position (vertex " +
+                                     std::to_string(v) +
                                      "); fix the mesh in the authoring tool and re-export");
       out.positions[v] = glm::vec3(glm::dvec3(to_model * glm::dvec4(x, 1.0)));
     }
     if (attr("NORMAL") >= 0) {
-      const AccessorData nrm = read_accessor(model_, attr("NORMAL"), {3}, path_, "NORMAL of " + who);
+      const AccessorData nrm =
+          read_accessor(model_, attr("NORMAL"), {3}, path_, "NORMAL of " + who);
       if (nrm.count == n) {
         out.normals.resize(n);
         for (size_t v = 0; v < n; ++v) {
           glm::dvec3 d = normal_matrix * glm::dvec3(nrm.at(v, 0), nrm.at(v, 1), nrm.at(v, 2));
           const double len = glm::length(d);
-          out.normals[v] = len > 1e-12 && std::isfinite(len) ? glm::vec3(d / len) : glm::vec3(0, 0, 1);
+          out.normals[v] =
+              len > 1e-12 && std::isfinite(len) ? glm::vec3(d / len) : glm::vec3(0, 0, 1);
         }
       }
     }
     if (attr("TEXCOORD_0") >= 0) {
-      const AccessorData uv = read_accessor(model_, attr("TEXCOORD_0"), {2}, path_, "TEXCOORD_0 of " + who);
+      const AccessorData uv =
+          read_accessor(model_, attr("TEXCOORD_0"), {2}, path_, "TEXCOORD_0 of " + who);
       if (uv.count == n) {
         out.uvs.resize(n);
         for (size_t v = 0; v < n; ++v) {
@@ -421,7 +458,8 @@ class GltfImporter {
     asset_.primitives.push_back(std::move(out));
   }
 
-  void read_skin_weights(const tg::Primitive& p, const std::string& who, int skin, int rigid_joint, Primitive& out) {
+  void read_skin_weights(const tg::Primitive& p, const std::string& who, int skin, int rigid_joint,
+                         Primitive& out) {
     const size_t n = out.positions.size();
     out.joints.resize(n);
     out.weights.resize(n);
@@ -440,7 +478,8 @@ class GltfImporter {
       joint_sets.push_back(read_accessor(model_, j->second, {4}, path_, j->first + " of " + who));
       weight_sets.push_back(read_accessor(model_, w->second, {4}, path_, w->first + " of " + who));
       if (joint_sets.back().count != n || weight_sets.back().count != n)
-        throw input_error(path_, who + ": " + j->first + "/" + w->first + " count differs from POSITION; re-export it");
+        throw input_error(path_, who + ": " + j->first + "/" + w->first +
+                                     " count differs from POSITION; re-export it");
     }
     const tg::Skin& s = model_.skins[skin];
     const int fallback = joint_of_node_[s.joints[0]];
@@ -454,9 +493,11 @@ class GltfImporter {
           const double local = joint_sets[set].at(v, k);
           if (!(local >= 0.0) || local >= static_cast<double>(s.joints.size()))
             throw input_error(path_, who + ": vertex " + std::to_string(v) + " references joint " +
-                                         std::to_string(static_cast<long long>(local)) + " but its skin has " +
-                                         std::to_string(s.joints.size()) + " joints; re-export the skin");
-          influences.push_back({joint_of_node_[s.joints[static_cast<size_t>(local)]], static_cast<float>(w)});
+                                         std::to_string(static_cast<long long>(local)) +
+                                         " but its skin has " + std::to_string(s.joints.size()) +
+                                         " joints; re-export the skin");
+          influences.push_back(
+              {joint_of_node_[s.joints[static_cast<size_t>(local)]], static_cast<float>(w)});
         }
       reduce_influences(influences, fallback, out.joints[v], out.weights[v], asset_.stats);
     }
@@ -471,7 +512,8 @@ class GltfImporter {
       for (size_t i = 0; i < idx.count; ++i) {
         const double v = idx.values[i];
         if (!(v >= 0.0) || v >= static_cast<double>(n))
-          throw input_error(path_, who + " has a triangle index out of range; the file is corrupt, re-export it");
+          throw input_error(
+              path_, who + " has a triangle index out of range; the file is corrupt, re-export it");
         list[i] = static_cast<uint32_t>(v);
       }
     } else {
@@ -506,36 +548,46 @@ class GltfImporter {
       for (const tg::AnimationChannel& ch : anim.channels) {
         if (ch.target_node < 0 || ch.target_node >= static_cast<int>(model_.nodes.size())) continue;
         if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
-          throw input_error(path_, "animation '" + clip.name + "' has a channel with a sampler out of range; "
-                                   "the file is corrupt, re-export the animation");
+          throw input_error(path_, "animation '" + clip.name +
+                                       "' has a channel with a sampler out of range; "
+                                       "the file is corrupt, re-export the animation");
         const tg::AnimationSampler& sampler = anim.samplers[ch.sampler];
-        const AccessorData times = read_accessor(model_, sampler.input, {1}, path_, "animation '" + clip.name + "' input");
+        const AccessorData times =
+            read_accessor(model_, sampler.input, {1}, path_, "animation '" + clip.name + "' input");
         for (double t : times.values) clip.duration = std::max(clip.duration, t);
         const int joint = joint_of_node_[ch.target_node];
         if (joint < 0 || static_joints_.count(ch.target_node)) {
-          if (ch.target_path == "weights") ++morph_animations_;
-          else if (folded_nodes_.count(ch.target_node) && ignored.insert(node_name(model_, ch.target_node)).second)
-            asset_.warnings.push_back("animation '" + clip.name + "' moves node '" + node_name(model_, ch.target_node) +
+          if (ch.target_path == "weights")
+            ++morph_animations_;
+          else if (folded_nodes_.count(ch.target_node) &&
+                   ignored.insert(node_name(model_, ch.target_node)).second)
+            asset_.warnings.push_back("animation '" + clip.name + "' moves node '" +
+                                      node_name(model_, ch.target_node) +
                                       "', which is not a joint; that motion is ignored");
           continue;
         }
         JointChannels& out = clip.channels[joint];
-        if (ch.target_path == "translation") fill_track(clip.name, sampler, times, 3, out.translation);
-        else if (ch.target_path == "scale") fill_track(clip.name, sampler, times, 3, out.scale);
-        else if (ch.target_path == "rotation") fill_track(clip.name, sampler, times, 4, out.rotation);
-        else if (ch.target_path == "weights") ++morph_animations_;
+        if (ch.target_path == "translation")
+          fill_track(clip.name, sampler, times, 3, out.translation);
+        else if (ch.target_path == "scale")
+          fill_track(clip.name, sampler, times, 3, out.scale);
+        else if (ch.target_path == "rotation")
+          fill_track(clip.name, sampler, times, 4, out.rotation);
+        else if (ch.target_path == "weights")
+          ++morph_animations_;
       }
       asset_.clips.push_back(std::move(clip));
     }
     if (morph_meshes_ > 0 || morph_animations_ > 0)
-      asset_.warnings.push_back("morph targets are not supported yet: " + std::to_string(morph_meshes_) +
-                                " primitives use their base shape and " + std::to_string(morph_animations_) +
-                                " morph-weight channels are ignored");
+      asset_.warnings.push_back(
+          "morph targets are not supported yet: " + std::to_string(morph_meshes_) +
+          " primitives use their base shape and " + std::to_string(morph_animations_) +
+          " morph-weight channels are ignored");
   }
 
   template <typename T>
-  void fill_track(const std::string& clip, const tg::AnimationSampler& sampler, const AccessorData& times,
-                  int components, Track<T>& track) {
+  void fill_track(const std::string& clip, const tg::AnimationSampler& sampler,
+                  const AccessorData& times, int components, Track<T>& track) {
     const AccessorData values = read_accessor(model_, sampler.output, {components}, path_,
                                               "animation '" + clip + "' output");
     track.interpolation = sampler.interpolation == "STEP"          ? Interpolation::kStep
@@ -543,8 +595,9 @@ class GltfImporter {
                                                                    : Interpolation::kLinear;
     const size_t per_key = track.interpolation == Interpolation::kCubicSpline ? 3 : 1;
     if (values.count != times.count * per_key)
-      throw input_error(path_, "animation '" + clip + "' has " + std::to_string(values.count) + " output values for " +
-                                   std::to_string(times.count) + " keys; re-export the animation");
+      throw input_error(path_, "animation '" + clip + "' has " + std::to_string(values.count) +
+                                   " output values for " + std::to_string(times.count) +
+                                   " keys; re-export the animation");
     track.times = times.values;
     track.values.resize(values.count);
     for (size_t k = 0; k < values.count; ++k) {

@@ -1,7 +1,7 @@
 #include "crowdbake/pipeline/import.h"
 
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +23,8 @@ bool looks_like_gltf(const std::string& path) {
   std::streamsize i = 0;
   while (i < n && std::strchr(" \t\r\n", head[i]) && head[i] != 0) ++i;
   if (i < 3 && n >= 3 && static_cast<unsigned char>(head[0]) == 0xEF) i = 3;  // UTF-8 BOM
-  return i < n && head[i] == '{' && std::string(head, static_cast<size_t>(n)).find("\"asset\"") != std::string::npos;
+  return i < n && head[i] == '{' &&
+         std::string(head, static_cast<size_t>(n)).find("\"asset\"") != std::string::npos;
 }
 
 }  // namespace
@@ -35,7 +36,7 @@ SkinnedAsset import_asset(const std::string& path, const ImportOptions& options)
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     kind = ext == ".gltf" || ext == ".glb" || looks_like_gltf(path) ? ImporterKind::kGltf
-                                                                   : ImporterKind::kAssimp;
+                                                                    : ImporterKind::kAssimp;
   }
   SkinnedAsset asset =
       kind == ImporterKind::kGltf ? import_gltf(path, options) : import_assimp(path, options);

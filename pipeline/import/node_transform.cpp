@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/quaternion.hpp>
 
 namespace crowdbake {
@@ -45,7 +44,9 @@ bool split_transform(const glm::dmat4& m, Transform& out) {
   if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) return false;
   double residual = 0.0;
   const Transform t = decompose_transform(m, &residual);
-  if (!(std::fabs(t.scale.x) > 1e-12 && std::fabs(t.scale.y) > 1e-12 && std::fabs(t.scale.z) > 1e-12)) return false;
+  if (!(std::fabs(t.scale.x) > 1e-12 && std::fabs(t.scale.y) > 1e-12 &&
+        std::fabs(t.scale.z) > 1e-12))
+    return false;
   if (!(residual <= 1e-6)) return false;
   out = t;
   return true;

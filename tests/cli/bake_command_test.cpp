@@ -23,12 +23,14 @@ TEST(BakeCommand, WritesAPackThatReadsBack) {
   test::TempDir dir;
   const auto input = write_character(dir);
   const auto output = dir / "character.crowdpack";
-  const test::CommandResult r = test::run_crowdbake({"bake", input.string(), "-o", output.string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", output.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.out.empty()) << "stdout is not a terminal: nothing should be printed\n" << r.out;
   const std::string bytes = test::slurp(output);
   PackContents pack;
-  const PackStatus status = read_pack(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), pack);
+  const PackStatus status =
+      read_pack(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), pack);
   ASSERT_TRUE(status.ok) << status.message;
   EXPECT_EQ(pack.joints.size(), 2u);
   EXPECT_EQ(pack.geometry.vertex_count(), 3u);
@@ -42,7 +44,9 @@ TEST(BakeCommand, SameBytesForAnyJobsAndOnRepeatedRuns) {
   std::string first;
   for (const char* jobs : {"1", "2", "1", "4"}) {
     const auto output = dir / (std::string("out") + jobs + ".crowdpack");
-    ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--jobs", jobs}).exit_code, 0);
+    ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--jobs", jobs})
+                  .exit_code,
+              0);
     const std::string bytes = test::slurp(output);
     if (first.empty())
       first = bytes;
@@ -56,21 +60,24 @@ TEST(BakeCommand, DepfileListsEveryFileRead) {
   const auto input = write_character(dir);
   std::ofstream(dir / "config.json") << R"({"animation": {"encoding": "float16"}})";
   const auto output = dir / "c.crowdpack";
-  const test::CommandResult r = test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--config",
-                                                     (dir / "config.json").string(), "--depfile", (dir / "c.d").string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--config",
+                           (dir / "config.json").string(), "--depfile", (dir / "c.d").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string dep = test::slurp(dir / "c.d");
   EXPECT_EQ(dep.rfind(output.string() + ":", 0), 0u) << dep;
   EXPECT_NE(dep.find(input.string()), std::string::npos) << dep;
   EXPECT_NE(dep.find((dir / "config.json").string()), std::string::npos) << dep;
-  EXPECT_NE(dep.find("skin\\ tone.png"), std::string::npos) << "spaces are escaped for make\n" << dep;
+  EXPECT_NE(dep.find("skin\\ tone.png"), std::string::npos) << "spaces are escaped for make\n"
+                                                            << dep;
 }
 
 TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   test::TempDir dir;
   const auto input = write_character(dir);
   const auto output = dir / "c.crowdpack";
-  ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--report", (dir / "r.json").string()})
+  ASSERT_EQ(test::run_crowdbake({"bake", input.string(), "-o", output.string(), "--report",
+                                 (dir / "r.json").string()})
                 .exit_code,
             0);
   const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
@@ -90,8 +97,9 @@ TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {
   test::TempDir dir;
   const auto input = write_character(dir);
   std::ofstream(dir / "config.json") << R"({"simplify": {"smaples": 4}})";
-  const test::CommandResult r = test::run_crowdbake(
-      {"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config", (dir / "config.json").string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
+                           (dir / "config.json").string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("key 'simplify.smaples': unknown key"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
@@ -101,8 +109,9 @@ TEST(BakeCommandErrors, BadConfigValue) {
   test::TempDir dir;
   const auto input = write_character(dir);
   std::ofstream(dir / "config.json") << R"({"animation": {"encoding": "jpeg"}})";
-  const test::CommandResult r = test::run_crowdbake(
-      {"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config", (dir / "config.json").string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
+                           (dir / "config.json").string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("must be one of float16, float32, quantized"), std::string::npos) << r.err;
 }
@@ -110,8 +119,8 @@ TEST(BakeCommandErrors, BadConfigValue) {
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
   test::TempDir dir;
   const auto input = write_character(dir);
-  const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "missing" / "x.crowdpack").string()});
+  const test::CommandResult r = test::run_crowdbake(
+      {"bake", input.string(), "-o", (dir / "missing" / "x.crowdpack").string()});
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("check that the output folder exists"), std::string::npos) << r.err;
@@ -122,9 +131,12 @@ TEST(BakeCommandErrors, BadInputLeavesNoOutput) {
   test::TempDir dir;
   std::ofstream(dir / "broken.glb") << "nope";
   const auto output = dir / "x.crowdpack";
-  const test::CommandResult r = test::run_crowdbake({"bake", (dir / "broken.glb").string(), "-o", output.string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", (dir / "broken.glb").string(), "-o", output.string()});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator{}), 1);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
+                          std::filesystem::directory_iterator{}),
+            1);
 }
 
 }  // namespace
@@ -139,8 +151,9 @@ TEST(BakeCommandErrors, InterruptLeavesNeitherOutputNorTemporaryFile) {
   const auto output = dir / "x.crowdpack";
   // The bake pauses between writing its temporary file and renaming it; SIGINT arrives then.
   const std::string command = "CROWDBAKE_TEST_WRITE_DELAY_MS=3000 timeout -s INT 1 " +
-                              test::shell_quote(CROWDBAKE_EXE) + " bake " + test::shell_quote(input.string()) +
-                              " -o " + test::shell_quote(output.string()) + " >/dev/null 2>&1";
+                              test::shell_quote(CROWDBAKE_EXE) + " bake " +
+                              test::shell_quote(input.string()) + " -o " +
+                              test::shell_quote(output.string()) + " >/dev/null 2>&1";
   const int status = std::system(command.c_str());
   EXPECT_NE(WEXITSTATUS(status), 0);
   EXPECT_FALSE(std::filesystem::exists(output));

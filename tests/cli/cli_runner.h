@@ -32,13 +32,16 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-inline CommandResult run_crowdbake(const std::vector<std::string>& args, const std::string& env = "") {
+inline CommandResult run_crowdbake(const std::vector<std::string>& args,
+                                   const std::string& env = "") {
   static int counter = 0;
-  const auto base = std::filesystem::temp_directory_path() /
-                    ("crowdbake-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const auto base =
+      std::filesystem::temp_directory_path() /
+      ("crowdbake-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   std::string cmd = env + (env.empty() ? "" : " ") + shell_quote(CROWDBAKE_EXE);
   for (const std::string& a : args) cmd += " " + shell_quote(a);
-  cmd += " >" + shell_quote(base.string() + ".out") + " 2>" + shell_quote(base.string() + ".err") + " </dev/null";
+  cmd += " >" + shell_quote(base.string() + ".out") + " 2>" + shell_quote(base.string() + ".err") +
+         " </dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

@@ -54,7 +54,9 @@ TEST(InspectCommand, TextReportNamesSkeletonMeshesClipsAndWarnings) {
   EXPECT_NE(r.out.find("1 vertices had skin weights not summing to 1"), std::string::npos) << r.out;
 }
 
-TEST(InspectCommandErrors, MissingFile) { expect_input_error("/nonexistent/character.glb", "file not found"); }
+TEST(InspectCommandErrors, MissingFile) {
+  expect_input_error("/nonexistent/character.glb", "file not found");
+}
 
 TEST(InspectCommandErrors, Directory) {
   test::TempDir dir;
@@ -62,7 +64,8 @@ TEST(InspectCommandErrors, Directory) {
 }
 
 TEST(InspectCommandErrors, UnreadableFile) {
-  if (::geteuid() == 0) GTEST_SKIP() << "running as root: file permissions cannot make a file unreadable";
+  if (::geteuid() == 0)
+    GTEST_SKIP() << "running as root: file permissions cannot make a file unreadable";
   test::TempDir dir;
   const auto file = dir / "locked.glb";
   std::ofstream(file) << "glTF";
@@ -102,7 +105,8 @@ TEST(InspectCommandErrors, NoMesh) {
 TEST(InspectCommandErrors, NanPosition) {
   test::TempDir dir;
   test::GltfBuilder b = test::two_bone_character();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = b.floats({0, 0, 0, NAN, 0, 0, 0, 2, 0}, "VEC3");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] =
+      b.floats({0, 0, 0, NAN, 0, 0, 0, 2, 0}, "VEC3");
   expect_input_error(b.write(dir / "nan.gltf").string(), "NaN or infinite vertex position");
 }
 
@@ -113,13 +117,15 @@ TEST(InspectCommandErrors, InfiniteMatrix) {
   ibm[0] = ibm[5] = ibm[10] = ibm[15] = ibm[16] = ibm[21] = ibm[26] = ibm[31] = 1.0f;
   ibm[3] = -INFINITY;
   b.doc["skins"][0]["inverseBindMatrices"] = b.floats(ibm, "MAT4");
-  expect_input_error(b.write(dir / "inf.gltf").string(), "inverse bind matrix of joint 'root' holds NaN or infinity");
+  expect_input_error(b.write(dir / "inf.gltf").string(),
+                     "inverse bind matrix of joint 'root' holds NaN or infinity");
 }
 
 TEST(InspectCommandErrors, JointIndexOutOfRange) {
   test::TempDir dir;
   test::GltfBuilder b = test::two_bone_character();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = b.u16({0, 0, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0}, "VEC4");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+      b.u16({0, 0, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0}, "VEC4");
   expect_input_error(b.write(dir / "joints.gltf").string(), "references joint 9");
 }
 
@@ -165,7 +171,8 @@ TEST(InspectCommandUsage, UnknownFlag) {
 TEST(InspectCommandUsage, CharacterOutOfRangeIsAUsageError) {
   test::TempDir dir;
   test::GltfBuilder b = test::two_bone_character();
-  const test::CommandResult r = run_crowdbake({"inspect", b.write(dir / "a.gltf").string(), "--character", "3"});
+  const test::CommandResult r =
+      run_crowdbake({"inspect", b.write(dir / "a.gltf").string(), "--character", "3"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("the file holds 1"), std::string::npos) << r.err;
 }

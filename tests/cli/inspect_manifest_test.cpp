@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.h"
@@ -34,12 +33,14 @@ TEST(InspectManifest, CountsMatchForEveryAsset) {
       const nlohmann::json& expected = asset["animations"][c];
       if (expected["name"].is_string()) EXPECT_EQ(j["clips"][c]["name"], expected["name"]);
       // The manifest rounds durations to 4 decimals.
-      EXPECT_NEAR(j["clips"][c]["duration"].get<double>(), expected["duration_s"].get<double>(), 1e-3);
+      EXPECT_NEAR(j["clips"][c]["duration"].get<double>(), expected["duration_s"].get<double>(),
+                  1e-3);
     }
     EXPECT_EQ(j["source_max_influences"], asset["max_influences"]);
     const bool over_four = asset["max_influences"].get<int>() > 4;
     bool warned = false;
-    for (const auto& w : j["warnings"]) warned |= w.get<std::string>().find("more than 4 influences") != std::string::npos;
+    for (const auto& w : j["warnings"])
+      warned |= w.get<std::string>().find("more than 4 influences") != std::string::npos;
     EXPECT_EQ(warned, over_four);
   }
 }

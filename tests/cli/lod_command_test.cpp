@@ -20,13 +20,15 @@ std::filesystem::path write_grid_character(const test::TempDir& dir) {
   for (int y = 0; y <= n; ++y)
     for (int x = 0; x <= n; ++x) {
       const float fy = 2.0f * y / n;
-      pos.insert(pos.end(), {static_cast<float>(x) / n, fy, 0.02f * static_cast<float>((x * 7 + y * 3) % 5)});
+      pos.insert(pos.end(),
+                 {static_cast<float>(x) / n, fy, 0.02f * static_cast<float>((x * 7 + y * 3) % 5)});
       joints.insert(joints.end(), {0, 1, 0, 0});
       weights.insert(weights.end(), {1.0f - fy / 2.0f, fy / 2.0f, 0.0f, 0.0f});
     }
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      const uint16_t a = static_cast<uint16_t>(y * (n + 1) + x), c = static_cast<uint16_t>(a + n + 1);
+      const uint16_t a = static_cast<uint16_t>(y * (n + 1) + x),
+                     c = static_cast<uint16_t>(a + n + 1);
       idx.insert(idx.end(), {a, static_cast<uint16_t>(a + 1), static_cast<uint16_t>(c + 1), a,
                              static_cast<uint16_t>(c + 1), c});
     }
@@ -46,7 +48,8 @@ void expect_usage_error(const std::vector<std::string>& args, const std::string&
   EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(output));
   for (const auto& entry : std::filesystem::directory_iterator(output.parent_path()))
-    EXPECT_EQ(entry.path().filename().string().rfind(output.filename().string(), 0), std::string::npos)
+    EXPECT_EQ(entry.path().filename().string().rfind(output.filename().string(), 0),
+              std::string::npos)
         << "left behind: " << entry.path();
 }
 
@@ -54,7 +57,8 @@ TEST(LodCommand, WritesTheRequestedLevel) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
   const auto output = dir / "lod.glb";
-  const test::CommandResult r = test::run_crowdbake({"lod", input.string(), "--ratio", "0.25", "-o", output.string()});
+  const test::CommandResult r =
+      test::run_crowdbake({"lod", input.string(), "--ratio", "0.25", "-o", output.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("vertices   42 of 169"), std::string::npos) << r.out;
   const test::CommandResult info = test::run_crowdbake({"inspect", output.string(), "--json"});
@@ -70,8 +74,8 @@ TEST(LodCommand, SameOptionsGiveByteIdenticalFiles) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
   for (const char* name : {"a.glb", "b.glb"})
-    ASSERT_EQ(test::run_crowdbake({"lod", input.string(), "--vertices", "60", "--samples", "32", "--seed", "7", "-o",
-                                   (dir / name).string(), "--quiet"})
+    ASSERT_EQ(test::run_crowdbake({"lod", input.string(), "--vertices", "60", "--samples", "32",
+                                   "--seed", "7", "-o", (dir / name).string(), "--quiet"})
                   .exit_code,
               0);
   EXPECT_EQ(test::slurp(dir / "a.glb"), test::slurp(dir / "b.glb"));
@@ -80,9 +84,10 @@ TEST(LodCommand, SameOptionsGiveByteIdenticalFiles) {
 TEST(LodCommandErrors, RatioOutOfRange) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
-  expect_usage_error({"lod", input.string(), "--ratio", "1.5", "-o", (dir / "x.glb").string()}, "--ratio must be in (0, 1]",
-                     dir / "x.glb");
-  expect_usage_error({"lod", input.string(), "--ratio", "0", "-o", (dir / "x.glb").string()}, "--ratio", dir / "x.glb");
+  expect_usage_error({"lod", input.string(), "--ratio", "1.5", "-o", (dir / "x.glb").string()},
+                     "--ratio must be in (0, 1]", dir / "x.glb");
+  expect_usage_error({"lod", input.string(), "--ratio", "0", "-o", (dir / "x.glb").string()},
+                     "--ratio", dir / "x.glb");
 }
 
 TEST(LodCommandErrors, VerticesOutOfRange) {
@@ -97,15 +102,16 @@ TEST(LodCommandErrors, VerticesOutOfRange) {
 TEST(LodCommandErrors, ZeroSamples) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
-  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--samples", "0", "-o", (dir / "x.glb").string()},
-                     "--samples must be at least 1", dir / "x.glb");
+  expect_usage_error(
+      {"lod", input.string(), "--ratio", "0.5", "--samples", "0", "-o", (dir / "x.glb").string()},
+      "--samples must be at least 1", dir / "x.glb");
 }
 
 TEST(LodCommandErrors, UnreadableRangesFile) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
-  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges", (dir / "none.json").string(), "-o",
-                      (dir / "x.glb").string()},
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges",
+                      (dir / "none.json").string(), "-o", (dir / "x.glb").string()},
                      "none.json: pose ranges: file not found", dir / "x.glb", 1);
 }
 
@@ -113,8 +119,8 @@ TEST(LodCommandErrors, RangesNamingUnknownJoints) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
   std::ofstream(dir / "ranges.json") << R"({"joints": {"tail": {"roll": [0, 10]}}})";
-  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges", (dir / "ranges.json").string(), "-o",
-                      (dir / "x.glb").string()},
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--ranges",
+                      (dir / "ranges.json").string(), "-o", (dir / "x.glb").string()},
                      "unknown joint 'tail'", dir / "x.glb", 1);
 }
 
@@ -122,7 +128,8 @@ TEST(LodCommandErrors, RatioAndVerticesTogether) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
   const test::CommandResult r =
-      test::run_crowdbake({"lod", input.string(), "--ratio", "0.5", "--vertices", "10", "-o", (dir / "x.glb").string()});
+      test::run_crowdbake({"lod", input.string(), "--ratio", "0.5", "--vertices", "10", "-o",
+                           (dir / "x.glb").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.glb"));
 }

@@ -18,13 +18,15 @@ TEST(SymbolBinding, NoTinygltfSymbolOfCrowdbakeBindsToAnotherLibrary) {
   test::GltfBuilder b = test::two_bone_character();
   const auto file = b.write(dir / "two_bone.gltf");
   const auto log = dir / "bindings";
-  const test::CommandResult r = test::run_crowdbake(
-      {"inspect", file.string(), "--json"}, "LD_BIND_NOW=1 LD_DEBUG=bindings LD_DEBUG_OUTPUT=" + log.string());
+  const test::CommandResult r =
+      test::run_crowdbake({"inspect", file.string(), "--json"},
+                          "LD_BIND_NOW=1 LD_DEBUG=bindings LD_DEBUG_OUTPUT=" + log.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
 
   std::string text;
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
-    if (entry.path().filename().string().rfind("bindings", 0) == 0) text += test::slurp(entry.path());
+    if (entry.path().filename().string().rfind("bindings", 0) == 0)
+      text += test::slurp(entry.path());
   ASSERT_FALSE(text.empty()) << "the dynamic loader wrote no binding log";
 
   // Without libdraco in the process the check would prove nothing.
@@ -41,7 +43,9 @@ TEST(SymbolBinding, NoTinygltfSymbolOfCrowdbakeBindsToAnotherLibrary) {
     const std::string binder = line.substr(from + 13, to - from - 13);
     if (binder.find("libdraco") != std::string::npos) continue;  // libdraco's own internal calls
     ++checked;
-    EXPECT_EQ(line.find("tinygltf"), std::string::npos) << "crowdbake binds a tinygltf symbol dynamically:\n" << line;
+    EXPECT_EQ(line.find("tinygltf"), std::string::npos)
+        << "crowdbake binds a tinygltf symbol dynamically:\n"
+        << line;
   }
   EXPECT_GT(checked, 100) << "too few bindings logged to trust the check";
 }

@@ -57,11 +57,15 @@ TEST(SkinnedAsset, SkeletonQueries) {
   EXPECT_EQ(a.triangle_count(), 1u);
 }
 
-TEST(SkinnedAsset, ValidAssetPasses) { EXPECT_EQ(failure([](SkinnedAsset&) {}), "valid"); }
+TEST(SkinnedAsset, ValidAssetPasses) {
+  EXPECT_EQ(failure([](SkinnedAsset&) {}), "valid");
+}
 
 TEST(SkinnedAsset, EachRuleIsEnforced) {
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints[1].parent = 2; }), "joint 'spine' is not ordered after its parent");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints.clear(); }), "the character has no joints");
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints[1].parent = 2; }),
+            "joint 'spine' is not ordered after its parent");
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints.clear(); }),
+            "the character has no joints");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints[2].inverse_bind[3][0] = NAN; }),
             "joint 'head' has a NaN or infinite inverse bind matrix");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.skeleton.joints[2].rest.translation.y = INFINITY; }),
@@ -69,15 +73,21 @@ TEST(SkinnedAsset, EachRuleIsEnforced) {
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives.clear(); }), "the character has no mesh");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].positions[1].x = NAN; }),
             "mesh 'body' has a NaN or infinite vertex position");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].joints[2][1] = 4; }), "mesh 'body' has a joint index out of range");
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].joints[2][1] = 4; }),
+            "mesh 'body' has a joint index out of range");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].weights[0][0] = 0.5f; }),
             "mesh 'body' has skin weights that do not sum to 1");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].indices[2] = 3; }), "mesh 'body' has a triangle index out of range");
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].indices[2] = 3; }),
+            "mesh 'body' has a triangle index out of range");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].indices.pop_back(); }),
             "mesh 'body' has an index count that is not a multiple of 3");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].uvs.resize(2); }), "mesh 'body' has a UV count unlike its vertex count");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.clips[0].channels.pop_back(); }), "clip 'idle' does not cover every joint");
-  EXPECT_EQ(failure([](SkinnedAsset& a) { a.clips[0].channels[1].rotation.times = {1.0, 0.0}; }),
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.primitives[0].uvs.resize(2); }),
+            "mesh 'body' has a UV count unlike its vertex count");
+  EXPECT_EQ(failure([](SkinnedAsset& a) { a.clips[0].channels.pop_back(); }),
+            "clip 'idle' does not cover every joint");
+  EXPECT_EQ(failure([](SkinnedAsset& a) {
+              a.clips[0].channels[1].rotation.times = {1.0, 0.0};
+            }),
             "clip 'idle', joint 'spine' rotation: key times are not ascending");
   EXPECT_EQ(failure([](SkinnedAsset& a) { a.clips[0].channels[1].rotation.values.pop_back(); }),
             "clip 'idle', joint 'spine' rotation: value count does not match key count");

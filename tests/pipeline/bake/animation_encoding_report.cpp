@@ -244,9 +244,10 @@ int main(int argc, char** argv) {
                                          AnimationEncoding::kQuantized};
   for (int i = 0; i < 3; ++i)
     std::printf(
-        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", animation_encoding_name(encodings[i]), totals.bytes[i],
-        sci(totals.frames_mean[i][1] / totals.assets).c_str(), sci(totals.frames_max[i][1]).c_str(),
-        sci(totals.mid_mean[i][0] / totals.assets).c_str(), sci(totals.mid_max[i][0]).c_str(),
-        sci(totals.mid_mean[i][1] / totals.assets).c_str(), sci(totals.mid_max[i][1]).c_str());
+        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", animation_encoding_name(encodings[i]),
+        totals.bytes[i], sci(totals.frames_mean[i][1] / totals.assets).c_str(),
+        sci(totals.frames_max[i][1]).c_str(), sci(totals.mid_mean[i][0] / totals.assets).c_str(),
+        sci(totals.mid_max[i][0]).c_str(), sci(totals.mid_mean[i][1] / totals.assets).c_str(),
+        sci(totals.mid_max[i][1]).c_str());
   return 0;
 }

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.h"
@@ -22,7 +21,8 @@ namespace {
 // Largest distance, over every vertex of every baked frame, between the surface the pack
 // describes (read-back geometry skinned with decoded rows and root motion) and direct
 // evaluation of the asset's clips; normalised by the bind bounding-box diagonal.
-double pack_skinning_error(const SkinnedAsset& asset, const PackContents& pack, const ProgressiveMesh& pm) {
+double pack_skinning_error(const SkinnedAsset& asset, const PackContents& pack,
+                           const ProgressiveMesh& pm) {
   std::vector<glm::dvec3> original;
   for (const Primitive& p : asset.primitives)
     for (const glm::vec3& v : p.positions) original.emplace_back(v);
@@ -57,7 +57,8 @@ double pack_skinning_error(const SkinnedAsset& asset, const PackContents& pack, 
             p[r] += w * (m[4 * r] * g.positions[3 * i] + m[4 * r + 1] * g.positions[3 * i + 1] +
                          m[4 * r + 2] * g.positions[3 * i + 2] + m[4 * r + 3]);
         }
-        worst = std::max(worst, glm::length(glm::dvec3(p[0], p[1], p[2]) - exact[pm.vertex_source[i]]));
+        worst =
+            std::max(worst, glm::length(glm::dvec3(p[0], p[1], p[2]) - exact[pm.vertex_source[i]]));
       }
     }
   }
@@ -93,7 +94,8 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   // 16-bit positions (docs/animation-encoding.md, docs/pack-format.md).
   const double error = pack_skinning_error(asset, back, pm);
   EXPECT_LT(error, 2e-3);
-  std::printf("[ pack ] %s: %zu bytes, skinned error %.2e of the diagonal\n", name.c_str(), bytes.size(), error);
+  std::printf("[ pack ] %s: %zu bytes, skinned error %.2e of the diagonal\n", name.c_str(),
+              bytes.size(), error);
 }
 
 TEST(PackBuilder, GeneratedSpectatorRoundTrips) {
@@ -102,7 +104,8 @@ TEST(PackBuilder, GeneratedSpectatorRoundTrips) {
 
 TEST(PackBuilder, EverySharedAssetRoundTrips) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
-  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
+  const nlohmann::json manifest =
+      nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
   for (const nlohmann::json& entry : manifest["assets"]) {
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
     expect_pack_round_trip(import_asset(path), path);
@@ -116,7 +119,8 @@ TEST(PackBuilder, SameInputGivesTheSameBytesWhateverTheThreads) {
     BakeSettings settings;
     settings.simplify.threads = threads;
     BakeReport report;
-    const std::vector<uint8_t> bytes = write_pack(build_pack(asset, settings, report), settings.pack);
+    const std::vector<uint8_t> bytes =
+        write_pack(build_pack(asset, settings, report), settings.pack);
     if (first.empty())
       first = bytes;
     else

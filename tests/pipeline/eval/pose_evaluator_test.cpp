@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace crowdbake {
@@ -17,15 +16,18 @@ void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-9) {
   EXPECT_NEAR(a.z, b.z, tol);
 }
 
-glm::dquat about(const glm::dvec3& axis, double radians) { return glm::angleAxis(radians, glm::normalize(axis)); }
+glm::dquat about(const glm::dvec3& axis, double radians) {
+  return glm::angleAxis(radians, glm::normalize(axis));
+}
 
 // Three joints in a line along +X (shoulder at 0, elbow at 2, wrist at 3), bind = rest.
 SkinnedAsset arm() {
   SkinnedAsset a;
   a.source = "arm";
-  a.skeleton.joints = {{"shoulder", -1, {}, glm::dmat4(1.0), glm::dmat4(1.0)},
-                       {"elbow", 0, {{2, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}}, glm::dmat4(1.0), glm::dmat4(1.0)},
-                       {"wrist", 1, {{1, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}}, glm::dmat4(1.0), glm::dmat4(1.0)}};
+  a.skeleton.joints = {
+      {"shoulder", -1, {}, glm::dmat4(1.0), glm::dmat4(1.0)},
+      {"elbow", 0, {{2, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}}, glm::dmat4(1.0), glm::dmat4(1.0)},
+      {"wrist", 1, {{1, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}}, glm::dmat4(1.0), glm::dmat4(1.0)}};
   std::vector<glm::dmat4> global;
   std::vector<Transform> local;
   rest_pose(a.skeleton, local);
@@ -67,8 +69,9 @@ TEST(PoseEvaluator, HandComputedElbowBend) {
   expect_near(out[0], {1, 0, 0});  // on the shoulder: unmoved
   // wrist joint goes from (3,0,0) to (2,1,0); the vertex 0.5 beyond it to (2,1.5,0).
   expect_near(out[2], {2, 1.5, 0});
-  // half elbow (rotates (2.5,0,0) about (2,0,0) to (2,0.5,0)), half wrist ((2,1,0) - 0.5 along +Y... the
-  // wrist-space offset is -0.5 in X -> rotated to -0.5 in Y: (2,0.5,0)). Both agree: (2,0.5,0).
+  // half elbow (rotates (2.5,0,0) about (2,0,0) to (2,0.5,0)), half wrist ((2,1,0) - 0.5 along
+  // +Y... the wrist-space offset is -0.5 in X -> rotated to -0.5 in Y: (2,0.5,0)). Both agree:
+  // (2,0.5,0).
   expect_near(out[1], {2, 0.5, 0});
 }
 
@@ -119,7 +122,8 @@ TEST(PoseEvaluator, SlerpAtMidpointIsHalfTheAngle) {
 TEST(PoseEvaluator, SlerpTakesTheShortArc) {
   const SkinnedAsset a = arm();
   Clip c = clip_with_rotation(Interpolation::kLinear);
-  c.channels[1].rotation.values[1] = -c.channels[1].rotation.values[1];  // same rotation, other sign
+  c.channels[1].rotation.values[1] =
+      -c.channels[1].rotation.values[1];  // same rotation, other sign
   std::vector<Transform> local;
   sample_clip(a.skeleton, c, 1.0, local);
   EXPECT_NEAR(std::fabs(glm::dot(local[1].rotation, about({0, 0, 1}, kPi / 4))), 1.0, 1e-12);

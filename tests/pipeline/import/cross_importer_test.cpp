@@ -8,9 +8,9 @@
 #include <map>
 
 #include "asset_paths.h"
+#include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
-#include "crowdbake/pipeline/gltf_export.h"
 #include "import_comparison.h"
 #include "spectator_character.h"
 #include "temp_dir.h"
@@ -30,8 +30,8 @@ void expect_importers_agree(const std::string& path) {
   const test::SurfaceDifference d = test::compare_skinned_surfaces(a, b);
   EXPECT_GT(d.samples, 0);
   EXPECT_LE(d.max_relative, 1e-4) << "at clip " << d.worst_clip << ", t = " << d.worst_time;
-  std::printf("[ cross-check ] %s: %d poses compared, max deviation %.3g of the bbox diagonal\n", path.c_str(),
-              d.samples, d.max_relative);
+  std::printf("[ cross-check ] %s: %d poses compared, max deviation %.3g of the bbox diagonal\n",
+              path.c_str(), d.samples, d.max_relative);
 }
 
 TEST(CrossImporter, GeneratedSpectator) {

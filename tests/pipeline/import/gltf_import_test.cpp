@@ -93,8 +93,10 @@ TEST(GltfImport, CubicSplineUsesTangentsScaledByKeyInterval) {
   const int values = b.floats({0, 0, 0, 0, 1, 0, 1, 0, 0,   // in, value, out (key 0)
                                0, 0, 0, 0, 1, 0, 0, 0, 0},  // in, value, out (key 1)
                               "VEC3");
-  b.doc["animations"][0]["samplers"].push_back({{"input", times}, {"output", values}, {"interpolation", "CUBICSPLINE"}});
-  b.doc["animations"][0]["channels"].push_back({{"sampler", 1}, {"target", {{"node", 1}, {"path", "translation"}}}});
+  b.doc["animations"][0]["samplers"].push_back(
+      {{"input", times}, {"output", values}, {"interpolation", "CUBICSPLINE"}});
+  b.doc["animations"][0]["channels"].push_back(
+      {{"sampler", 1}, {"target", {{"node", 1}, {"path", "translation"}}}});
   const SkinnedAsset a = load(b, dir);
   std::vector<Transform> local;
   sample_clip(a.skeleton, a.clips[0], 1.0, local);
@@ -108,10 +110,13 @@ TEST(GltfImport, SparseAccessorOverridesValues) {
   const int indices = b.u16({2}, "SCALAR");
   const std::vector<float> value = {0, 3, 0};
   const int view = b.add_view(value.data(), sizeof(float) * 3);
-  nlohmann::json& pos = b.doc["accessors"][b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
-  pos["sparse"] = {{"count", 1},
-                   {"indices", {{"bufferView", b.doc["accessors"][indices]["bufferView"]}, {"componentType", 5123}}},
-                   {"values", {{"bufferView", view}}}};
+  nlohmann::json& pos =
+      b.doc["accessors"][b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
+  pos["sparse"] = {
+      {"count", 1},
+      {"indices",
+       {{"bufferView", b.doc["accessors"][indices]["bufferView"]}, {"componentType", 5123}}},
+      {"values", {{"bufferView", view}}}};
   const SkinnedAsset a = load(b, dir);
   EXPECT_EQ(a.primitives[0].positions[2], glm::vec3(0, 3, 0));
   EXPECT_EQ(a.primitives[0].positions[1], glm::vec3(1, 0, 0));
@@ -147,7 +152,8 @@ TEST(GltfImport, UnnormalisedWeightsAreRenormalisedAndReported) {
 TEST(GltfImport, SecondInfluenceSetIsMergedAndReducedToFour) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
-  b.node({{"name", "j2"}}), b.node({{"name", "j3"}}), b.node({{"name", "j4"}}), b.node({{"name", "j5"}});
+  b.node({{"name", "j2"}}), b.node({{"name", "j3"}}), b.node({{"name", "j4"}}),
+      b.node({{"name", "j5"}});
   b.doc["nodes"][1]["children"] = nlohmann::json::array({3, 4, 5, 6});
   b.doc["skins"][0]["joints"] = {0, 1, 3, 4, 5, 6};
   b.doc["skins"][0].erase("inverseBindMatrices");
@@ -171,7 +177,9 @@ TEST(GltfImport, SecondInfluenceSetIsMergedAndReducedToFour) {
 TEST(GltfImport, SkinsSharingJointsMergeIntoOneSkeleton) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
-  b.doc["skins"].push_back({{"name", "head"}, {"joints", nlohmann::json::array({1})}});  // IBM identity: disagrees with skin 0
+  b.doc["skins"].push_back(
+      {{"name", "head"},
+       {"joints", nlohmann::json::array({1})}});  // IBM identity: disagrees with skin 0
   b.mesh("head", {{"POSITION", b.floats({0, 0, 0, 1, 0, 0, 0, 0, 1}, "VEC3")},
                   {"JOINTS_0", b.u16(std::vector<uint16_t>(12, 0), "VEC4")},
                   {"WEIGHTS_0", b.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4")}});
@@ -196,7 +204,8 @@ TEST(GltfImport, SeveralCharactersPickTheLargestAndSaySo) {
   b.doc["skins"].push_back({{"name", "other"}, {"joints", nlohmann::json::array({joint})}});
   const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 0, 1, 0, 1}, "VEC3");
   const int jo = b.u16(std::vector<uint16_t>(24, 0), "VEC4");
-  const int we = b.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+  const int we =
+      b.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
   b.mesh("other", {{"POSITION", pos}, {"JOINTS_0", jo}, {"WEIGHTS_0", we}});
   b.node({{"name", "other"}, {"mesh", 1}, {"skin", 1}}, true);
   const SkinnedAsset a = load(b, dir);
@@ -235,7 +244,8 @@ TEST(GltfImport, AnimatedMatrixAncestorOfRootIsFolded) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
   // Wrap the skeleton in a Z-up -> Y-up node (as CesiumMan does): joint matrices include it.
-  const int wrapper = b.node({{"name", "zup"}, {"matrix", {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1}}}, true);
+  const int wrapper = b.node(
+      {{"name", "zup"}, {"matrix", {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1}}}, true);
   b.doc["nodes"][wrapper]["children"] = nlohmann::json::array({0});
   b.doc["scenes"][0]["nodes"] = {wrapper, 2};
   const SkinnedAsset a = load(b, dir);
@@ -261,7 +271,8 @@ TEST(GltfImport, MorphTargetsWarnAndUseBaseShape) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
   const int delta = b.floats({0, 1, 0, 0, 1, 0, 0, 1, 0}, "VEC3");
-  b.doc["meshes"][0]["primitives"][0]["targets"] = nlohmann::json::array({nlohmann::json{{"POSITION", delta}}});
+  b.doc["meshes"][0]["primitives"][0]["targets"] =
+      nlohmann::json::array({nlohmann::json{{"POSITION", delta}}});
   const SkinnedAsset a = load(b, dir);
   EXPECT_EQ(a.primitives[0].positions[2], glm::vec3(0, 2, 0));
   ASSERT_EQ(a.warnings.size(), 1u);
@@ -296,14 +307,17 @@ TEST(GltfImportErrors, NodeWithTwoParents) {
 TEST(GltfImportErrors, JointIndexOutOfRange) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = b.u16({0, 0, 0, 0, 7, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
-  EXPECT_NE(error_of(b, dir).find("references joint 7 but its skin has 2 joints"), std::string::npos);
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+      b.u16({0, 0, 0, 0, 7, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+  EXPECT_NE(error_of(b, dir).find("references joint 7 but its skin has 2 joints"),
+            std::string::npos);
 }
 
 TEST(GltfImportErrors, NanPosition) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = b.floats({0, 0, 0, NAN, 0, 0, 0, 2, 0}, "VEC3");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] =
+      b.floats({0, 0, 0, NAN, 0, 0, 0, 2, 0}, "VEC3");
   EXPECT_NE(error_of(b, dir).find("NaN or infinite vertex position"), std::string::npos);
 }
 
@@ -314,7 +328,8 @@ TEST(GltfImportErrors, InfiniteInverseBindMatrix) {
   ibm[0] = ibm[5] = ibm[10] = ibm[15] = ibm[16] = ibm[21] = ibm[26] = ibm[31] = 1.0f;
   ibm[29] = INFINITY;
   b.doc["skins"][0]["inverseBindMatrices"] = b.floats(ibm, "MAT4");
-  EXPECT_NE(error_of(b, dir).find("inverse bind matrix of joint 'tip' holds NaN"), std::string::npos);
+  EXPECT_NE(error_of(b, dir).find("inverse bind matrix of joint 'tip' holds NaN"),
+            std::string::npos);
 }
 
 TEST(GltfImportErrors, OverflowingNodeTransformLiteral) {
@@ -338,8 +353,9 @@ TEST(GltfImportErrors, NanAnimationKey) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
   b.doc["animations"][0]["samplers"][0]["output"] = b.floats({0, 0, 0, 1, 0, 0, NAN, 1}, "VEC4");
-  EXPECT_NE(error_of(b, dir).find("clip 'bend', joint 'tip' rotation: key value is NaN or infinite"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(b, dir).find("clip 'bend', joint 'tip' rotation: key value is NaN or infinite"),
+      std::string::npos);
 }
 
 TEST(GltfImportErrors, NoSkin) {
@@ -360,9 +376,12 @@ TEST(GltfImportErrors, SkinWithoutMesh) {
 TEST(GltfImportErrors, AccessorPastTheEndOfItsBuffer) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
-  b.doc["accessors"][b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()]["count"] = 1000;
+  b.doc["accessors"][b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()]
+       ["count"] = 1000;
   const std::string e = error_of(b, dir);
-  EXPECT_TRUE(e.find("past the end") != std::string::npos || e.find("not a readable glTF") != std::string::npos) << e;
+  EXPECT_TRUE(e.find("past the end") != std::string::npos ||
+              e.find("not a readable glTF") != std::string::npos)
+      << e;
 }
 
 TEST(GltfImportErrors, GarbageFileWithGltfExtension) {
@@ -372,7 +391,8 @@ TEST(GltfImportErrors, GarbageFileWithGltfExtension) {
     import_asset((dir / "broken.glb").string());
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("not a readable glTF 2.0 file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a readable glTF 2.0 file"), std::string::npos)
+        << e.what();
     EXPECT_EQ(e.file(), (dir / "broken.glb").string());
   }
 }

@@ -30,7 +30,8 @@ inline double bbox_diagonal(const std::vector<glm::dvec3>& p) {
 
 // Times: the clip's start, end, quarter points, and every key of its first animated track.
 inline std::vector<double> sample_times(const Clip& clip) {
-  std::vector<double> t = {0.0, 0.25 * clip.duration, 0.5 * clip.duration, 0.75 * clip.duration, clip.duration};
+  std::vector<double> t = {0.0, 0.25 * clip.duration, 0.5 * clip.duration, 0.75 * clip.duration,
+                           clip.duration};
   for (const JointChannels& c : clip.channels)
     if (!c.rotation.empty()) {
       t.insert(t.end(), c.rotation.times.begin(), c.rotation.times.end());
@@ -40,11 +41,13 @@ inline std::vector<double> sample_times(const Clip& clip) {
 }
 
 inline SurfaceDifference compare_skinned_surfaces(const SkinnedAsset& a, const SkinnedAsset& b) {
-  const std::vector<glm::dvec3> bind_a = skin_asset(a, nullptr, 0.0), bind_b = skin_asset(b, nullptr, 0.0);
+  const std::vector<glm::dvec3> bind_a = skin_asset(a, nullptr, 0.0),
+                                bind_b = skin_asset(b, nullptr, 0.0);
   const double diag = bbox_diagonal(bind_a);
   const double cell = std::max(diag * 1e-5, 1e-12);
   auto key = [&](const glm::dvec3& p) {
-    return std::make_tuple(std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell));
+    return std::make_tuple(std::llround(p.x / cell), std::llround(p.y / cell),
+                           std::llround(p.z / cell));
   };
   std::map<std::tuple<long long, long long, long long>, std::vector<size_t>> index;
   for (size_t i = 0; i < bind_b.size(); ++i) index[key(bind_b[i])].push_back(i);
@@ -56,7 +59,8 @@ inline SurfaceDifference compare_skinned_surfaces(const SkinnedAsset& a, const S
       for (long long dy = -1; dy <= 1; ++dy)
         for (long long dz = -1; dz <= 1; ++dz) {
           auto it = index.find({std::get<0>(k) + dx, std::get<1>(k) + dy, std::get<2>(k) + dz});
-          if (it != index.end()) partners[i].insert(partners[i].end(), it->second.begin(), it->second.end());
+          if (it != index.end())
+            partners[i].insert(partners[i].end(), it->second.begin(), it->second.end());
         }
   }
   SurfaceDifference d;
@@ -75,14 +79,16 @@ inline SurfaceDifference compare_skinned_surfaces(const SkinnedAsset& a, const S
     }
     ++d.samples;
     if (worst / diag > d.max_relative || !std::isfinite(worst)) {
-      d.max_relative = std::isfinite(worst) ? worst / diag : std::numeric_limits<double>::infinity();
+      d.max_relative =
+          std::isfinite(worst) ? worst / diag : std::numeric_limits<double>::infinity();
       d.worst_clip = clip;
       d.worst_time = t;
     }
   };
   compare(nullptr, nullptr, 0.0, -1);
   for (size_t c = 0; c < a.clips.size() && c < b.clips.size(); ++c)
-    for (double t : sample_times(a.clips[c])) compare(&a.clips[c], &b.clips[c], t, static_cast<int>(c));
+    for (double t : sample_times(a.clips[c]))
+      compare(&a.clips[c], &b.clips[c], t, static_cast<int>(c));
   return d;
 }
 

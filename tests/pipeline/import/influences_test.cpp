@@ -32,7 +32,8 @@ TEST(Influences, NormalisedFourOrFewerPassUnchanged) {
 
 TEST(Influences, MoreThanFourKeepTheLargestRenormalised) {
   ImportStats stats;
-  const Reduced r = reduce({{0, 0.1f}, {1, 0.3f}, {2, 0.05f}, {3, 0.2f}, {4, 0.15f}, {5, 0.2f}}, stats);
+  const Reduced r =
+      reduce({{0, 0.1f}, {1, 0.3f}, {2, 0.05f}, {3, 0.2f}, {4, 0.15f}, {5, 0.2f}}, stats);
   float sum = 0.0f;
   for (float w : r.weights) sum += w;
   EXPECT_NEAR(sum, 1.0f, 1e-6f);
@@ -89,7 +90,9 @@ TEST(Influences, ReportNamesEveryCount) {
   std::vector<std::string> warnings;
   report_import_stats(stats, warnings);
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "3 vertices had more than 4 influences (up to 14); kept the 4 largest and renormalised");
+  EXPECT_EQ(
+      warnings[0],
+      "3 vertices had more than 4 influences (up to 14); kept the 4 largest and renormalised");
   EXPECT_EQ(warnings[1], "5 vertices had skin weights not summing to 1; renormalised");
 }
 

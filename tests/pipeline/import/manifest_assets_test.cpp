@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.h"
@@ -17,7 +16,8 @@ namespace {
 
 TEST(ManifestAssets, SkinnedPositionsAreFiniteAndBoundedAtEveryFrame) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
-  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
+  const nlohmann::json manifest =
+      nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
   for (const nlohmann::json& entry : manifest["assets"]) {
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
     SCOPED_TRACE(path);
@@ -49,8 +49,9 @@ TEST(ManifestAssets, SkinnedPositionsAreFiniteAndBoundedAtEveryFrame) {
     // any clip here but catches a wrong inverse bind (which typically flings vertices
     // by the joint's distance from the origin, or shrinks everything to a point).
     EXPECT_LT(farthest, 3.0);
-    std::printf("[ frames ] %s: %d frames, farthest vertex %.2f bbox diagonals from the bind centre\n",
-                path.c_str(), frames, farthest);
+    std::printf(
+        "[ frames ] %s: %d frames, farthest vertex %.2f bbox diagonals from the bind centre\n",
+        path.c_str(), frames, farthest);
   }
 }
 

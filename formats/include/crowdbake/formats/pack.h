@@ -26,7 +26,7 @@ enum class AnimationEncoding : uint32_t {
 
 struct PackJoint {
   std::string name;
-  int32_t parent = -1;                 // < own index; -1 for roots
+  int32_t parent = -1;  // < own index; -1 for roots
   std::array<float, 12> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // 3x4 row-major rows
   std::array<float, 3> rest_translation{0, 0, 0};
   std::array<float, 4> rest_rotation{0, 0, 0, 1};  // x, y, z, w
@@ -48,10 +48,10 @@ struct PackClip {
 
 struct AnimationTexture {
   AnimationEncoding encoding = AnimationEncoding::kFloat32;
-  uint32_t joints = 0;            // joints per row
-  uint32_t texels_per_joint = 3;  // texels one joint takes in a row
-  uint32_t bytes_per_texel = 16;  // RGBA32F = 16, RGBA16F = 8, ...
-  uint32_t rows = 0;              // frames of all clips, stacked
+  uint32_t joints = 0;               // joints per row
+  uint32_t texels_per_joint = 3;     // texels one joint takes in a row
+  uint32_t bytes_per_texel = 16;     // RGBA32F = 16, RGBA16F = 8, ...
+  uint32_t rows = 0;                 // frames of all clips, stacked
   std::vector<float> decode_params;  // encoding-specific constants (e.g. quantisation ranges)
   std::vector<uint8_t> data;         // rows * joints * texels_per_joint * bytes_per_texel bytes
 
@@ -76,13 +76,13 @@ struct PackMaterial {
 };
 
 struct PackGeometry {
-  std::vector<float> positions;     // 3 per vertex, model units
-  std::vector<float> normals;       // 3 per vertex, or empty
-  std::vector<float> uvs;           // 2 per vertex, or empty
-  std::vector<uint16_t> joints;     // 4 per vertex, < joint count
-  std::vector<float> weights;       // 4 per vertex, each vertex sums to 1
-  std::vector<uint8_t> regions;     // 1 Region per vertex, or empty
-  std::vector<uint32_t> triangles;  // 3 per triangle, permuted order, < vertex count
+  std::vector<float> positions;             // 3 per vertex, model units
+  std::vector<float> normals;               // 3 per vertex, or empty
+  std::vector<float> uvs;                   // 2 per vertex, or empty
+  std::vector<uint16_t> joints;             // 4 per vertex, < joint count
+  std::vector<float> weights;               // 4 per vertex, each vertex sums to 1
+  std::vector<uint8_t> regions;             // 1 Region per vertex, or empty
+  std::vector<uint32_t> triangles;          // 3 per triangle, permuted order, < vertex count
   std::vector<uint16_t> triangle_material;  // 1 per triangle, < material count
 
   uint32_t vertex_count() const { return static_cast<uint32_t>(positions.size() / 3); }
@@ -122,9 +122,9 @@ struct PackStatus {
 };
 
 enum class GeometryCodec : uint32_t {
-  kDraco = 0,     // Draco sequential encoding (keeps vertex and face order)
-  kMeshopt = 1,   // meshoptimizer vertex/index codecs (faster to decode)
-  kRaw = 2,       // uncompressed
+  kDraco = 0,    // Draco sequential encoding (keeps vertex and face order)
+  kMeshopt = 1,  // meshoptimizer vertex/index codecs (faster to decode)
+  kRaw = 2,      // uncompressed
 };
 
 // Quantisation bits apply to kDraco and kMeshopt; kRaw always stores exact floats.

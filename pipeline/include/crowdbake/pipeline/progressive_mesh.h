@@ -69,7 +69,8 @@ struct CollapseRecord {
 // record removing no vertex, a vertex or triangle removed twice, a target that is not
 // alive after its record (removed before or by the same record), or a triangle that
 // is (or becomes) degenerate without being removed.
-ProgressiveMesh build_progressive_mesh(uint32_t vertex_count, const std::vector<uint32_t>& triangles,
+ProgressiveMesh build_progressive_mesh(uint32_t vertex_count,
+                                       const std::vector<uint32_t>& triangles,
                                        const std::vector<uint16_t>& triangle_primitive,
                                        const std::vector<CollapseRecord>& collapses);
 

@@ -44,8 +44,8 @@ struct SimplifyOptions {
 
 struct SimplifyReport {
   int poses = 0;
-  std::string pose_estimator;  // where the pose densities came from (one line)
-  uint32_t positions = 0;       // distinct vertex positions after welding
+  std::string pose_estimator;    // where the pose densities came from (one line)
+  uint32_t positions = 0;        // distinct vertex positions after welding
   uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
   uint32_t degenerate_triangles_dropped = 0;
   uint32_t rejected_flips = 0;

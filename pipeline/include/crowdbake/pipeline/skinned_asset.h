@@ -16,11 +16,10 @@
 
 #include <array>
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <string>
+#include <vector>
 
 namespace crowdbake {
 
@@ -92,7 +91,7 @@ struct JointChannels {
 
 struct Clip {
   std::string name;
-  double duration = 0.0;  // seconds
+  double duration = 0.0;                // seconds
   std::vector<JointChannels> channels;  // one per joint
 
   int keyframes() const;  // largest key count of any track
@@ -100,12 +99,12 @@ struct Clip {
 
 // Facts an importer found and fixed; each nonzero count also appears in warnings.
 struct ImportStats {
-  int max_influences = 0;          // largest non-zero influence count seen in the source
+  int max_influences = 0;  // largest non-zero influence count seen in the source
   int vertices_over_4_influences = 0;
-  int vertices_renormalized = 0;   // weight sum differed from 1 by more than 1e-3
+  int vertices_renormalized = 0;  // weight sum differed from 1 by more than 1e-3
   int vertices_without_weights = 0;
   int polygons_triangulated = 0;
-  int rigid_primitives = 0;        // unskinned meshes bound to the joint they hang off
+  int rigid_primitives = 0;  // unskinned meshes bound to the joint they hang off
 };
 
 struct SkinnedAsset {
