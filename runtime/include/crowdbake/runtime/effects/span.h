@@ -1,38 +1,11 @@
-// Span<T>: pointer + count for job inputs and outputs (C++17 has no std::span).
-// note: the effects library keeps its own copy so it builds without crowdbake_runtime; once
-// runtime/ is in the tree both can share one.
+// Span<T> for the effects jobs: the runtime's header-only span (no link dependency on
+// crowdbake_runtime), named in this namespace so effects code reads as before.
 #pragma once
 
-#include <cstddef>
-#include <type_traits>
-#include <utility>
+#include "crowdbake/runtime/span.h"
 
 namespace crowdbake::effects {
 
-template <typename T>
-class Span {
- public:
-  constexpr Span() = default;
-  constexpr Span(T* data, size_t size) : data_(data), size_(size) {}
-  // Any contiguous container with data() and size() (std::vector, std::array, Span<U>);
-  // Span<const T> binds to const containers, Span<T> only to mutable ones.
-  template <typename C, typename = std::enable_if_t<
-                            std::is_convertible_v<decltype(std::declval<C&>().data()), T*>>>
-  constexpr Span(C& container)  // NOLINT: implicit on purpose
-      : data_(container.data()), size_(container.size()) {}
-
-  constexpr T* data() const { return data_; }
-  constexpr size_t size() const { return size_; }
-  constexpr bool empty() const { return size_ == 0; }
-  constexpr T& operator[](size_t i) const { return data_[i]; }
-  constexpr T* begin() const { return data_; }
-  constexpr T* end() const { return data_ + size_; }
-  // Elements [offset, offset + count); the caller keeps them inside the span.
-  constexpr Span subspan(size_t offset, size_t count) const { return {data_ + offset, count}; }
-
- private:
-  T* data_ = nullptr;
-  size_t size_ = 0;
-};
+using runtime::Span;
 
 }  // namespace crowdbake::effects
