@@ -1,0 +1,434 @@
+#include "crowdbake/runtime/gpu/gpu_buffer.h"
+
+#include <cstring>
+#include <utility>
+
+namespace crowdbake::runtime::gpu {
+
+// ---- GpuBuffer ----
+
+GpuBuffer::~GpuBuffer() { reset(); }
+
+GpuBuffer::GpuBuffer(GpuBuffer&& o) noexcept { *this = std::move(o); }
+
+GpuBuffer& GpuBuffer::operator=(GpuBuffer&& o) noexcept {
+  if (this != &o) {
+    reset();
+    context_ = std::exchange(o.context_, nullptr);
+    buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(o.size_, 0);
+    mapped_ = std::exchange(o.mapped_, nullptr);
+  }
+  return *this;
+}
+
+void GpuBuffer::reset() {
+  if (context_ == nullptr) return;
+  VkDevice d = context_->device();
+  if (mapped_) vkUnmapMemory(d, memory_);
+  if (buffer_) vkDestroyBuffer(d, buffer_, nullptr);
+  if (memory_) vkFreeMemory(d, memory_, nullptr);
+  context_ = nullptr;
+  buffer_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+  size_ = 0;
+  mapped_ = nullptr;
+}
+
+Status GpuBuffer::create(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
+                         MemoryKind memory, GpuBuffer& out) {
+  out.reset();
+  GpuBuffer b;
+  b.context_ = &context;
+  b.size_ = size == 0 ? 4 : size;
+  VkBufferCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+  info.size = b.size_;
+  info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkDevice d = context.device();
+  VkResult r = vkCreateBuffer(d, &info, nullptr, &b.buffer_);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreateBuffer", r);
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(d, b.buffer_, &req);
+  uint32_t type = UINT32_MAX;
+  if (memory == MemoryKind::kHostVisible) {
+    type = context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  } else {
+    type = context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type == UINT32_MAX) type = context.find_memory_type(req.memoryTypeBits, 0);
+  }
+  if (type == UINT32_MAX)
+    return Status(StatusCode::kInvalidArgument, "Vulkan: no memory type for a buffer");
+  VkMemoryAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = type;
+  r = vkAllocateMemory(d, &alloc, nullptr, &b.memory_);
+  if (r != VK_SUCCESS) return vulkan_error("vkAllocateMemory (buffer)", r);
+  r = vkBindBufferMemory(d, b.buffer_, b.memory_, 0);
+  if (r != VK_SUCCESS) return vulkan_error("vkBindBufferMemory", r);
+  // note: device-local memory that is also host-visible (lavapipe, integrated GPUs) is mapped
+  // too, so uploads skip the staging copy.
+  VkPhysicalDeviceMemoryProperties props;
+  vkGetPhysicalDeviceMemoryProperties(context.physical_device(), &props);
+  const VkMemoryPropertyFlags flags = props.memoryTypes[type].propertyFlags;
+  const VkMemoryPropertyFlags mappable =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  if ((flags & mappable) == mappable) {
+    r = vkMapMemory(d, b.memory_, 0, VK_WHOLE_SIZE, 0, &b.mapped_);
+    if (r != VK_SUCCESS) return vulkan_error("vkMapMemory", r);
+  }
+  out = std::move(b);
+  return Status();
+}
+
+Status GpuBuffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
+  if (bytes == 0) return Status();
+  if (buffer_ == VK_NULL_HANDLE || offset > size_ || bytes > size_ - offset)
+    return Status(StatusCode::kInvalidArgument, "GpuBuffer::upload: out of range");
+  if (mapped_) {
+    std::memcpy(static_cast<uint8_t*>(mapped_) + offset, data, static_cast<size_t>(bytes));
+    return Status();
+  }
+  GpuBuffer staging;
+  Status s = create(*context_, bytes, 0, MemoryKind::kHostVisible, staging);
+  if (!s.ok()) return s;
+  std::memcpy(staging.mapped(), data, static_cast<size_t>(bytes));
+  return context_->submit_and_wait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy copy{0, offset, bytes};
+    vkCmdCopyBuffer(cmd, staging.buffer(), buffer_, 1, &copy);
+  });
+}
+
+Status GpuBuffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
+  if (bytes == 0) return Status();
+  if (buffer_ == VK_NULL_HANDLE || offset > size_ || bytes > size_ - offset)
+    return Status(StatusCode::kInvalidArgument, "GpuBuffer::download: out of range");
+  if (mapped_) {
+    std::memcpy(data, static_cast<const uint8_t*>(mapped_) + offset, static_cast<size_t>(bytes));
+    return Status();
+  }
+  GpuBuffer staging;
+  Status s = create(*context_, bytes, 0, MemoryKind::kHostVisible, staging);
+  if (!s.ok()) return s;
+  s = context_->submit_and_wait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy copy{offset, 0, bytes};
+    vkCmdCopyBuffer(cmd, buffer_, staging.buffer(), 1, &copy);
+  });
+  if (!s.ok()) return s;
+  std::memcpy(data, staging.mapped(), static_cast<size_t>(bytes));
+  return Status();
+}
+
+// ---- GpuImage ----
+
+GpuImage::~GpuImage() { reset(); }
+
+GpuImage::GpuImage(GpuImage&& o) noexcept { *this = std::move(o); }
+
+GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
+  if (this != &o) {
+    reset();
+    context_ = std::exchange(o.context_, nullptr);
+    image_ = std::exchange(o.image_, VK_NULL_HANDLE);
+    view_ = std::exchange(o.view_, VK_NULL_HANDLE);
+    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+    desc_ = o.desc_;
+  }
+  return *this;
+}
+
+void GpuImage::reset() {
+  if (context_ == nullptr) return;
+  VkDevice d = context_->device();
+  if (view_) vkDestroyImageView(d, view_, nullptr);
+  if (image_) vkDestroyImage(d, image_, nullptr);
+  if (memory_) vkFreeMemory(d, memory_, nullptr);
+  context_ = nullptr;
+  image_ = VK_NULL_HANDLE;
+  view_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+}
+
+Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage& out) {
+  out.reset();
+  GpuImage img;
+  img.context_ = &context;
+  img.desc_ = desc;
+  VkImageCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = desc.format;
+  info.extent = {desc.width, desc.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = desc.layers;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = desc.usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkDevice d = context.device();
+  VkResult r = vkCreateImage(d, &info, nullptr, &img.image_);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreateImage", r);
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(d, img.image_, &req);
+  uint32_t type = context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (type == UINT32_MAX) type = context.find_memory_type(req.memoryTypeBits, 0);
+  if (type == UINT32_MAX)
+    return Status(StatusCode::kInvalidArgument, "Vulkan: no memory type for an image");
+  VkMemoryAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = type;
+  r = vkAllocateMemory(d, &alloc, nullptr, &img.memory_);
+  if (r != VK_SUCCESS) return vulkan_error("vkAllocateMemory (image)", r);
+  r = vkBindImageMemory(d, img.image_, img.memory_, 0);
+  if (r != VK_SUCCESS) return vulkan_error("vkBindImageMemory", r);
+  VkImageViewCreateInfo view{};
+  view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  view.image = img.image_;
+  view.viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  view.format = desc.format;
+  view.subresourceRange = {desc.aspect, 0, 1, 0, desc.layers};
+  r = vkCreateImageView(d, &view, nullptr, &img.view_);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreateImageView", r);
+  out = std::move(img);
+  return Status();
+}
+
+void transition_image(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                      VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
+                      VkPipelineStageFlags dst_stage) {
+  VkImageMemoryBarrier b{};
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+void full_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage,
+                  VkPipelineStageFlags dst_stage) {
+  VkMemoryBarrier b{};
+  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  b.srcAccessMask =
+      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT;
+  b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                    VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT |
+                    VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT;
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+// ---- TimestampQueries ----
+
+TimestampQueries::~TimestampQueries() { reset(); }
+
+TimestampQueries::TimestampQueries(TimestampQueries&& o) noexcept { *this = std::move(o); }
+
+TimestampQueries& TimestampQueries::operator=(TimestampQueries&& o) noexcept {
+  if (this != &o) {
+    reset();
+    context_ = std::exchange(o.context_, nullptr);
+    pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
+    count_ = std::exchange(o.count_, 0);
+  }
+  return *this;
+}
+
+void TimestampQueries::reset() {
+  if (context_ && pool_) vkDestroyQueryPool(context_->device(), pool_, nullptr);
+  context_ = nullptr;
+  pool_ = VK_NULL_HANDLE;
+  count_ = 0;
+}
+
+Status TimestampQueries::create(VulkanContext& context, uint32_t count, TimestampQueries& out) {
+  out.reset();
+  VkQueryPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  info.queryCount = count;
+  VkQueryPool pool = VK_NULL_HANDLE;
+  const VkResult r = vkCreateQueryPool(context.device(), &info, nullptr, &pool);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreateQueryPool", r);
+  out.context_ = &context;
+  out.pool_ = pool;
+  out.count_ = count;
+  return Status();
+}
+
+void TimestampQueries::reset(VkCommandBuffer cmd) const {
+  vkCmdResetQueryPool(cmd, pool_, 0, count_);
+}
+
+void TimestampQueries::write(VkCommandBuffer cmd, uint32_t index,
+                             VkPipelineStageFlagBits stage) const {
+  vkCmdWriteTimestamp(cmd, stage, pool_, index);
+}
+
+Status TimestampQueries::elapsed_ms(uint32_t from, uint32_t to, double& ms) const {
+  if (pool_ == VK_NULL_HANDLE || from >= count_ || to >= count_)
+    return Status(StatusCode::kInvalidArgument, "timestamp query index out of range");
+  uint64_t t[2] = {0, 0};
+  VkResult r = vkGetQueryPoolResults(context_->device(), pool_, from, 1, sizeof(uint64_t), &t[0],
+                                     sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+  if (r == VK_SUCCESS)
+    r = vkGetQueryPoolResults(context_->device(), pool_, to, 1, sizeof(uint64_t), &t[1],
+                              sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+  if (r != VK_SUCCESS) return vulkan_error("vkGetQueryPoolResults", r);
+  ms = static_cast<double>(t[1] - t[0]) * context_->limits().timestampPeriod * 1e-6;
+  return Status();
+}
+
+// ---- ComputeKernel ----
+
+ComputeKernel::~ComputeKernel() { reset(); }
+
+ComputeKernel::ComputeKernel(ComputeKernel&& o) noexcept { *this = std::move(o); }
+
+ComputeKernel& ComputeKernel::operator=(ComputeKernel&& o) noexcept {
+  if (this != &o) {
+    reset();
+    context_ = std::exchange(o.context_, nullptr);
+    set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
+    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+    pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+    pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
+    sets_ = std::move(o.sets_);
+    buffers_ = o.buffers_;
+    push_bytes_ = o.push_bytes_;
+    uniform_mask_ = o.uniform_mask_;
+  }
+  return *this;
+}
+
+void ComputeKernel::reset() {
+  if (context_ == nullptr) return;
+  VkDevice d = context_->device();
+  if (pipeline_) vkDestroyPipeline(d, pipeline_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(d, layout_, nullptr);
+  if (pool_) vkDestroyDescriptorPool(d, pool_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(d, set_layout_, nullptr);
+  context_ = nullptr;
+  pipeline_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+  pool_ = VK_NULL_HANDLE;
+  set_layout_ = VK_NULL_HANDLE;
+  sets_.clear();
+}
+
+Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_t buffers,
+                             uint32_t push_bytes, ComputeKernel& out, uint32_t sets,
+                             uint32_t uniform_mask) {
+  out.reset();
+  ComputeKernel k;
+  k.context_ = &context;
+  k.buffers_ = buffers;
+  k.push_bytes_ = push_bytes;
+  k.uniform_mask_ = uniform_mask;
+  VkDevice d = context.device();
+
+  std::vector<VkDescriptorSetLayoutBinding> bindings(buffers);
+  uint32_t uniforms = 0;
+  for (uint32_t b = 0; b < buffers; ++b) {
+    const bool uniform = (uniform_mask >> b) & 1u;
+    uniforms += uniform;
+    bindings[b] = {b,
+                   uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                   1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  }
+  VkDescriptorSetLayoutCreateInfo set_info{};
+  set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  set_info.bindingCount = buffers;
+  set_info.pBindings = bindings.data();
+  VkResult r = vkCreateDescriptorSetLayout(d, &set_info, nullptr, &k.set_layout_);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorSetLayout", r);
+
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
+  VkPipelineLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &k.set_layout_;
+  layout_info.pushConstantRangeCount = push_bytes > 0 ? 1 : 0;
+  layout_info.pPushConstantRanges = &range;
+  r = vkCreatePipelineLayout(d, &layout_info, nullptr, &k.layout_);
+  if (r != VK_SUCCESS) return vulkan_error("vkCreatePipelineLayout", r);
+
+  VkShaderModule module = VK_NULL_HANDLE;
+  Status s = context.create_shader_module(shader, module);
+  if (!s.ok()) return s;
+  VkComputePipelineCreateInfo pipe{};
+  pipe.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  pipe.stage = {};
+  pipe.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  pipe.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipe.stage.module = module;
+  pipe.stage.pName = "main";
+  pipe.layout = k.layout_;
+  r = vkCreateComputePipelines(d, VK_NULL_HANDLE, 1, &pipe, nullptr, &k.pipeline_);
+  vkDestroyShaderModule(d, module, nullptr);
+  if (r != VK_SUCCESS) return vulkan_error(shader, r);
+
+  if (buffers > 0 && sets > 0) {
+    std::vector<VkDescriptorPoolSize> sizes;
+    if (buffers > uniforms)
+      sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (buffers - uniforms) * sets});
+    if (uniforms > 0) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms * sets});
+    VkDescriptorPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pool_info.maxSets = sets;
+    pool_info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    pool_info.pPoolSizes = sizes.data();
+    r = vkCreateDescriptorPool(d, &pool_info, nullptr, &k.pool_);
+    if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorPool", r);
+    std::vector<VkDescriptorSetLayout> layouts(sets, k.set_layout_);
+    VkDescriptorSetAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    alloc.descriptorPool = k.pool_;
+    alloc.descriptorSetCount = sets;
+    alloc.pSetLayouts = layouts.data();
+    k.sets_.resize(sets);
+    r = vkAllocateDescriptorSets(d, &alloc, k.sets_.data());
+    if (r != VK_SUCCESS) return vulkan_error("vkAllocateDescriptorSets", r);
+  }
+  out = std::move(k);
+  return Status();
+}
+
+void ComputeKernel::bind_buffers(uint32_t set, const std::vector<const GpuBuffer*>& buffers) const {
+  std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  for (size_t b = 0; b < buffers.size() && b < buffers_; ++b) {
+    infos[b] = buffers[b]->descriptor();
+    writes[b] = {};
+    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[b].dstSet = sets_[set];
+    writes[b].dstBinding = static_cast<uint32_t>(b);
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = ((uniform_mask_ >> b) & 1u) ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                           : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &infos[b];
+  }
+  vkUpdateDescriptorSets(context_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+}
+
+void ComputeKernel::bind(VkCommandBuffer cmd, uint32_t set, const void* push) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  if (!sets_.empty())
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &sets_[set], 0,
+                            nullptr);
+  if (push != nullptr && push_bytes_ > 0)
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push);
+}
+
+}  // namespace crowdbake::runtime::gpu
