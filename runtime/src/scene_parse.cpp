@@ -228,6 +228,9 @@ struct RawInstance {
 struct RawGenerator {
   RawAttributes a;
   bool grid = true;
+  bool relaxation = false;  // "relaxation" (grid is false then)
+  std::string path;
+  RelaxationRequest relax;
   uint64_t seed = 0;
   // seat_grid
   Vec3 origin{0.0f, 0.0f, 0.0f};
@@ -251,6 +254,9 @@ struct RawScene {
   std::vector<RawType> types;
   std::vector<RawInstance> instances;
   std::vector<RawGenerator> generators;
+  SceneEffects effects;
+  std::string effects_type;  // "" = the only type
+  bool has_effects_type = false;
 };
 
 void check_view(const Camera& camera, const std::string& path) {
@@ -615,21 +621,395 @@ void parse_generators(const json& v, RawScene& s) {
         else
           fail(gp + ".yaw_degrees", "expected a number or \"random\", got " + describe(*p));
       }
+    } else if (kind == "relaxation") {
+      check_object(arr[i], gp,
+                   {"kind", "type", "seed", "region", "count", "y", "min_distance", "group_spacing",
+                    "single_fraction", "iterations", "clip", "clips", "speed", "time_offset",
+                    "scale", "textures", "color_variation", "neck_height", "waist_height"});
+      g.grid = false;
+      g.relaxation = true;
+      g.count = static_cast<uint32_t>(
+          integer(require(arr[i], "count", gp), gp + ".count", 0, kMaxInstances));
+      g.relax.people = g.count;
+      const std::string rp = gp + ".region";
+      const json& region = array(require(arr[i], "region", gp), rp);
+      if (region.size() < 3)
+        fail(rp, "a polygon needs at least 3 [x, z] points, got " + std::to_string(region.size()));
+      for (size_t k = 0; k < region.size(); ++k)
+        g.relax.region.push_back(numbers<2>(region[k], item_path(rp, k)));
+      if (const json* p = find(arr[i], "y")) g.y = static_cast<float>(number(*p, gp + ".y"));
+      if (const json* p = find(arr[i], "min_distance"))
+        g.relax.min_distance =
+            static_cast<float>(number_at_least(*p, gp + ".min_distance", 0.0, false));
+      if (const json* p = find(arr[i], "group_spacing"))
+        g.relax.group_spacing =
+            static_cast<float>(number_at_least(*p, gp + ".group_spacing", 0.0, false));
+      if (!(g.relax.group_spacing >= g.relax.min_distance))
+        fail(gp + ".group_spacing", "must be at least min_distance (" + show(g.relax.min_distance) +
+                                        "), got " + show(g.relax.group_spacing));
+      if (const json* p = find(arr[i], "single_fraction")) {
+        const double f = number(*p, gp + ".single_fraction");
+        if (!(f >= 0.0 && f <= 1.0))
+          fail(gp + ".single_fraction", "must be in [0, 1], got " + show(f));
+        g.relax.single_fraction = static_cast<float>(f);
+      }
+      if (const json* p = find(arr[i], "iterations"))
+        g.relax.iterations = static_cast<int>(integer(*p, gp + ".iterations", 0, 10000));
     } else {
-      fail(gp + ".kind", "unknown generator \"" + kind + "\" (expected seat_grid or scatter)");
+      fail(gp + ".kind",
+           "unknown generator \"" + kind + "\" (expected seat_grid, scatter or relaxation)");
     }
+    g.path = gp;
     if (const json* p = find(arr[i], "seed"))
       g.seed = static_cast<uint64_t>(integer(*p, gp + ".seed", 0, INT64_MAX));
+    g.relax.seed = g.seed;
     parse_attributes(arr[i], gp, true, g.a);
     s.generators.push_back(std::move(g));
   }
 }
 
+// ---- The effects declaration (scene_effects.h) ------------------------------------------
+
+std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
+
+std::string name_list(const std::vector<EffectState>& states) {
+  std::string out;
+  for (const EffectState& st : states) out += (out.empty() ? "" : ", ") + st.name;
+  return out;
+}
+
+int32_t find_state(const std::vector<EffectState>& states, const std::string& name) {
+  for (size_t i = 0; i < states.size(); ++i)
+    if (states[i].name == name) return static_cast<int32_t>(i);
+  return -1;
+}
+
+// The index of a declared state, or an "unknown state" error at `path`.
+uint32_t known_state(const SceneEffects& e, const std::string& name, const std::string& path) {
+  const int32_t i = find_state(e.states, name);
+  if (i < 0)
+    fail(path,
+         "unknown state " + in_quotes(name) + " (effects.states: " + name_list(e.states) + ")");
+  return static_cast<uint32_t>(i);
+}
+
+float seconds_at_least(const json& v, const std::string& path, double lo, bool inclusive) {
+  return static_cast<float>(number_at_least(v, path, lo, inclusive));
+}
+
+void parse_effect_states(const json& v, SceneEffects& e) {
+  const std::string path = "effects.states";
+  const json& arr = array(v, path);
+  if (arr.empty()) fail(path, "needs at least one state");
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const std::string sp = item_path(path, i);
+    check_object(arr[i], sp,
+                 {"name", "clips", "pose", "pose_in", "pose_out", "rest", "interruptible",
+                  "contagious", "additive", "mask", "instances"});
+    EffectState st;
+    st.name = string(require(arr[i], "name", sp), sp + ".name");
+    if (st.name.empty()) fail(sp + ".name", "must not be empty");
+    if (find_state(e.states, st.name) >= 0)
+      fail(sp + ".name", in_quotes(st.name) + " is declared twice");
+    const json& clips = array(require(arr[i], "clips", sp), sp + ".clips");
+    if (clips.empty()) fail(sp + ".clips", "needs at least one clip");
+    double total = 0.0;
+    for (size_t k = 0; k < clips.size(); ++k) {
+      const std::string cp = item_path(sp + ".clips", k);
+      EffectClip c;
+      if (clips[k].is_string()) {
+        c.clip = clips[k].get<std::string>();
+      } else {
+        check_object(clips[k], cp, {"clip", "weight", "hold"});
+        c.clip = string(require(clips[k], "clip", cp), cp + ".clip");
+        if (const json* p = find(clips[k], "weight"))
+          c.weight = static_cast<float>(number_at_least(*p, cp + ".weight", 0.0, true));
+        if (const json* p = find(clips[k], "hold")) c.hold = boolean(*p, cp + ".hold");
+      }
+      if (c.clip.empty()) fail(cp, "the clip name must not be empty");
+      total += c.weight;
+      st.clips.push_back(std::move(c));
+    }
+    if (!(total > 0.0)) fail(sp + ".clips", "every clip weight is 0");
+    const json* pose = find(arr[i], "pose");
+    const json* pose_in = find(arr[i], "pose_in");
+    const json* pose_out = find(arr[i], "pose_out");
+    if (pose && (pose_in || pose_out))
+      fail(sp + ".pose", "give either pose or pose_in/pose_out, not both");
+    st.pose_in = st.pose_out = pose ? string(*pose, sp + ".pose") : "default";
+    if (pose_in) st.pose_in = string(*pose_in, sp + ".pose_in");
+    if (pose_out) st.pose_out = string(*pose_out, sp + ".pose_out");
+    if (st.pose_in.empty() || st.pose_out.empty()) fail(sp + ".pose", "must not be empty");
+    if (const json* p = find(arr[i], "rest")) st.rest = boolean(*p, sp + ".rest");
+    if (const json* p = find(arr[i], "interruptible"))
+      st.interruptible = boolean(*p, sp + ".interruptible");
+    if (const json* p = find(arr[i], "contagious")) st.contagious = boolean(*p, sp + ".contagious");
+    if (const json* p = find(arr[i], "additive")) st.additive = boolean(*p, sp + ".additive");
+    if (st.rest && st.pose_in != st.pose_out)
+      fail(sp + ".rest", "a rest state loops, so it must end in the pose it starts in (pose_in " +
+                             in_quotes(st.pose_in) + ", pose_out " + in_quotes(st.pose_out) + ")");
+    if (const json* p = find(arr[i], "mask")) {
+      const json& mask = array(*p, sp + ".mask");
+      if (!st.additive) fail(sp + ".mask", "only additive states have a skeletal mask");
+      for (size_t k = 0; k < mask.size(); ++k)
+        st.mask.push_back(string(mask[k], item_path(sp + ".mask", k)));
+    }
+    if (const json* p = find(arr[i], "instances"))
+      st.instances = static_cast<uint32_t>(integer(*p, sp + ".instances", 1, 1024));
+    e.states.push_back(std::move(st));
+  }
+}
+
+void parse_animation_sharing(const json& v, SceneEffects& e) {
+  const std::string path = "effects.animation_sharing";
+  e.animation_sharing = true;
+  if (v.is_boolean()) {
+    e.animation_sharing = v.get<bool>();
+    return;
+  }
+  check_object(v, path, {"instances_per_state", "transitions", "additive_layers"});
+  if (const json* p = find(v, "instances_per_state"))
+    e.instances_per_state =
+        static_cast<uint32_t>(integer(*p, path + ".instances_per_state", 1, 1024));
+  if (const json* p = find(v, "transitions")) {
+    const std::string tp = path + ".transitions";
+    if (p->is_boolean()) {
+      e.transitions = p->get<bool>();
+    } else {
+      check_object(*p, tp, {"time", "max", "join_window"});
+      e.transitions = true;
+      if (const json* q = find(*p, "time"))
+        e.transition_time = seconds_at_least(*q, tp + ".time", 0.0, false);
+      if (const json* q = find(*p, "max"))
+        e.max_transitions = static_cast<uint32_t>(integer(*q, tp + ".max", 1, 65536));
+      if (const json* q = find(*p, "join_window"))
+        e.transition_join_window = seconds_at_least(*q, tp + ".join_window", 0.0, true);
+    }
+  }
+  if (const json* p = find(v, "additive_layers"))
+    e.additive_layers = boolean(*p, path + ".additive_layers");
+}
+
+void parse_spectators(const json& v, size_t generator_count, SceneEffects& e) {
+  const std::string path = "effects.spectators";
+  check_object(v, path,
+               {"transitions", "reactions", "teams", "events", "home_state", "parameters", "seed"});
+  e.spectators = true;
+  if (const json* p = find(v, "transitions")) {
+    const std::string tp = path + ".transitions";
+    const json& arr = array(*p, tp);
+    for (size_t i = 0; i < arr.size(); ++i) {
+      const std::string ip = item_path(tp, i);
+      check_object(arr[i], ip, {"from", "to", "idle_weight"});
+      EffectTransition t;
+      t.from = string(require(arr[i], "from", ip), ip + ".from");
+      t.to = string(require(arr[i], "to", ip), ip + ".to");
+      if (const json* q = find(arr[i], "idle_weight"))
+        t.idle_weight = static_cast<float>(number_at_least(*q, ip + ".idle_weight", 0.0, true));
+      const EffectState& from = e.states[known_state(e, t.from, ip + ".from")];
+      const EffectState& to = e.states[known_state(e, t.to, ip + ".to")];
+      if (from.pose_out != to.pose_in)
+        fail(ip, in_quotes(t.from) + " ends in pose " + in_quotes(from.pose_out) + " but " +
+                     in_quotes(t.to) + " starts in pose " + in_quotes(to.pose_in));
+      for (const EffectTransition& other : e.fsm_transitions)
+        if (other.from == t.from && other.to == t.to)
+          fail(ip, "the transition " + in_quotes(t.from) + " -> " + in_quotes(t.to) +
+                       " is declared twice");
+      e.fsm_transitions.push_back(std::move(t));
+    }
+  }
+  const json& reactions = array(require(v, "reactions", path), path + ".reactions");
+  for (size_t i = 0; i < reactions.size(); ++i) {
+    const std::string rp = item_path(path + ".reactions", i);
+    check_object(reactions[i], rp, {"event", "supporters", "opponents", "decay"});
+    EffectReaction r;
+    r.event = string(require(reactions[i], "event", rp), rp + ".event");
+    if (r.event.empty()) fail(rp + ".event", "must not be empty");
+    for (const EffectReaction& other : e.reactions)
+      if (other.event == r.event) fail(rp + ".event", in_quotes(r.event) + " is declared twice");
+    r.supporters = string(require(reactions[i], "supporters", rp), rp + ".supporters");
+    known_state(e, r.supporters, rp + ".supporters");
+    if (const json* q = find(reactions[i], "opponents")) {
+      r.opponents = string(*q, rp + ".opponents");
+      if (!r.opponents.empty()) known_state(e, r.opponents, rp + ".opponents");
+    }
+    if (const json* q = find(reactions[i], "decay"))
+      r.decay = seconds_at_least(*q, rp + ".decay", 0.0, false);
+    e.reactions.push_back(std::move(r));
+  }
+  const json& teams = array(require(v, "teams", path), path + ".teams");
+  if (teams.empty()) fail(path + ".teams", "needs at least one team");
+  std::vector<int> owner(generator_count, -1);
+  for (size_t i = 0; i < teams.size(); ++i) {
+    const std::string tp = item_path(path + ".teams", i);
+    check_object(teams[i], tp, {"name", "generators", "embarrassment", "embarrassment_spread"});
+    EffectTeam t;
+    t.name = string(require(teams[i], "name", tp), tp + ".name");
+    if (t.name.empty()) fail(tp + ".name", "must not be empty");
+    for (const EffectTeam& other : e.teams)
+      if (other.name == t.name) fail(tp + ".name", in_quotes(t.name) + " is declared twice");
+    const json& gens = array(require(teams[i], "generators", tp), tp + ".generators");
+    if (gens.empty()) fail(tp + ".generators", "needs at least one generator index");
+    for (size_t k = 0; k < gens.size(); ++k) {
+      const std::string gp = item_path(tp + ".generators", k);
+      const int64_t g = integer(gens[k], gp, 0, INT32_MAX);
+      if (static_cast<size_t>(g) >= generator_count)
+        fail(gp, "generator " + std::to_string(g) + " does not exist (the scene has " +
+                     std::to_string(generator_count) + " generators)");
+      if (owner[static_cast<size_t>(g)] >= 0)
+        fail(gp, "generator " + std::to_string(g) + " already belongs to team " +
+                     in_quotes(e.teams[static_cast<size_t>(owner[static_cast<size_t>(g)])].name));
+      owner[static_cast<size_t>(g)] = static_cast<int>(i);
+      t.generators.push_back(static_cast<uint32_t>(g));
+    }
+    if (const json* q = find(teams[i], "embarrassment"))
+      t.embarrassment = static_cast<float>(number_at_least(*q, tp + ".embarrassment", 0.0, true));
+    if (const json* q = find(teams[i], "embarrassment_spread"))
+      t.embarrassment_spread =
+          static_cast<float>(number_at_least(*q, tp + ".embarrassment_spread", 0.0, true));
+    e.teams.push_back(std::move(t));
+  }
+  if (const json* p = find(v, "events")) {
+    const std::string ep = path + ".events";
+    const json& arr = array(*p, ep);
+    for (size_t i = 0; i < arr.size(); ++i) {
+      const std::string ip = item_path(ep, i);
+      check_object(arr[i], ip, {"kind", "time", "team", "excitement"});
+      EffectEvent ev;
+      ev.kind = string(require(arr[i], "kind", ip), ip + ".kind");
+      bool reaction = false;
+      std::string events;
+      for (const EffectReaction& r : e.reactions) {
+        reaction = reaction || r.event == ev.kind;
+        events += (events.empty() ? "" : ", ") + r.event;
+      }
+      if (!reaction)
+        fail(ip + ".kind", "no reaction to " + in_quotes(ev.kind) +
+                               " (effects.spectators.reactions: " + events + ")");
+      ev.time = seconds_at_least(require(arr[i], "time", ip), ip + ".time", 0.0, true);
+      if (const json* q = find(arr[i], "team")) {
+        ev.team = string(*q, ip + ".team");
+        bool known = ev.team.empty();
+        std::string names;
+        for (const EffectTeam& t : e.teams) {
+          known = known || t.name == ev.team;
+          names += (names.empty() ? "" : ", ") + t.name;
+        }
+        if (!known) fail(ip + ".team", "no team " + in_quotes(ev.team) + " (teams: " + names + ")");
+      }
+      if (const json* q = find(arr[i], "excitement"))
+        ev.excitement = static_cast<float>(number_at_least(*q, ip + ".excitement", 0.0, true));
+      e.events.push_back(std::move(ev));
+    }
+  }
+  EffectSpectatorParams& pr = e.params;
+  if (const json* p = find(v, "home_state")) {
+    pr.home_state = string(*p, path + ".home_state");
+    const uint32_t h = known_state(e, pr.home_state, path + ".home_state");
+    if (!e.states[h].rest)
+      fail(path + ".home_state", in_quotes(pr.home_state) + " is not a rest state");
+  }
+  if (const json* p = find(v, "seed"))
+    pr.seed = static_cast<uint64_t>(integer(*p, path + ".seed", 0, INT64_MAX));
+  if (const json* p = find(v, "parameters")) {
+    const std::string pp = path + ".parameters";
+    check_object(*p, pp,
+                 {"tick", "neighbour_radius", "contagion_threshold", "social_gain", "fatigue_per_s",
+                  "recovery_per_s", "start_delay_max", "min_reaction", "restart_delay"});
+    struct Field {
+      const char* key;
+      float* value;
+      bool positive;
+    };
+    const Field fields[] = {{"tick", &pr.tick, true},
+                            {"neighbour_radius", &pr.neighbour_radius, true},
+                            {"contagion_threshold", &pr.contagion_threshold, true},
+                            {"social_gain", &pr.social_gain, false},
+                            {"fatigue_per_s", &pr.fatigue_per_s, false},
+                            {"recovery_per_s", &pr.recovery_per_s, false},
+                            {"start_delay_max", &pr.start_delay_max, false},
+                            {"min_reaction", &pr.min_reaction, false},
+                            {"restart_delay", &pr.restart_delay, false}};
+    for (const Field& f : fields)
+      if (const json* q = find(*p, f.key))
+        *f.value = static_cast<float>(number_at_least(*q, pp + "." + f.key, 0.0, !f.positive));
+    if (pr.contagion_threshold > 1.0f)
+      fail(pp + ".contagion_threshold", "must be in (0, 1], got " + show(pr.contagion_threshold));
+  }
+  // The FSM must have an exit: every state reaches a rest state (the behaviour module checks
+  // this again when it compiles the FSM; the file gets the error first, with its key).
+  const size_t n = e.states.size();
+  std::vector<uint8_t> exits(n, 0);
+  bool any_rest = false;
+  for (size_t i = 0; i < n; ++i) exits[i] = e.states[i].rest, any_rest = any_rest || exits[i];
+  if (!any_rest)
+    fail("effects.states",
+         "the spectator FSM has no rest state (mark the idle states, e.g. sit "
+         "or stand, \"rest\": true)");
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const EffectTransition& t : e.fsm_transitions) {
+      const size_t from = static_cast<size_t>(find_state(e.states, t.from));
+      const size_t to = static_cast<size_t>(find_state(e.states, t.to));
+      if (!exits[from] && exits[to]) exits[from] = 1, changed = true;
+    }
+  }
+  std::string trapped;
+  for (size_t i = 0; i < n; ++i)
+    if (!exits[i]) trapped += (trapped.empty() ? "" : ", ") + in_quotes(e.states[i].name);
+  if (!trapped.empty())
+    fail(path + ".transitions",
+         "cyclic FSM without exit: no path from " + trapped + " to a rest state");
+}
+
+void parse_effects(const json& v, RawScene& s) {
+  const std::string path = "effects";
+  check_object(v, path,
+               {"type", "lod", "texture_partition", "color_variety", "states", "animation_sharing",
+                "spectators", "crossfade"});
+  SceneEffects& e = s.effects;
+  e.declared = true;
+  if (const json* p = find(v, "type")) {
+    s.effects_type = string(*p, path + ".type");
+    s.has_effects_type = true;
+  }
+  if (const json* p = find(v, "lod")) e.lod = boolean(*p, path + ".lod");
+  if (const json* p = find(v, "texture_partition"))
+    e.texture_partition = boolean(*p, path + ".texture_partition");
+  if (const json* p = find(v, "color_variety"))
+    e.color_variety = boolean(*p, path + ".color_variety");
+  if (const json* p = find(v, "states")) parse_effect_states(*p, e);
+  if (const json* p = find(v, "animation_sharing")) parse_animation_sharing(*p, e);
+  if (const json* p = find(v, "crossfade")) {
+    const std::string cp = path + ".crossfade";
+    if (p->is_boolean()) {
+      e.crossfade = p->get<bool>();
+    } else {
+      check_object(*p, cp, {"time"});
+      e.crossfade = true;
+      if (const json* q = find(*p, "time"))
+        e.crossfade_time = seconds_at_least(*q, cp + ".time", 0.0, true);
+    }
+  }
+  const bool uses_states = e.animation_sharing || find(v, "spectators") != nullptr;
+  if (uses_states && e.states.empty())
+    fail(path + ".states", "missing (animation_sharing and spectators need the states)");
+  if (!uses_states && !e.states.empty())
+    fail(path + ".states", "declared, but neither animation_sharing nor spectators uses them");
+  if (const json* p = find(v, "spectators")) parse_spectators(*p, s.generators.size(), e);
+  if (e.crossfade && !e.spectators)
+    fail(path + ".crossfade", "nothing changes clips to fade (declare spectators)");
+  for (size_t i = 0; i < e.states.size(); ++i)
+    if (e.states[i].additive && !(e.animation_sharing && e.additive_layers))
+      fail(item_path(path + ".states", i) + ".additive",
+           "additive layers are not declared (effects.animation_sharing.additive_layers)");
+}
+
 RawScene parse_raw(const json& root) {
   RawScene s;
-  check_object(
-      root, "",
-      {"version", "camera", "lod", "animation", "character_types", "instances", "generators"});
+  check_object(root, "",
+               {"version", "camera", "lod", "animation", "character_types", "instances",
+                "generators", "effects"});
   if (const json* p = find(root, "version")) {
     const int64_t version = integer(*p, "version", 0, INT32_MAX);
     if (version != 1)
@@ -642,6 +1022,9 @@ RawScene parse_raw(const json& root) {
   parse_types(require(root, "character_types", ""), s);
   if (const json* p = find(root, "instances")) parse_instances(*p, s);
   if (const json* p = find(root, "generators")) parse_generators(*p, s);
+  if (const json* p = find(root, "effects")) parse_effects(*p, s);
+  for (const RawGenerator& g : s.generators)
+    s.effects.placement = s.effects.placement || g.relaxation;
   uint64_t total = s.instances.size();
   for (const RawGenerator& g : s.generators)
     total += g.grid ? uint64_t{g.rows} * g.columns : g.count;
@@ -756,7 +1139,79 @@ void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoa
   }
 }
 
-void build_instances(const RawScene& raw, Scene& scene) {
+// Places a relaxation generator's people through the caller's placer (crowdbake_crowd).
+void build_relaxation(const RawGenerator& g, const Resolved& r, const SceneLoadOptions& options,
+                      Scene& scene) {
+  if (!options.relaxation)
+    fail(g.path + ".kind",
+         "relaxation placement needs a placer: load the scene with crowdbake_scene_effects' "
+         "crowd_scene_load_options() (SceneLoadOptions::relaxation)");
+  RelaxationResult placed;
+  const Status s = options.relaxation(g.relax, placed);
+  if (!s) fail(g.path, s.message());
+  if (placed.positions.size() != g.count || placed.yaw_degrees.size() != g.count)
+    fail(g.path, "the placer returned " + std::to_string(placed.positions.size()) +
+                     " positions for " + std::to_string(g.count) + " people");
+  for (uint32_t k = 0; k < g.count; ++k) {
+    Random rng(mix(g.seed, k, 2));
+    Instance in = make_instance(scene, g.a, r, rng);
+    in.position = {placed.positions[k][0], g.y, placed.positions[k][1]};
+    in.rotation = yaw_quaternion(placed.yaw_degrees[k]);
+    scene.instances.add(in);
+  }
+}
+
+// Names in the effects declaration that need the packs: the driven type, clips, mask joints.
+void resolve_effects(const RawScene& raw, Scene& scene) {
+  SceneEffects e = raw.effects;
+  if (!e.declared) return;
+  if (!raw.has_effects_type) {
+    if (scene.types.size() != 1 && !e.states.empty())
+      fail("effects.type", "missing (required when the scene has several character types)");
+    e.type = 0;
+  } else {
+    const int32_t t = scene.find_type(raw.effects_type);
+    if (t < 0) fail("effects.type", "unknown character type \"" + raw.effects_type + "\"");
+    e.type = static_cast<uint32_t>(t);
+  }
+  const CharacterType& type = scene.types[e.type];
+  for (size_t i = 0; i < e.states.size(); ++i) {
+    const std::string sp = item_path("effects.states", i);
+    for (size_t k = 0; k < e.states[i].clips.size(); ++k) {
+      const EffectClip& c = e.states[i].clips[k];
+      const std::string cp = item_path(sp + ".clips", k);
+      const int32_t index = type.pack.find_clip(c.clip);
+      if (index < 0)
+        fail(cp, "character type '" + type.name + "' has no clip \"" + c.clip +
+                     "\" (its clips: " + clip_list(type.pack) + ")");
+      const PackClip& clip = type.pack.contents().clips[static_cast<size_t>(index)];
+      if (c.hold && clip.looping)
+        fail(cp + ".hold", "clip \"" + c.clip +
+                               "\" loops; only a non-looping clip can hold "
+                               "its last frame");
+      if (!(clip.duration > 0.0f) && e.spectators)
+        fail(cp, "clip \"" + c.clip + "\" lasts " + show(clip.duration) +
+                     " s; a behaviour state needs clips longer than 0 s");
+    }
+    for (size_t k = 0; k < e.states[i].mask.size(); ++k)
+      if (type.pack.find_joint(e.states[i].mask[k]) < 0)
+        fail(item_path(sp + ".mask", k),
+             "character type '" + type.name + "' has no joint \"" + e.states[i].mask[k] + "\"");
+  }
+  for (size_t t = 0; t < e.teams.size(); ++t)
+    for (size_t k = 0; k < e.teams[t].generators.size(); ++k) {
+      const InstanceRange& range = scene.generated[e.teams[t].generators[k]];
+      for (uint32_t i = range.first; i < range.first + range.count; ++i)
+        if (scene.instances.type[i] != e.type)
+          fail(item_path(item_path("effects.spectators.teams", t) + ".generators", k),
+               "generator " + std::to_string(e.teams[t].generators[k]) +
+                   " makes instances of another character type than effects.type ('" + type.name +
+                   "')");
+    }
+  scene.effects = std::move(e);
+}
+
+void build_instances(const RawScene& raw, const SceneLoadOptions& options, Scene& scene) {
   InstanceArrays& out = scene.instances;
   uint64_t total = raw.instances.size();
   for (const RawGenerator& g : raw.generators)
@@ -772,7 +1227,10 @@ void build_instances(const RawScene& raw, Scene& scene) {
   }
   for (const RawGenerator& g : raw.generators) {
     const Resolved r = resolve(scene, g.a);
-    if (g.grid) {
+    const uint32_t first = static_cast<uint32_t>(out.size());
+    if (g.relaxation) {
+      build_relaxation(g, r, options, scene);
+    } else if (g.grid) {
       const float yaw = g.yaw_degrees * kPi / 180.0f;
       const float c = std::cos(yaw), s = std::sin(yaw);
       const std::array<float, 4> rotation = yaw_quaternion(g.yaw_degrees);
@@ -807,6 +1265,7 @@ void build_instances(const RawScene& raw, Scene& scene) {
         out.add(in);
       }
     }
+    scene.generated.push_back({first, static_cast<uint32_t>(out.size()) - first});
   }
 }
 
@@ -819,7 +1278,8 @@ Status build(const json& root, const std::string& base_dir, const SceneLoadOptio
   scene.lod = raw.lod;
   scene.animation = raw.animation;
   open_packs(raw, base_dir, options, scene);
-  build_instances(raw, scene);
+  build_instances(raw, options, scene);
+  resolve_effects(raw, scene);
   out = std::move(scene);
   return {};
 }

@@ -14,6 +14,13 @@ constexpr uint32_t kNoPose = 0xFFFFFFFFu;
 struct EffectFrame {
   // Index of the instance's pose in its type's pose buffer, or kNoPose (skin from the texture).
   std::vector<uint32_t> pose;
+  // The clip the instance plays instead of its scene clip (InstanceArrays::clip), a
+  // Scene::clips index of the instance's type, and the time offset to play it with instead of
+  // InstanceArrays::time_offset (seconds; may be negative: a clip started at scene time t0 has
+  // offset -t0). This is the crossfade's `from` side once an effect has switched the instance:
+  // row0/row1 come from it exactly as from the scene clip (choose_frame, the instance's speed).
+  std::vector<uint32_t> clip;
+  std::vector<float> time_offset;
   // GPU crossfade (issue 6): the clip faded to (a Scene::clips index of the instance's type),
   // its time offset in seconds, and its weight in [0, 1] (0 = only the instance's own clip).
   std::vector<uint32_t> fade_clip;
@@ -25,6 +32,11 @@ struct EffectFrame {
 
   bool has_poses() const { return !pose.empty(); }
   bool has_fades() const { return !fade_clip.empty(); }
+  bool has_clips() const { return !clip.empty(); }
+  bool empty() const {
+    return pose.empty() && clip.empty() && time_offset.empty() && fade_clip.empty() &&
+           fade_time_offset.empty() && fade_weight.empty() && pose_buffers.empty();
+  }
 };
 
 }  // namespace crowdbake::runtime

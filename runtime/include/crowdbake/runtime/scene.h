@@ -19,6 +19,7 @@
 #include "crowdbake/runtime/cull_job.h"
 #include "crowdbake/runtime/lod_select_job.h"
 #include "crowdbake/runtime/pack.h"
+#include "crowdbake/runtime/scene_effects.h"
 #include "crowdbake/runtime/status.h"
 
 namespace crowdbake::runtime {
@@ -95,6 +96,11 @@ struct Scene {
   std::vector<CharacterType> types;
   std::vector<ClipRef> clips;  // every type's clips, type by type (CharacterType::first_clip)
   InstanceArrays instances;
+  // The effects the scene declares (scene.json "effects"; scene_effects.h). A scene built from
+  // code declares none unless it fills this in.
+  SceneEffects effects;
+  // Per scene.json generator, in file order: the instances it made.
+  std::vector<InstanceRange> generated;
 
   // Index of the type with this name, or -1.
   int32_t find_type(std::string_view name) const;
@@ -116,6 +122,10 @@ struct SceneLoadOptions {
   // Pack parts to load for every type (PackPart flags). The tables are always read, and so
   // is PART (the partition heights are the instances' default neck/waist heights).
   uint32_t pack_parts = kPackAll;
+  // Places "relaxation" generators (crowd-patches Lloyd relaxation). The runtime core has no
+  // placement of its own: crowdbake_scene_effects' crowd_scene_load_options() sets this; a
+  // scene with a relaxation generator and no placer fails to load, saying so.
+  RelaxationPlacer relaxation;
 };
 
 // Reads and checks a scene file, opens its packs (paths relative to the file's folder) and

@@ -1,0 +1,147 @@
+// The scene's effects declaration (scene.json "effects", docs/scene-format.md): which crowd
+// effects a scene uses, read and checked by load_scene() into plain data. The runtime core only
+// describes them; crowdbake_scene_effects (runtime/effects/crowd_effects.h) builds the systems
+// the declaration names and nothing else, so an effect a scene does not declare costs nothing.
+//
+// Names (states, clips, teams, events) are kept as written; load_scene() has already checked
+// that they resolve (clips against the packs, states, teams and reactions against each other)
+// and that the behaviour FSM has an exit, so the builders can trust them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "crowdbake/runtime/status.h"
+
+namespace crowdbake::runtime {
+
+// One clip variant of a behaviour state: a clip of the driven character type.
+struct EffectClip {
+  std::string clip;     // clip name in the type's pack
+  float weight = 1.0f;  // relative chance among the state's variants, >= 0
+  // Show only the clip's last frame (a held pose, e.g. seated at the end of "sit"). Only for
+  // non-looping clips, so the GPU crossfade can hold it too.
+  bool hold = false;
+};
+
+// A state: both an animation-sharing state (its clips are sampled into shared poses) and a
+// state of the spectator behaviour FSM.
+struct EffectState {
+  std::string name;
+  std::vector<EffectClip> clips;  // >= 1
+  std::string pose_in, pose_out;  // default poses at its clips' ends (FSM transition rule)
+  bool rest = false;              // FSM: idle behaviour may stay here (an exit)
+  bool interruptible = false;     // FSM: reactions may cut its clip
+  bool contagious = false;        // FSM: counts for applause contagion
+  bool additive = false;          // sharing: a masked layer over the previous state's pose
+  std::vector<std::string> mask;  // sharing: joints the layer drives (empty = all)
+  uint32_t instances = 0;         // sharing: state instances; 0 = the sharing default
+};
+
+struct EffectTransition {
+  std::string from, to;
+  float idle_weight = 0.0f;  // > 0: idle behaviour may take it on its own
+};
+
+struct EffectReaction {
+  std::string event;       // event kind ("goal")
+  std::string supporters;  // state for the event's team
+  std::string opponents;   // state for the other teams; "" = they do not react
+  float decay = 6.0f;      // seconds
+};
+
+struct EffectTeam {
+  std::string name;
+  std::vector<uint32_t> generators;  // generator indices whose instances are the team
+  float embarrassment = 0.5f;
+  float embarrassment_spread = 0.2f;
+};
+
+struct EffectEvent {
+  std::string kind;
+  float time = 0.0f;  // seconds, >= 0
+  std::string team;   // "" = everyone supports it
+  float excitement = 1.0f;
+};
+
+// SpectatorParams (runtime/include/crowdbake/runtime/crowd/spectator_scene.h) as declared.
+struct EffectSpectatorParams {
+  std::string home_state;  // "" = the first rest state
+  float tick = 0.1f;
+  float neighbour_radius = 1.5f;
+  float contagion_threshold = 0.25f;
+  float social_gain = 0.3f;
+  float fatigue_per_s = 0.06f;
+  float recovery_per_s = 0.1f;
+  float start_delay_max = 0.6f;
+  float min_reaction = 1.0f;
+  float restart_delay = 2.0f;
+  uint64_t seed = 1;
+};
+
+struct SceneEffects {
+  bool declared = false;  // the scene has an "effects" object
+
+  // Renderer-side effects: on unless the declaration turns them off.
+  bool lod = true;
+  bool texture_partition = true;
+  bool color_variety = true;
+
+  // Which character type the CPU effects drive (index into Scene::types).
+  uint32_t type = 0;
+  std::vector<EffectState> states;  // needed by animation_sharing and spectators
+
+  // Shared animation states (CPU poses into the per-type pose buffer).
+  bool animation_sharing = false;
+  uint32_t instances_per_state = 4;
+  bool transitions = false;  // blended state changes (transition instances)
+  float transition_time = 0.3f;
+  uint32_t max_transitions = 16;
+  float transition_join_window = 0.1f;
+  bool additive_layers = false;
+
+  // Spectator behaviour: teams, events, the FSM's transitions and reactions.
+  bool spectators = false;
+  std::vector<EffectTransition> fsm_transitions;
+  std::vector<EffectReaction> reactions;
+  std::vector<EffectTeam> teams;
+  std::vector<EffectEvent> events;
+  EffectSpectatorParams params;
+
+  // GPU crossfade of clip changes (without animation_sharing: the FSM's changes fade).
+  bool crossfade = false;
+  float crossfade_time = 0.4f;
+
+  // Relaxation placement: the scene has "relaxation" generators (placed at load).
+  bool placement = false;
+};
+
+// Instances [first, first + count) came from one generator (Scene::generated, in order).
+struct InstanceRange {
+  uint32_t first = 0, count = 0;
+};
+
+// A "relaxation" generator's request (crowd-patches placement, crowdbake_crowd's PlaceCrowd).
+// The runtime core does not place crowds itself: SceneLoadOptions::relaxation does.
+struct RelaxationRequest {
+  std::vector<std::array<float, 2>> region;  // (x, z) polygon, >= 3 vertices
+  uint32_t people = 0;
+  float min_distance = 0.5f;
+  float group_spacing = 0.7f;
+  float single_fraction = 0.3f;
+  int iterations = 60;
+  uint64_t seed = 0;
+};
+
+struct RelaxationResult {
+  std::vector<std::array<float, 2>> positions;  // (x, z) per person, group members together
+  std::vector<float> yaw_degrees;               // heading per person (about +Y, +Z towards +X)
+  double seconds = 0.0;                         // time the placement took
+};
+
+using RelaxationPlacer = std::function<Status(const RelaxationRequest&, RelaxationResult&)>;
+
+}  // namespace crowdbake::runtime
