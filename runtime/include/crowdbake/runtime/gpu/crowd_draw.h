@@ -1,0 +1,143 @@
+// CrowdDraw: the graphics side of the GPU crowd path. Per character type it keeps the pack's
+// bind-pose vertices, its animation texture (the raw bytes, decoded by shaders/skin.glsl
+// exactly as formats/animation_codec.h), its partition mask and a pose buffer; per frame it
+// records the directional shadow-map pass and the colour pass, each ONE vkCmdDrawIndirect per
+// character type over the corner buffer that CrowdCompute wrote (never one draw per instance:
+// software Vulkan pays per draw), plus one draw for the ground under the crowd.
+//
+// Descriptor sets (shaders/crowd_frame.glsl, shaders/skin.glsl): set 0 = the frame (instances,
+// corners, FrameConstants, shadow map, swatches), set 1 = the type (TypeConstants, vertices,
+// animation words, pose buffer, partition mask).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/effect_frame.h"
+#include "crowdbake/runtime/gpu/gpu_buffer.h"
+#include "crowdbake/runtime/gpu/vulkan_context.h"
+#include "crowdbake/runtime/scene.h"
+#include "crowdbake/runtime/span.h"
+#include "crowdbake/runtime/status.h"
+
+namespace crowdbake::runtime::gpu {
+
+// Light, shadow and ground settings of the colour pass.
+struct DrawSettings {
+  bool shadows = true;
+  uint32_t shadow_map_size = 2048;                            // square, D32
+  bool ground = true;                                         // a quad under the crowd
+  std::array<float, 3> light_direction{-0.45f, 1.0f, 0.35f};  // towards the light; normalised
+  std::array<float, 3> light_color{0.85f, 0.82f, 0.75f};
+  std::array<float, 3> ambient{0.32f, 0.34f, 0.38f};
+  std::array<float, 3> ground_color{0.42f, 0.45f, 0.40f};
+  std::array<float, 4> clear_color{0.62f, 0.72f, 0.84f, 1.0f};  // RGBA in [0, 1]
+};
+
+// A colour + depth target the colour pass renders into: the Renderer's own offscreen image or
+// one the host application owns (Renderer::record_draw). The colour pass clears both.
+struct HostTarget {
+  VkImageView color_view = VK_NULL_HANDLE;
+  VkFormat color_format = VK_FORMAT_R8G8B8A8_UNORM;
+  VkImageView depth_view = VK_NULL_HANDLE;
+  VkFormat depth_format = VK_FORMAT_D32_SFLOAT;
+  uint32_t width = 0, height = 0;
+  // The colour image's layout after the pass (the render pass transitions it from UNDEFINED:
+  // its old contents are cleared).
+  VkImageLayout color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+};
+
+// Where one character type's corners are and its indirect draw command (CrowdCompute's).
+struct TypeDraw {
+  VkBuffer args = VK_NULL_HANDLE;  // holds a VkDrawIndirectCommand at args_offset
+  VkDeviceSize args_offset = 0;
+  uint32_t corner_base = 0;  // added to gl_VertexIndex (0 when firstVertex carries it)
+};
+
+// std140 blocks and the vertex record the shaders read (layouts asserted in crowd_draw.cpp).
+struct FrameConstants {
+  float view_proj[16];        // column-major
+  float light_view_proj[16];  // column-major
+  float light_dir[4];         // towards the light, w = shadows on
+  float light_color[4];       // w = shadow depth bias
+  float ambient[4];           // w = swatch tiling
+  float ground_min[4];        // w = 1: draw the ground
+  float ground_max[4];
+  float ground_color[4];
+  float eye[4];
+};
+
+struct TypeConstants {
+  uint32_t anim_layout[4];  // encoding, joints, texels per joint, bytes per texel
+  float decode_center[4];
+  float decode_half[4];
+  float up_neck[4];      // up axis, pack neck height
+  float waist_mask[4];   // pack waist height, mask width, mask height, 0
+  uint32_t variants[4];  // head, upper body, trousers, swatch layers per region
+};
+
+struct GpuVertex {
+  float position_height[4];
+  float normal_u[4];
+  float weights[4];
+  uint32_t joints_v[4];  // j0 | j1 << 16, j2 | j3 << 16, bits of v, 1 = unskinned
+};
+
+// The bind-pose vertex records of a pack (geometry must be loaded).
+std::vector<GpuVertex> make_gpu_vertices(const PackContents& pack);
+
+// The orthographic light transform (column-major, Vulkan depth 0..1) whose box covers the
+// given world spheres (4 floats each: centre, radius), seen along -light_direction.
+void fit_light_view_proj(const std::array<float, 3>& light_direction, Span<const float> spheres,
+                         float out[16]);
+
+// Swatch layers per region in the generated texture array (variants beyond wrap around).
+constexpr uint32_t kMaxSwatchesPerRegion = 32;
+constexpr uint32_t kSwatchSize = 32;
+
+class CrowdDraw {
+ public:
+  // Uploads every type's vertices, animation texture and partition mask, builds the swatch
+  // array, the shadow map, the descriptor sets and the shadow pipeline.
+  // Returns kNotLoaded when a type's geometry or animation is not loaded, kInvalidArgument on
+  // Vulkan failures.
+  static Status create(VulkanContext& context, const Scene& scene, const DrawSettings& settings,
+                       std::unique_ptr<CrowdDraw>& out);
+  ~CrowdDraw();
+  CrowdDraw(const CrowdDraw&) = delete;
+  CrowdDraw& operator=(const CrowdDraw&) = delete;
+
+  // Per frame, before recording: the frame constants (camera of `state`, the light box over the
+  // visible instances, the ground under every instance), the pose buffers of `effects` (null or
+  // empty: none) and set 0 pointed at this frame's instance and corner buffers. The previous
+  // frame's commands must have completed (sets and constants are rewritten in place).
+  Status update(const Scene& scene, const FrameState& state, const EffectFrame* effects,
+                const GpuBuffer& instances, const GpuBuffer& corners);
+
+  // The shadow-map pass (outside any render pass); records nothing when shadows are off.
+  // draws: one per character type, in type order
+  void record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws);
+  // The colour pass into `target`: clear, ground, one indirect draw per type.
+  // Returns kInvalidArgument when the target is incomplete or a Vulkan object cannot be made.
+  Status record_color(VkCommandBuffer cmd, const HostTarget& target, Span<const TypeDraw> draws);
+
+  uint32_t type_count() const;
+  VkDescriptorSetLayout type_set_layout() const;
+  VkDescriptorSet type_set(uint32_t type) const;
+  uint32_t type_vertices(uint32_t type) const;  // the pack's vertex count
+  uint32_t type_joints(uint32_t type) const;    // joints per animation-texture row
+  const FrameConstants& frame_constants() const;
+  const DrawSettings& settings() const;
+
+ private:
+  struct Impl;
+  explicit CrowdDraw(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crowdbake::runtime::gpu

@@ -1,0 +1,101 @@
+// Colour pass: the partition region (the pack's mask in UV space, DESIGN.md §3.7) picks the
+// instance's texture variant for that region; the variant's swatch (generated, the packs carry
+// no images) gets the instance's HSB variation, then Lambert + ambient light with the
+// directional shadow map.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "instance.glsl"
+#include "crowd_frame.glsl"
+#include "skin.glsl"
+
+layout(set = 0, binding = 3) uniform sampler2DShadow shadow_map;
+layout(set = 0, binding = 4) uniform sampler2DArray swatches;
+// The pack's PartitionMask (R8_UINT, row 0 = v in [0, 1/height)).
+layout(set = SKIN_SET, binding = 4) uniform usampler2D partition_mask;
+
+layout(location = 0) in vec3 in_world;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in float in_height;
+layout(location = 4) flat in uint in_textures;
+layout(location = 5) flat in vec4 in_color;
+layout(location = 6) flat in vec2 in_partition;
+
+layout(location = 0) out vec4 out_color;
+
+const uint kHead = 0u, kUpperBody = 1u, kTrousers = 2u, kUnused = 255u;
+
+// Region of a bind-pose height (seed Algorithm 3 with the comparisons the right way up).
+uint height_region(float h, float neck, float waist) {
+  if (h > neck) return kHead;
+  if (h < waist) return kTrousers;
+  return kUpperBody;
+}
+
+// The mask's region where the instance's heights agree with the pack's (exact per fragment);
+// where this instance moved a boundary, or the mask has no region, its own heights decide.
+uint partition_region() {
+  const float pack_neck = type_block.up_neck.w, pack_waist = type_block.waist_mask.x;
+  const uint mine = height_region(in_height, in_partition.x, in_partition.y);
+  if (mine != height_region(in_height, pack_neck, pack_waist)) return mine;
+  const ivec2 size = ivec2(type_block.waist_mask.yz);
+  if (size.x <= 0 || size.y <= 0) return mine;
+  const ivec2 texel = clamp(ivec2(floor(in_uv * vec2(size))), ivec2(0), size - 1);
+  const uint region = texelFetch(partition_mask, texel, 0).r;
+  return region == kUnused ? mine : region;
+}
+
+vec3 rgb_to_hsv(vec3 c) {
+  const float mx = max(c.r, max(c.g, c.b)), mn = min(c.r, min(c.g, c.b));
+  const float d = mx - mn;
+  float h = 0.0;
+  if (d > 0.0) {
+    if (mx == c.r)
+      h = mod((c.g - c.b) / d, 6.0);
+    else if (mx == c.g)
+      h = (c.b - c.r) / d + 2.0;
+    else
+      h = (c.r - c.g) / d + 4.0;
+  }
+  return vec3(h / 6.0, mx > 0.0 ? d / mx : 0.0, mx);
+}
+
+vec3 hsv_to_rgb(vec3 c) {
+  const vec3 k = clamp(abs(fract(c.x + vec3(0.0, 2.0, 1.0) / 3.0) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
+  return c.z * mix(vec3(1.0), k, c.y);
+}
+
+float shadow_factor(vec3 world) {
+  if (frame.light_dir.w == 0.0) return 1.0;
+  const vec4 clip = frame.light_view_proj * vec4(world, 1.0);
+  const vec3 ndc = clip.xyz / clip.w;
+  const vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  return texture(shadow_map, vec3(uv, ndc.z - frame.light_color.w));
+}
+
+void main() {
+  vec3 albedo;
+  if (uint(in_color.w) == kDrawGround) {
+    albedo = frame.ground_color.rgb;
+  } else {
+    const uint region = partition_region();
+    const uint variant = (in_textures >> (8u * region)) & 0xFFu;
+    const uint per_region = max(type_block.variants.w, 1u);
+    const float layer = float(region * per_region + variant % per_region);
+    albedo = texture(swatches, vec3(in_uv * frame.ambient.w, layer)).rgb;
+    vec3 hsv = rgb_to_hsv(albedo);
+    hsv.x = fract(hsv.x + in_color.x / 360.0);
+    hsv.y = clamp(hsv.y * in_color.y, 0.0, 1.0);
+    hsv.z = clamp(hsv.z * in_color.z, 0.0, 1.0);
+    albedo = hsv_to_rgb(hsv);
+  }
+  vec3 n = in_normal;
+  const float len = length(n);
+  n = len > 0.0 ? n / len : vec3(0.0, 1.0, 0.0);
+  // Packs do not promise a winding or closed meshes: light the side facing the camera.
+  if (dot(n, frame.eye.xyz - in_world) < 0.0) n = -n;
+  const float lambert = max(dot(n, frame.light_dir.xyz), 0.0) * shadow_factor(in_world);
+  out_color = vec4(albedo * (frame.ambient.rgb + frame.light_color.rgb * lambert), 1.0);
+}

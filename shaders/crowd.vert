@@ -1,0 +1,44 @@
+// Colour pass: one invocation per drawn corner. Pulls (instance, vertex) from the corner buffer
+// the compute passes wrote, skins it (skin.glsl) and hands the fragment shader what the
+// partition and the colour variation need.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "instance.glsl"
+#include "crowd_frame.glsl"
+#include "skin.glsl"
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+layout(location = 3) out float out_height;  // bind-pose height along the pack's up axis
+layout(location = 4) flat out uint out_textures;
+layout(location = 5) flat out vec4 out_color;      // hue shift, saturation, brightness, mode
+layout(location = 6) flat out vec2 out_partition;  // the instance's neck and waist heights
+
+void main() {
+  if (draw_push.mode == kDrawGround) {
+    const vec3 p = ground_corner(uint(gl_VertexIndex));
+    out_world = p;
+    out_normal = vec3(0.0, 1.0, 0.0);
+    out_uv = vec2(0.0);
+    out_height = 0.0;
+    out_textures = 0u;
+    out_color = vec4(0.0, 1.0, 1.0, float(kDrawGround));
+    out_partition = vec2(0.0);
+    gl_Position = frame.view_proj * vec4(p, 1.0);
+    return;
+  }
+  const uvec2 corner = corners[draw_push.corner_base + uint(gl_VertexIndex)];
+  const GpuInstance inst = instances[corner.x];
+  const GpuVertex v = vertices[corner.y];
+  const SkinnedVertex s = skin_vertex(inst, v);
+  out_world = s.position;
+  out_normal = s.normal;
+  out_uv = vec2(v.normal_u.w, uintBitsToFloat(v.joints_v.z));
+  out_height = v.position_height.w;
+  out_textures = inst.textures;
+  out_color = vec4(inst.color.xyz, float(kDrawCrowd));
+  out_partition = vec2(inst.neck_height, inst.waist_height);
+  gl_Position = frame.view_proj * vec4(s.position, 1.0);
+}

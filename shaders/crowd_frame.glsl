@@ -1,0 +1,43 @@
+// The frame's descriptor set (set 0) shared by crowd.vert, crowd.frag and shadow.vert
+// (crowd_draw.cpp binds it once per pass): instances, corners, the frame constants, the shadow
+// map and the swatch texture array. The includer declares `GpuInstance` first.
+#ifndef CROWDBAKE_CROWD_FRAME_GLSL
+#define CROWDBAKE_CROWD_FRAME_GLSL
+
+layout(std430, set = 0, binding = 0) readonly buffer InstanceBlock { GpuInstance instances[]; };
+// One corner of a drawn triangle: (instance, vertex of its type), written by the compute passes.
+layout(std430, set = 0, binding = 1) readonly buffer CornerBlock { uvec2 corners[]; };
+
+// crowd_draw.cpp FrameConstants (std140).
+layout(std140, set = 0, binding = 2) uniform FrameBlock {
+  mat4 view_proj;        // world → clip (runtime::view_matrix, projection_matrix)
+  mat4 light_view_proj;  // world → shadow-map clip (orthographic, depth 0..1)
+  vec4 light_dir;        // xyz: unit vector towards the light; w: shadows on (1) or off (0)
+  vec4 light_color;      // rgb, w: shadow depth bias
+  vec4 ambient;          // rgb, w: swatch tiling over uv
+  vec4 ground_min;       // ground quad: min x, y (height), min z, w: 1 = draw
+  vec4 ground_max;       // max x, unused, max z, unused
+  vec4 ground_color;     // rgb
+  vec4 eye;              // camera position
+}
+frame;
+
+// Push constants of every crowd draw: where the type's corners start and what is drawn.
+layout(push_constant) uniform DrawPush {
+  uint corner_base;  // added to gl_VertexIndex
+  uint mode;         // 0 = crowd, 1 = ground quad
+}
+draw_push;
+
+const uint kDrawCrowd = 0u;
+const uint kDrawGround = 1u;
+
+// Corner i of the ground quad (two triangles, counter-clockwise seen from above).
+vec3 ground_corner(uint i) {
+  const uint k = uint[6](0u, 2u, 1u, 0u, 3u, 2u)[i % 6u];
+  const float x = (k == 1u || k == 2u) ? frame.ground_max.x : frame.ground_min.x;
+  const float z = (k >= 2u) ? frame.ground_max.z : frame.ground_min.z;
+  return vec3(x, frame.ground_min.y, z);
+}
+
+#endif  // CROWDBAKE_CROWD_FRAME_GLSL
