@@ -41,6 +41,104 @@ void lod_area_distance(const View& view, const float sphere[4], double* area, do
   *distance = d;
 }
 
+double lod_log(double x) {
+  if (!(x > 0.0)) return x == 0.0 ? -HUGE_VAL : std::nan("");
+  if (!std::isfinite(x)) return x;
+  int e = 0;
+  double m = std::frexp(x, &e);  // x = m · 2^e, m in [0.5, 1)
+  if (m < 0.7071067811865476) {
+    m = m * 2.0;
+    e = e - 1;
+  }
+  // ln m = 2·atanh(s), s = (m − 1) / (m + 1), |s| <= 0.1716: the series to s^23.
+  const double s = (m - 1.0) / (m + 1.0);
+  const double z = s * s;
+  double p = 0.043478260869565216;  // 1/23
+  p = p * z + 0.047619047619047616;
+  p = p * z + 0.05263157894736842;
+  p = p * z + 0.058823529411764705;
+  p = p * z + 0.06666666666666667;
+  p = p * z + 0.07692307692307693;
+  p = p * z + 0.09090909090909091;
+  p = p * z + 0.1111111111111111;
+  p = p * z + 0.14285714285714285;
+  p = p * z + 0.2;
+  p = p * z + 0.3333333333333333;
+  p = p * z + 1.0;
+  const double k = static_cast<double>(e);
+  // note: ln 2 split in fdlibm's two parts; k · kLn2Hi is exact for |k| < 2^11.
+  constexpr double kLn2Hi = 6.93147180369123816490e-01, kLn2Lo = 1.90821492927058770002e-10;
+  return k * kLn2Hi + (k * kLn2Lo + (2.0 * s) * p);
+}
+
+double lod_exp(double x) {
+  if (std::isnan(x)) return x;
+  if (x > 709.0) return HUGE_VAL;
+  if (x < -700.0) return 0.0;
+  constexpr double kInvLn2 = 1.4426950408889634;
+  constexpr double kLn2Hi = 6.93147180369123816490e-01, kLn2Lo = 1.90821492927058770002e-10;
+  const double k = std::floor(x * kInvLn2 + 0.5);
+  const double r = (x - k * kLn2Hi) - k * kLn2Lo;  // |r| <= 0.35
+  double p = 7.647163731819816e-13;                // 1/15!
+  p = p * r + 1.1470745597729725e-11;
+  p = p * r + 1.6059043836821613e-10;
+  p = p * r + 2.08767569878681e-09;
+  p = p * r + 2.505210838544172e-08;
+  p = p * r + 2.755731922398589e-07;
+  p = p * r + 2.7557319223985893e-06;
+  p = p * r + 2.48015873015873e-05;
+  p = p * r + 0.0001984126984126984;
+  p = p * r + 0.001388888888888889;
+  p = p * r + 0.008333333333333333;
+  p = p * r + 0.041666666666666664;
+  p = p * r + 0.16666666666666666;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  return std::ldexp(p, static_cast<int>(k));
+}
+
+double lod_type_log_weight(double alpha, uint32_t triangles) {
+  const double beta = alpha - 1.0;
+  return lod_log(beta) + beta * lod_log(static_cast<double>(triangles));
+}
+
+double lod_weight_root(double area, double distance, double alpha, double type_log_weight) {
+  if (!(area > 0.0)) return 0.0;
+  const double log_w = type_log_weight + (lod_log(area) - lod_log(distance));
+  const double root = lod_exp(log_w / alpha);
+  return std::isfinite(root) ? root : 0.0;
+}
+
+namespace {
+
+// The GPU's shared-memory tree over kLodReductionBlock values (lane k += lane k + s).
+double tree_sum(double* lanes) {
+  for (uint32_t stride = kLodReductionBlock / 2; stride > 0; stride /= 2)
+    for (uint32_t k = 0; k < stride; ++k) lanes[k] = lanes[k] + lanes[k + stride];
+  return lanes[0];
+}
+
+}  // namespace
+
+double lod_weight_sum(Span<const double> weights) {
+  const size_t n = weights.size();
+  const size_t blocks = (n + kLodReductionBlock - 1) / kLodReductionBlock;
+  double lanes[kLodReductionBlock];
+  double accumulated[kLodReductionBlock];
+  for (uint32_t l = 0; l < kLodReductionBlock; ++l) accumulated[l] = 0.0;
+  for (size_t b = 0; b < blocks; ++b) {
+    for (uint32_t k = 0; k < kLodReductionBlock; ++k) {
+      const size_t i = b * kLodReductionBlock + k;
+      lanes[k] = i < n ? weights[i] : 0.0;
+    }
+    const double block_sum = tree_sum(lanes);
+    double& lane = accumulated[b % kLodReductionBlock];
+    lane = lane + block_sum;
+  }
+  return tree_sum(accumulated);
+}
+
 bool LodSelectJob::Validate() const {
   if (view == nullptr || !check_lod_settings(settings)) return false;
   const size_t n = type.size();
@@ -63,25 +161,19 @@ bool LodSelectJob::Run() const {
   LodStats s;
   const size_t n = type.size();
 
-  // Pass 1: w_i^(1/α) of every visible instance and their sum.
+  // Pass 1: w_i^(1/α) of every visible instance and their sum (in the GPU's order).
   const double alpha = settings.alpha;
-  const double beta = alpha - 1.0;
-  const double log_beta = std::log(beta);
-  double sum = 0.0;
   for (size_t i = 0; i < n; ++i) {
     weights[i] = 0.0;
     if (!visible[i]) continue;
     ++s.visible;
     const LodType& t = types[type[i]];
+    if (t.triangles == 0) continue;  // note: nothing to see: weight 0
     double area = 0.0, distance = 0.0;
     lod_area_distance(*view, &spheres[4 * i], &area, &distance);
-    if (!(area > 0.0) || t.triangles == 0) continue;  // note: nothing to see: weight 0
-    const double log_w = log_beta + std::log(area) - std::log(distance) +
-                         beta * std::log(static_cast<double>(t.triangles));
-    const double root = std::exp(log_w / alpha);
-    weights[i] = std::isfinite(root) ? root : 0.0;
-    sum += weights[i];
+    weights[i] = lod_weight_root(area, distance, alpha, lod_type_log_weight(alpha, t.triangles));
   }
+  const double sum = lod_weight_sum(Span<const double>(weights.data(), n));
   s.weight_sum = sum;
 
   // Pass 2: each instance's share of the budget, clamped.

@@ -20,8 +20,18 @@
 // Budget left over by instances clamped to max_i is not handed to the others (the design
 // does not), and promotions to min_i may exceed N by Σ (min_i − vc_i) over the promoted
 // instances; with MinT = 1 the selected counts always sum to at most N.
-// note: w_i^(1/α) is computed as exp((ln β + ln A_i − ln D_i + β·ln P_i) / α) in double:
+// note: w_i^(1/α) is computed as exp(((ln β + β·ln P_i) + (ln A_i − ln D_i)) / α) in double:
 // the same value, without overflowing P_i^β for large α.
+//
+// Bit-identical on the GPU (crowd_compute.h): the GPU's per-instance selection must equal this
+// job's exactly, but GLSL has no double exp/log and the GPU's float ones differ from libm. So
+// the job uses lod_log / lod_exp below — built only from IEEE-754 double +, −, ·, / (each
+// correctly rounded, no fused multiply-add) and exact exponent manipulation (frexp/ldexp), the
+// same operations in the same order as shaders/lod_math.glsl — and sums the weights in the
+// GPU's reduction order (lod_weight_sum). The per-type constant ln β + β·ln P_i is computed
+// once on the CPU (lod_type_log_weight) and uploaded, A_i and D_i follow lod_area_distance
+// operation by operation. lod_log / lod_exp are accurate to a few ulp, so the selection is the
+// design's formula to ~1e-15 relative; they are not meant as general-purpose math.
 //
 // Discrete mode (a baseline, like classic LoD): each type has a few fixed levels, the
 // fractions `discrete_levels` of its full vertex count (clamped to [min_i, max_i] and rounded
@@ -119,5 +129,27 @@ struct LodSelectJob {
 
 // A_i and D_i of one sphere as the job defines them (see the file comment).
 void lod_area_distance(const View& view, const float sphere[4], double* area, double* distance);
+
+// Natural logarithm and exponential, deterministic across CPU and GPU (see the file comment;
+// mirrored by shaders/lod_math.glsl). lod_log: x > 0 finite (else NaN or -inf);
+// lod_exp: +inf above 709, 0 below -700.
+double lod_log(double x);
+double lod_exp(double x);
+
+// ln β + β·ln P of a type with P triangles (β = α − 1): the per-type part of ln w_i.
+double lod_type_log_weight(double alpha, uint32_t triangles);
+
+// w_i^(1/α) of a visible instance whose sphere has area A and distance D (lod_area_distance):
+// lod_exp((type_log_weight + (lod_log(A) − lod_log(D))) / α), or 0 when A is not positive or
+// the result is not finite. type_log_weight: lod_type_log_weight of its type, which must have
+// triangles > 0.
+double lod_weight_root(double area, double distance, double alpha, double type_log_weight);
+
+// Σ of the weights in the GPU's order: blocks of kLodReductionBlock consecutive weights
+// (zero-padded) each summed as a binary tree (element k += element k + s for s = 128, 64, ...,
+// 1), then the block sums b_j accumulated by kLodReductionBlock lanes (lane l adds b_l,
+// b_(l+256), ... in order, from 0.0) and the lanes summed as the same tree.
+constexpr uint32_t kLodReductionBlock = 256;
+double lod_weight_sum(Span<const double> weights);
 
 }  // namespace crowdbake::runtime
