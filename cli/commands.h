@@ -70,4 +70,52 @@ struct BenchSettings {
 
 int run_bench_simplify(const BenchSettings& settings);
 
+// `crowdbake render SCENE.json -o OUT.png`: one frame, or with --frames a sequence into a
+// folder, rendered offscreen with Vulkan (lavapipe on machines without a GPU).
+struct RenderSettings {
+  std::string scene;
+  std::string output;  // a .png, or with --frames a folder (created if missing)
+  double time = 0.0;   // seconds; a sequence starts here
+  int64_t frames = 1;  // with frames_given: frames of the sequence, >= 1
+  bool frames_given = false;
+  double fps = 30.0;  // sequence frame rate, > 0 (needs --frames)
+  bool fps_given = false;
+  int64_t budget = 0;  // with budget_given: LoD budget N in vertices, >= 1
+  bool budget_given = false;
+  std::string lod;             // "" = the scene's; continuous, discrete or full
+  std::string resolution;      // "" = the scene's; "WxH"
+  std::string contact_sheet;   // --frames: also tile every frame into this PNG
+  uint32_t sheet_columns = 0;  // 0 = ceil(sqrt(frames))
+  bool profile = false;        // per-pass timings and counts on stdout
+  bool shadows = true;
+  bool validation = false;  // Vulkan validation layer; any error fails the command
+  bool quiet = false;
+};
+
+int run_render(const RenderSettings& settings);
+
+// `crowdbake bench render`: frame time, triangles and image error against full resolution of
+// continuous LoD at several budgets, discrete LoD and full resolution, for seat-grid stands of
+// the generated spectator; and popping over a camera dolly (docs/performance.md).
+struct BenchRenderSettings {
+  std::string pack;  // "" = bake the generated spectator into a temporary file
+  std::vector<uint32_t> sizes = {1000, 10000, 50000};                  // instances
+  std::vector<uint32_t> budgets = {100000, 300000, 1000000, 3000000};  // continuous/discrete N
+  uint32_t frames = 3;  // timed frames per configuration, after one warm-up frame
+  std::string resolution = "1280x720";
+  // Full resolution above this many triangles per frame is timed on one frame, no warm-up.
+  uint64_t full_single_frame_triangles = 50000000;
+  uint32_t pop_size = 1000;       // instances of the popping measure (0 = none)
+  uint32_t pop_frames = 60;       // frames of the dolly (>= 2), at 30 frames/s
+  uint32_t pop_budget = 0;        // continuous budget of the dolly; 0 = 10 % of all full vertices
+  std::string out = "docs/data";  // render-bench.csv, render-popping.csv, .dat
+  std::string plot = "docs/render-bench.png";  // "" = none
+  std::string plot_script = "scripts/plot-render.gp";
+  std::string frames_dir;  // "" = none; else the dolly's frames (PNG) go there
+  bool shadows = true;
+  bool quick = false;  // CI smoke test: tiny sizes, resolution and sequence
+};
+
+int run_bench_render(const BenchRenderSettings& settings);
+
 }  // namespace crowdbake::cli

@@ -137,6 +137,37 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"header", "settings", "skeleton", "clips", "materials", "bounds",
                              "geometry", "progressive", "animation", "partition"}));
 
+  crowdbake::cli::RenderSettings render;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render",
+      "Render a scene.json (docs/scene-format.md) offscreen with Vulkan and write PNGs; "
+      "without a GPU it runs on lavapipe (mesa-vulkan-drivers)");
+  render_cmd->add_option("SCENE", render.scene, "Scene file (scene.json)")->required();
+  render_cmd
+      ->add_option("-o,--output", render.output,
+                   "Output .png, or with --frames a folder for frame_0000.png ...")
+      ->required();
+  render_cmd->add_option("--time", render.time, "Scene time in seconds (default 0)");
+  auto* frames_opt = render_cmd->add_option(
+      "--frames", render.frames, "Render a sequence of N frames from --time into the -o folder");
+  auto* fps_opt = render_cmd->add_option("--fps", render.fps, "Sequence frame rate (default 30)");
+  auto* budget_opt = render_cmd->add_option(
+      "--budget", render.budget, "LoD budget N: vertices for all visible instances (>= 1)");
+  render_cmd->add_option("--lod", render.lod,
+                         "LoD mode: continuous, discrete or full (default: the scene's)");
+  render_cmd->add_option("--resolution", render.resolution,
+                         "Image size WIDTHxHEIGHT, e.g. 1280x720");
+  render_cmd->add_option("--contact-sheet", render.contact_sheet,
+                         "With --frames: also tile every frame into this PNG");
+  render_cmd->add_option("--sheet-columns", render.sheet_columns,
+                         "Contact sheet columns (default ceil(sqrt(frames)))");
+  render_cmd->add_flag("--profile", render.profile,
+                       "Print per-pass CPU/GPU milliseconds, counts and effect counters");
+  render_cmd->add_flag("!--no-shadows", render.shadows, "No shadow map");
+  render_cmd->add_flag("--validate", render.validation,
+                       "Enable the Vulkan validation layer; any validation error fails the run");
+  render_cmd->add_flag("--quiet", render.quiet, "Print nothing on success");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -154,6 +185,12 @@ int main(int argc, char** argv) {
     if (*bake_cmd) return crowdbake::cli::run_bake(bake);
     if (*diff_cmd) return crowdbake::cli::run_diff(diff);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
+    if (*render_cmd) {
+      render.frames_given = frames_opt->count() > 0;
+      render.fps_given = fps_opt->count() > 0;
+      render.budget_given = budget_opt->count() > 0;
+      return crowdbake::cli::run_render(render);
+    }
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
     return e.exit_code();
