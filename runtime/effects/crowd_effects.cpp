@@ -124,11 +124,16 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
     }
   }
   instance_individual.assign(instance_count, kNotDriven);
-  if (decl.spectators)
+  // note: without events and idle edges nobody ever leaves the home state, so the FSM would
+  // only cost: it is not built, and team members play their scene clips like everyone else.
+  bool idle_walk = false;
+  for (const runtime::EffectTransition& t : decl.fsm_transitions)
+    idle_walk = idle_walk || t.idle_weight > 0.0f;
+  if (decl.spectators && (!decl.events.empty() || idle_walk))
     if (Status s = build_behaviour(scene); !s) return s;
   if (decl.animation_sharing)
     if (Status s = build_sharing(scene); !s) return s;
-  if (!decl.animation_sharing && decl.spectators) {
+  if (!decl.animation_sharing && fsm) {
     fades.resize(individual_instance.size());
     counters.crossfade = decl.crossfade;
     counters.constructed_systems += decl.crossfade ? 1 : 0;

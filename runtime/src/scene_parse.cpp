@@ -997,6 +997,10 @@ void parse_effects(const json& v, RawScene& s) {
   if (!uses_states && !e.states.empty())
     fail(path + ".states", "declared, but neither animation_sharing nor spectators uses them");
   if (const json* p = find(v, "spectators")) parse_spectators(*p, s.generators.size(), e);
+  if (e.crossfade && e.animation_sharing)
+    fail(path + ".crossfade",
+         "animation_sharing already blends the FSM's changes on the CPU (transitions); declare "
+         "one of them");
   if (e.crossfade && !e.spectators)
     fail(path + ".crossfade", "nothing changes clips to fade (declare spectators)");
   for (size_t i = 0; i < e.states.size(); ++i)
@@ -1164,7 +1168,10 @@ void build_relaxation(const RawGenerator& g, const Resolved& r, const SceneLoadO
 // Names in the effects declaration that need the packs: the driven type, clips, mask joints.
 void resolve_effects(const RawScene& raw, Scene& scene) {
   SceneEffects e = raw.effects;
-  if (!e.declared) return;
+  if (!e.declared) {
+    scene.effects.placement = e.placement;
+    return;
+  }
   if (!raw.has_effects_type) {
     if (scene.types.size() != 1 && !e.states.empty())
       fail("effects.type", "missing (required when the scene has several character types)");
