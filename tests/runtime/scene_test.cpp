@@ -487,7 +487,8 @@ TEST(SceneErrors, OutOfRangeValues) {
           R"("generators": [{"kind": "seat_grid", "rows": 5000, "columns": 5000, "spacing": [1, 1]}])"),
       {"generators[0]: 5000 rows x 5000 columns exceed the limit of 16777216 instances"});
   expect_error(scene_with(R"("generators": [{"kind": "ring", "count": 4}])"),
-               {"generators[0].kind: unknown generator \"ring\" (expected seat_grid or scatter)"});
+               {"generators[0].kind: unknown generator \"ring\" (expected seat_grid, scatter or "
+                "relaxation)"});
   expect_error(
       scene_with(
           R"("generators": [{"kind": "scatter", "count": 3, "rectangle": {"min": [0, 0], "max": [0, 1]}}])"),
