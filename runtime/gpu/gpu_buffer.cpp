@@ -215,16 +215,49 @@ void transition_image(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags asp
   vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
+namespace {
+
+// The access types a set of stages can perform (validation rejects others in a barrier).
+VkAccessFlags writes_of(VkPipelineStageFlags stages) {
+  if (stages & VK_PIPELINE_STAGE_ALL_COMMANDS_BIT)
+    return VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT |
+           VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkAccessFlags a = 0;
+  if (stages & (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT))
+    a |= VK_ACCESS_SHADER_WRITE_BIT;
+  if (stages & VK_PIPELINE_STAGE_TRANSFER_BIT) a |= VK_ACCESS_TRANSFER_WRITE_BIT;
+  if (stages & VK_PIPELINE_STAGE_HOST_BIT) a |= VK_ACCESS_HOST_WRITE_BIT;
+  return a;
+}
+
+VkAccessFlags reads_of(VkPipelineStageFlags stages) {
+  if (stages & VK_PIPELINE_STAGE_ALL_COMMANDS_BIT)
+    return VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT |
+           VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT |
+           VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
+           VK_ACCESS_HOST_READ_BIT;
+  VkAccessFlags a = 0;
+  if (stages & (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT))
+    a |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT;
+  if (stages & VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT) a |= VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  if (stages & VK_PIPELINE_STAGE_VERTEX_INPUT_BIT)
+    a |= VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT;
+  if (stages & VK_PIPELINE_STAGE_TRANSFER_BIT)
+    a |= VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  if (stages & VK_PIPELINE_STAGE_HOST_BIT) a |= VK_ACCESS_HOST_READ_BIT;
+  return a;
+}
+
+}  // namespace
+
 void full_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage,
                   VkPipelineStageFlags dst_stage) {
   VkMemoryBarrier b{};
   b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  b.srcAccessMask =
-      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT;
-  b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT |
-                    VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT |
-                    VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT;
+  b.srcAccessMask = writes_of(src_stage);
+  b.dstAccessMask = reads_of(dst_stage);
   vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 

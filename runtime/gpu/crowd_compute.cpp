@@ -1,0 +1,313 @@
+#include "crowdbake/runtime/gpu/crowd_compute.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <string>
+
+#include "crowdbake/runtime/lod_select_job.h"
+#include "crowdbake/runtime/reconstruct_job.h"
+
+namespace crowdbake::runtime::gpu {
+namespace {
+
+constexpr uint32_t kGroupSize = 256;    // shaders/crowd_compute.glsl: kGroupSize
+constexpr uint32_t kMaxGroups = 65535;  // maxComputeWorkGroupCount[0] guaranteed minimum
+constexpr uint32_t kStatsBytes = 72;    // Stats in crowd_compute.glsl
+
+// C++ mirrors of shaders/crowd_compute.glsl (std430).
+struct Params {
+  float eye_focal[4];
+  float planes[24];
+  double screen, alpha, budget, min_t;
+  uint32_t instance_count, type_count, mode, corner_capacity;
+  uint32_t group_count;
+  float near_plane;
+  uint32_t pad[2];
+};
+static_assert(sizeof(Params) == 176 && offsetof(Params, screen) == 112 &&
+                  offsetof(Params, instance_count) == 144,
+              "Params must match crowd_compute.glsl");
+
+struct TypeData {
+  float bounds[4];
+  uint32_t min_vertices, max_vertices, triangles, vertex_count;
+  uint32_t level_count, progressive, tri_offset, collapse_offset;
+  uint32_t tcount_offset, group_offset, pad0, pad1;
+  uint32_t levels[8];
+  double type_log_weight;
+  double pad2;
+};
+static_assert(sizeof(TypeData) == 112 && offsetof(TypeData, levels) == 64 &&
+                  offsetof(TypeData, type_log_weight) == 96,
+              "TypeData must match crowd_compute.glsl");
+
+struct StatsData {
+  double weight_sum;
+  uint32_t visible, drawn, at_max, in_range;
+  uint32_t promoted, dropped, overflow, fitting;
+  uint32_t drawn_corners, selected_lo, selected_hi, requested_lo;
+  uint32_t requested_hi, pad0, pad1, pad2;
+};
+static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
+static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
+
+constexpr const char* kShaders[7] = {"lod_weights.comp", "lod_sum.comp",         "lod_assign.comp",
+                                     "scan_types.comp",  "place_instances.comp", "draw_args.comp",
+                                     "reconstruct.comp"};
+constexpr uint32_t kBindings = 14;
+
+uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
+
+Status invalid(const std::string& what) {
+  return {StatusCode::kInvalidArgument, "CrowdCompute: " + what};
+}
+
+}  // namespace
+
+CrowdCompute::~CrowdCompute() = default;
+
+Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
+                            const CrowdComputeOptions& options,
+                            std::unique_ptr<CrowdCompute>& out) {
+  if (!context.features().float64)
+    return invalid("the device has no shaderFloat64 (needed for bit-exact LoD selection)");
+  std::unique_ptr<CrowdCompute> c(new CrowdCompute());
+  c->context_ = &context;
+  c->type_count_ = static_cast<uint32_t>(scene.types.size());
+  c->max_instances_ =
+      options.max_instances ? options.max_instances : static_cast<uint32_t>(scene.instances.size());
+  if (groups_for(c->max_instances_) > kMaxGroups)
+    return invalid("at most " + std::to_string(kMaxGroups * kGroupSize) + " instances");
+
+  // Per-type static data, concatenated: triangles, collapse_to, triangle_count, group_start.
+  std::vector<uint32_t> mesh;
+  uint64_t full_corners = 0;
+  for (uint32_t t = 0; t < c->type_count_; ++t) {
+    const Pack& pack = scene.types[t].pack;
+    if (!pack.has(kPackGeometry))
+      return {StatusCode::kNotLoaded,
+              "CrowdCompute: " + pack.source_name() + ": geometry is not loaded"};
+    const ProgressiveView v = progressive_view(pack.contents());
+    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.triangles.begin(), v.triangles.end());
+    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.collapse_to.begin(), v.collapse_to.end());
+    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.triangle_count.begin(), v.triangle_count.end());
+    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.group_start.begin(), v.group_start.end());
+    c->progressive_.push_back(v.collapse_to.empty() ? 0 : 1);
+    c->vertex_counts_.push_back(v.vertex_count);
+    c->triangle_counts_.push_back(static_cast<uint32_t>(v.triangles.size() / 3));
+    full_corners = std::max<uint64_t>(full_corners, v.triangles.size());
+  }
+  full_corners *= c->max_instances_;
+  const uint64_t limit =
+      std::min<uint64_t>(context.limits().maxStorageBufferRange / 8, uint64_t{kMaxGroups} * 256);
+  uint64_t capacity = options.corner_capacity ? options.corner_capacity : full_corners;
+  capacity = std::min(capacity, limit);
+  c->corner_capacity_ = static_cast<uint32_t>(capacity);
+
+  const uint32_t n = std::max(c->max_instances_, 1u);
+  const uint32_t types = std::max(c->type_count_, 1u);
+  const uint32_t groups = std::max(groups_for(c->max_instances_), 1u);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  struct Spec {
+    GpuBuffer* buffer;
+    VkDeviceSize bytes;
+    VkBufferUsageFlags usage;
+    MemoryKind memory;
+  };
+  const Spec specs[] = {
+      {&c->params_, sizeof(Params), storage, MemoryKind::kHostVisible},
+      {&c->instances_, VkDeviceSize{n} * sizeof(GpuInstance),
+       storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kHostVisible},
+      {&c->types_, VkDeviceSize{types} * sizeof(TypeData), storage, MemoryKind::kHostVisible},
+      {&c->mesh_, VkDeviceSize{std::max<size_t>(mesh.size(), 1)} * 4, storage,
+       MemoryKind::kDeviceLocal},
+      {&c->weights_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->partials_, VkDeviceSize{groups} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
+      {&c->group_sums_, VkDeviceSize{groups} * types * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->ranges_, VkDeviceSize{types} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
+      {&c->draw_list_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->corners_, VkDeviceSize{std::max(c->corner_capacity_, 1u)} * 8,
+       storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
+      {&c->draw_args_, VkDeviceSize{types} * sizeof(VkDrawIndirectCommand), indirect,
+       MemoryKind::kDeviceLocal},
+      {&c->dispatch_args_, 16, indirect, MemoryKind::kDeviceLocal},
+      {&c->stats_, kStatsBytes, storage, MemoryKind::kDeviceLocal},
+  };
+  static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
+  std::vector<const GpuBuffer*> bindings;
+  for (const Spec& s : specs) {
+    Status st = GpuBuffer::create(context, s.bytes, s.usage, s.memory, *s.buffer);
+    if (!st.ok()) return st;
+    bindings.push_back(s.buffer);
+  }
+  if (!mesh.empty()) {
+    Status st = c->mesh_.upload(mesh.data(), mesh.size() * 4);
+    if (!st.ok()) return st;
+  }
+  for (uint32_t k = 0; k < 7; ++k) {
+    Status st = ComputeKernel::create(context, kShaders[k], kBindings, 0, c->kernels_[k]);
+    if (!st.ok()) return st;
+    c->kernels_[k].bind_buffers(0, bindings);
+  }
+  Status st = TimestampQueries::create(context, kTimestampCount, c->queries_);
+  if (!st.ok()) return st;
+  out = std::move(c);
+  return {};
+}
+
+Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
+                            Span<const GpuInstance> instances) {
+  const size_t n = instances.size();
+  if (n > max_instances_)
+    return invalid(std::to_string(n) + " instances, buffers sized for " +
+                   std::to_string(max_instances_));
+  if (scene.types.size() != type_count_ || state.lod_types.size() != type_count_ ||
+      state.bounds.size() != type_count_)
+    return invalid("the scene's character types changed since create (or no update_frame)");
+  std::string why;
+  if (!check_lod_settings(scene.lod, &why)) return invalid("lod: " + why);
+  for (const GpuInstance& g : instances)
+    if (g.type >= type_count_) return invalid("an instance has a bad type index");
+  instance_count_ = static_cast<uint32_t>(n);
+
+  const View& view = state.view;
+  Params p{};
+  p.eye_focal[0] = view.eye[0];
+  p.eye_focal[1] = view.eye[1];
+  p.eye_focal[2] = view.eye[2];
+  p.eye_focal[3] = view.focal_pixels;
+  std::memcpy(p.planes, view.planes.data(), sizeof(p.planes));
+  p.screen = static_cast<double>(view.width) * static_cast<double>(view.height);
+  p.alpha = scene.lod.alpha;
+  p.budget = scene.lod.budget;
+  p.min_t = scene.lod.min_t;
+  p.instance_count = instance_count_;
+  p.type_count = type_count_;
+  p.mode = static_cast<uint32_t>(scene.lod.mode);
+  p.corner_capacity = corner_capacity_;
+  p.group_count = groups_for(instance_count_);
+  p.near_plane = view.near_plane;
+  Status s = params_.upload(&p, sizeof p);
+  if (!s.ok()) return s;
+
+  std::vector<TypeData> types(std::max(type_count_, 1u), TypeData{});
+  for (uint32_t t = 0; t < type_count_; ++t) {
+    // note: the same LodType and TypeBounds update_frame used (it derives them per frame).
+    const LodType& lt = state.lod_types[t];
+    const TypeBounds& b = state.bounds[t];
+    TypeData& d = types[t];
+    d.bounds[0] = b.center[0];
+    d.bounds[1] = b.center[1];
+    d.bounds[2] = b.center[2];
+    d.bounds[3] = b.radius;
+    d.min_vertices = lt.min_vertices;
+    d.max_vertices = lt.max_vertices;
+    d.triangles = lt.triangles;
+    d.vertex_count = vertex_counts_[t];
+    d.level_count = scene.lod.mode == LodMode::kDiscrete ? lt.level_count : 0;
+    if (scene.lod.mode == LodMode::kDiscrete && (lt.level_count == 0 || lt.level_count > 8))
+      return invalid("discrete mode without levels");
+    for (uint32_t k = 0; k < kMaxDiscreteLevels; ++k) d.levels[k] = lt.levels[k];
+    d.progressive = progressive_[t];
+    d.tri_offset = type_offsets_[4 * t];
+    d.collapse_offset = type_offsets_[4 * t + 1];
+    d.tcount_offset = type_offsets_[4 * t + 2];
+    d.group_offset = type_offsets_[4 * t + 3];
+    d.type_log_weight = lt.triangles ? lod_type_log_weight(scene.lod.alpha, lt.triangles) : 0.0;
+    if (lt.min_vertices > lt.max_vertices) return invalid("a type has min > max vertices");
+  }
+  s = types_.upload(types.data(), types.size() * sizeof(TypeData));
+  if (!s.ok()) return s;
+  return instances_.upload(instances.data(), n * sizeof(GpuInstance));
+}
+
+void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
+                          uint32_t first_query) const {
+  const uint32_t groups = std::max(groups_for(instance_count_), 1u);
+  auto stamp = [&](uint32_t k) {
+    if (queries) queries->write(cmd, first_query + k, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  };
+  const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  vkCmdFillBuffer(cmd, stats_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  full_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, compute);
+  stamp(0);
+  const uint32_t dispatches[6] = {groups, 1, groups, 1, groups, 1};
+  for (uint32_t k = 0; k < 6; ++k) {
+    kernels_[k].bind(cmd);
+    kernels_[k].dispatch(cmd, dispatches[k]);
+    full_barrier(cmd, compute, compute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
+    stamp(k + 1);
+  }
+  kernels_[6].bind(cmd);
+  vkCmdDispatchIndirect(cmd, dispatch_args_.buffer(), 0);
+  full_barrier(cmd, compute, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+  stamp(7);
+}
+
+Status CrowdCompute::run(const Scene& scene, const FrameState& state,
+                         Span<const GpuInstance> instances, ComputeTimings* timings) {
+  Status s = upload(scene, state, instances);
+  if (!s.ok()) return s;
+  s = context_->submit_and_wait([&](VkCommandBuffer cmd) {
+    queries_.reset(cmd);
+    record(cmd, &queries_, 0);
+  });
+  if (!s.ok() || timings == nullptr) return s;
+  for (uint32_t k = 0; k < ComputeTimings::kPasses; ++k) {
+    s = queries_.elapsed_ms(k, k + 1, timings->pass_ms[k]);
+    if (!s.ok()) return s;
+  }
+  return queries_.elapsed_ms(0, ComputeTimings::kPasses, timings->total_ms);
+}
+
+Status CrowdCompute::read_stats(CrowdComputeStats& out) const {
+  StatsData d{};
+  Status s = stats_.download(&d, sizeof d);
+  if (!s.ok()) return s;
+  out.instances = instance_count_;
+  out.visible = d.visible;
+  out.drawn = d.drawn;
+  out.at_max = d.at_max;
+  out.in_range = d.in_range;
+  out.promoted = d.promoted;
+  out.dropped = d.dropped;
+  out.drawn_instances = d.fitting;
+  out.overflow_instances = d.overflow;
+  out.drawn_corners = d.drawn_corners;
+  out.selected_vertices = (uint64_t{d.selected_hi} << 32) | d.selected_lo;
+  out.requested_corners = (uint64_t{d.requested_hi} << 32) | d.requested_lo;
+  out.weight_sum = d.weight_sum;
+  return {};
+}
+
+Status CrowdCompute::read_instance_lods(std::vector<InstanceLod>& out) const {
+  out.resize(instance_count_);
+  return lods_.download(out.data(), out.size() * sizeof(InstanceLod));
+}
+
+Status CrowdCompute::read_corners(std::vector<uint32_t>& out) const {
+  CrowdComputeStats stats;
+  Status s = read_stats(stats);
+  if (!s.ok()) return s;
+  out.resize(2 * size_t{stats.drawn_corners});
+  return corners_.download(out.data(), out.size() * 4);
+}
+
+Status CrowdCompute::read_draw_args(std::vector<VkDrawIndirectCommand>& out) const {
+  out.resize(type_count_);
+  return draw_args_.download(out.data(), out.size() * sizeof(VkDrawIndirectCommand));
+}
+
+Status CrowdCompute::read_type_ranges(std::vector<TypeRange>& out) const {
+  out.resize(type_count_);
+  return ranges_.download(out.data(), out.size() * sizeof(TypeRange));
+}
+
+}  // namespace crowdbake::runtime::gpu

@@ -1,0 +1,168 @@
+// CrowdCompute: the crowd's per-frame compute passes on the GPU (DESIGN.md §3.3–3.5) —
+// culling, continuous/discrete/full LoD selection and parallel reconstruction — producing
+// everything the draw needs: a corner buffer and one indirect draw per character type.
+//
+// Passes, recorded into a caller's command buffer (record) or submitted and waited for (run):
+//   1. lod_weights.comp   per instance: world sphere = world · type bounds, frustum test
+//                         (CullJob's arithmetic), w_i^(1/α); per-workgroup sums (256 each).
+//   2. lod_sum.comp       the second reduction: Σ w_j^(1/α).
+//   3. lod_assign.comp    per instance: n_i with lod_select_job.h's clamping (continuous,
+//                         discrete, full), n' = usable_vertices(n_i), corners 3·T(n'), and a
+//                         per-type prefix of (corners, drawn) within each workgroup.
+//   4. scan_types.comp    one workgroup: per type, the prefix over workgroups, type totals and
+//                         bases (types in index order).
+//      place_instances    per instance: first corner and draw-list entry; what does not fit
+//                         the corner buffer is not drawn and counted (overflow_instances).
+//      draw_args.comp     one VkDrawIndirectCommand per type and the reconstruction's
+//                         dispatch size (vkCmdDispatchIndirect).
+//   5. reconstruct.comp   one thread per corner: corner k of instance i is the pack's triangle
+//                         corner walked down the collapse chain (`while v >= n'`), written
+//                         as uvec2(i, v).
+//
+// Layout of the corner buffer: types in index order, within a type the drawn instances in
+// instance order, each instance's 3·T(n') corners in the pack's triangle order — exactly
+// reconstruct_lod(type, n_i). The layout and the overflow (a suffix of that order) are
+// deterministic.
+//
+// Identical to the CPU reference: the selected n_i equal update_frame()'s
+// FrameState::vertex_count bit for bit. GLSL has no double exp/log, so LodSelectJob itself
+// computes w_i^(1/α) with lod_log / lod_exp (lod_select_job.h), which use only correctly
+// rounded double +, −, ·, / and exact frexp/ldexp; shaders/lod_math.glsl repeats them
+// operation by operation with `precise` (no FMA contraction), the sphere and frustum test
+// repeat CullJob's float arithmetic, and Σ uses one fixed tree order on both sides
+// (lod_weight_sum). Needs shaderFloat64 (lavapipe and desktop GPUs have it).
+//
+// Drawing (the vertex shader of crowd_draw): bind corner_buffer() and instance_buffer() as
+// storage buffers, and for each type t call
+//   vkCmdDrawIndirect(cmd, draw_args_buffer().buffer(), t * sizeof(VkDrawIndirectCommand), 1, 16)
+// — firstVertex is the type's first corner, so `uvec2 c = corners[gl_VertexIndex]` gives
+// (instance, vertex of that type's pack) directly (per-type bases are in type_ranges_buffer()
+// too). The buffers are rewritten by every record(): draw before the next frame's passes.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/gpu/gpu_buffer.h"
+#include "crowdbake/runtime/gpu/gpu_instance.h"
+#include "crowdbake/runtime/gpu/vulkan_context.h"
+#include "crowdbake/runtime/scene.h"
+#include "crowdbake/runtime/span.h"
+
+namespace crowdbake::runtime::gpu {
+
+struct CrowdComputeOptions {
+  // Corners the corner buffer holds (8 bytes each). 0: what every instance at full resolution
+  // needs, capped by maxStorageBufferRange / 8 and by 65535 · 256 (one dispatch).
+  uint32_t corner_capacity = 0;
+  // Instances the buffers are sized for; 0: the scene's instance count at create.
+  uint32_t max_instances = 0;
+};
+
+// Per-instance result of the passes (instance_lod_buffer(), std430, 32 bytes).
+struct InstanceLod {
+  uint32_t selected;       // n_i (0 = culled or not drawn) — compare FrameState::vertex_count
+  uint32_t usable;         // n' = usable_vertices(n_i)
+  uint32_t corners;        // 3 · triangle_count[n']
+  uint32_t corner_offset;  // first corner in the corner buffer; kNotDrawn when none
+  uint32_t local_corner, local_draw, visible, pad;
+};
+constexpr uint32_t kNotDrawn = 0xFFFFFFFFu;
+
+// Per-type corner range (type_ranges_buffer(), std430, 32 bytes).
+struct TypeRange {
+  uint32_t corner_base;   // first corner of the type
+  uint32_t corner_total;  // corners the type's drawn instances need (saturates at 2^31 − 1)
+  uint32_t draw_base, draw_total;
+  uint32_t drawn_end;  // end of the type's corners that fit
+  uint32_t pad[3];
+};
+
+struct CrowdComputeStats {
+  uint32_t instances = 0;
+  uint32_t visible = 0;                                          // after culling
+  uint32_t drawn = 0;                                            // n_i > 0 (before overflow)
+  uint32_t at_max = 0, in_range = 0, promoted = 0, dropped = 0;  // LodStats' counts
+  uint32_t drawn_instances = 0;                                  // that fit the corner buffer
+  uint32_t overflow_instances = 0;                               // drawn but not fitting: not drawn
+  uint32_t drawn_corners = 0;                                    // corners written (vertices drawn)
+  uint64_t selected_vertices = 0;                                // Σ n_i
+  uint64_t requested_corners = 0;  // Σ 3·T(n') over drawn instances, fitting or not
+  double weight_sum = 0.0;         // Σ w_j^(1/α)
+};
+
+// GPU time of each pass of one record() (timestamps), in milliseconds.
+struct ComputeTimings {
+  static constexpr uint32_t kPasses = 7;
+  static constexpr const char* kNames[kPasses] = {"cull+weights", "weight sum", "lod+local scan",
+                                                  "type scan",    "place",      "draw args",
+                                                  "reconstruct"};
+  std::array<double, kPasses> pass_ms{};
+  double total_ms = 0.0;
+};
+
+class CrowdCompute {
+ public:
+  // Timestamps record() writes when given queries: first_query .. first_query + 7.
+  static constexpr uint32_t kTimestampCount = ComputeTimings::kPasses + 1;
+
+  // Uploads the scene's per-type static data (triangles, progressive arrays) and sizes the
+  // buffers. Returns kNotLoaded when a type's geometry is not loaded, kInvalidArgument when
+  // the device lacks shaderFloat64 or a Vulkan call fails.
+  static Status create(VulkanContext& context, const Scene& scene,
+                       const CrowdComputeOptions& options, std::unique_ptr<CrowdCompute>& out);
+  ~CrowdCompute();
+  CrowdCompute(const CrowdCompute&) = delete;
+  CrowdCompute& operator=(const CrowdCompute&) = delete;
+
+  // Writes the frame's parameters (camera of `state.view`, scene.lod) and instances into
+  // host-visible buffers. The GPU must be done with the previous frame's record().
+  // Returns kInvalidArgument when there are more instances than max_instances, the state's
+  // view is not this frame's, or the types changed since create.
+  Status upload(const Scene& scene, const FrameState& state, Span<const GpuInstance> instances);
+  // Records every pass with barriers, ending with one that makes the outputs visible to
+  // indirect draws, vertex/fragment shaders and transfers. queries: may be null.
+  void record(VkCommandBuffer cmd, const TimestampQueries* queries = nullptr,
+              uint32_t first_query = 0) const;
+  // upload + record + submit_and_wait (+ timings when not null).
+  Status run(const Scene& scene, const FrameState& state, Span<const GpuInstance> instances,
+             ComputeTimings* timings = nullptr);
+
+  // Outputs (valid after the recorded passes ran).
+  const GpuBuffer& corner_buffer() const { return corners_; }       // uvec2 per corner
+  const GpuBuffer& draw_args_buffer() const { return draw_args_; }  // VkDrawIndirectCommand[types]
+  const GpuBuffer& type_ranges_buffer() const { return ranges_; }   // TypeRange[types]
+  const GpuBuffer& instance_buffer() const { return instances_; }   // GpuInstance[n]
+  const GpuBuffer& instance_lod_buffer() const { return lods_; }    // InstanceLod[n]
+  const GpuBuffer& stats_buffer() const { return stats_; }          // see read_stats
+  uint32_t corner_capacity() const { return corner_capacity_; }
+  uint32_t type_count() const { return type_count_; }
+  uint32_t instance_count() const { return instance_count_; }
+
+  // Readback for tests and profiles (after the passes completed).
+  Status read_stats(CrowdComputeStats& out) const;
+  Status read_instance_lods(std::vector<InstanceLod>& out) const;        // instance_count()
+  Status read_corners(std::vector<uint32_t>& out) const;                 // 2 per drawn corner
+  Status read_draw_args(std::vector<VkDrawIndirectCommand>& out) const;  // one per type
+  Status read_type_ranges(std::vector<TypeRange>& out) const;
+
+ private:
+  CrowdCompute() = default;
+
+  VulkanContext* context_ = nullptr;
+  uint32_t type_count_ = 0, max_instances_ = 0, instance_count_ = 0, corner_capacity_ = 0;
+  std::vector<uint32_t> type_offsets_;  // 4 per type into mesh data: tri, collapse, tcount, group
+  std::vector<uint8_t> progressive_;    // per type
+  std::vector<uint32_t> vertex_counts_, triangle_counts_;
+  GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
+      draw_list_, corners_, draw_args_, dispatch_args_, stats_;
+  std::array<ComputeKernel, 7> kernels_;
+  TimestampQueries queries_;  // for run()
+};
+
+}  // namespace crowdbake::runtime::gpu

@@ -1,0 +1,88 @@
+// Bindings shared by the crowd's compute passes (runtime/gpu/crowd_compute.cpp binds the same
+// buffers, in this order, to every pass; the C++ mirrors of the structs are in
+// crowd_compute.h (InstanceLod, TypeRange) and crowd_compute.cpp (the rest)).
+#ifndef CROWDBAKE_CROWD_COMPUTE_GLSL
+#define CROWDBAKE_CROWD_COMPUTE_GLSL
+
+#extension GL_GOOGLE_include_directive : require
+
+#include "instance.glsl"
+
+const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
+const uint kSaturated = 0x7FFFFFFFu;  // corner sums saturate here (never fit the buffer)
+const uint kNotDrawn = 0xFFFFFFFFu;
+
+const uint kModeContinuous = 0u;
+const uint kModeDiscrete = 1u;
+const uint kModeFull = 2u;
+
+struct TypeData {
+  vec4 bounds;  // bounding sphere of the type (centre, radius), model space
+  uint min_vertices, max_vertices, triangles, vertex_count;
+  uint level_count, progressive, tri_offset, collapse_offset;  // offsets into mesh_data
+  uint tcount_offset, group_offset, pad0, pad1;
+  uint levels[8];          // discrete levels, finest first
+  double type_log_weight;  // lod_type_log_weight(α, triangles)
+  double pad2;
+};
+
+struct InstanceLod {
+  uint selected;       // n_i, the selected vertex count (0 = not drawn)
+  uint usable;         // n' = usable_vertices(n_i)
+  uint corners;        // 3 · triangle_count[n'] (0 when not drawn)
+  uint corner_offset;  // first corner in the corner buffer, kNotDrawn when culled/overflowing
+  uint local_corner;   // corners of earlier same-type instances in the workgroup
+  uint local_draw;     // drawn earlier same-type instances in the workgroup
+  uint visible;
+  uint pad;
+};
+
+struct TypeRange {
+  uint corner_base;   // first corner of the type in the corner buffer
+  uint corner_total;  // corners the type asked for (saturating)
+  uint draw_base;     // first entry of the type in the draw list
+  uint draw_total;    // drawn instances of the type (before overflow)
+  uint drawn_end;     // end of the type's corners that fit (atomicMax)
+  uint pad0, pad1, pad2;
+};
+
+struct Stats {
+  double weight_sum;
+  uint visible, drawn, at_max, in_range;
+  uint promoted, dropped, overflow, fitting;
+  uint drawn_corners, selected_lo, selected_hi, requested_lo;
+  uint requested_hi, pad0, pad1, pad2;
+};
+
+layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
+  vec4 eye_focal;  // eye position, focal_pixels
+  vec4 planes[6];
+  double screen;  // width · height in pixels
+  double alpha;
+  double budget;
+  double min_t;
+  uint instance_count;
+  uint type_count;
+  uint mode;
+  uint corner_capacity;
+  uint group_count;
+  float near_plane;
+  uint pad0, pad1;
+} params;
+layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
+layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };
+layout(std430, set = 0, binding = 3) readonly buffer MeshData { uint mesh_data[]; };
+layout(std430, set = 0, binding = 4) buffer Weights { double weights[]; };
+layout(std430, set = 0, binding = 5) buffer Partials { double partials[]; };
+layout(std430, set = 0, binding = 6) buffer Lods { InstanceLod lods[]; };
+layout(std430, set = 0, binding = 7) buffer GroupSums { uvec2 group_sums[]; };  // [group][type]
+layout(std430, set = 0, binding = 8) buffer TypeRanges { TypeRange ranges[]; };
+layout(std430, set = 0, binding = 9) buffer DrawList { uvec2 draw_list[]; };  // (instance, offset)
+layout(std430, set = 0, binding = 10) writeonly buffer Corners { uvec2 corners[]; };
+layout(std430, set = 0, binding = 11) buffer DrawArgs { uint draw_args[]; };  // 4 per type
+layout(std430, set = 0, binding = 12) buffer DispatchArgs { uint dispatch_args[]; };
+layout(std430, set = 0, binding = 13) buffer StatsBuffer { Stats stats; };
+
+uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
+
+#endif

@@ -1,0 +1,136 @@
+#version 450
+// Pass 3: each instance's vertex count n_i (LodSelectJob's pass 2, clamping exactly as
+// lod_select_job.h), its usable count n' and corner count 3·T(n'), the workgroup's per-type
+// exclusive prefix of (corners, drawn) in instance order, and the statistics.
+#extension GL_GOOGLE_include_directive : require
+#include "crowd_compute.glsl"
+
+layout(local_size_x = 256) in;
+
+shared uvec2 scan[256];
+shared uint type_present;
+shared uint counts[8];  // visible, drawn, at_max, in_range, promoted, dropped, sel lo, sel hi
+shared uint requested_lo, requested_hi;
+
+// usable_vertices (reconstruct_job.cpp).
+uint usable_vertices(TypeData t, uint n) {
+  if (t.progressive == 0u) return t.vertex_count;
+  if (n < t.min_vertices) n = t.min_vertices;
+  if (n >= t.vertex_count) return t.vertex_count;
+  const uint start = mesh_data[t.group_offset + n];
+  return start < n ? start : n;
+}
+
+// note: 64-bit sums as (lo, hi) pairs with carries, so no shaderInt64 is needed.
+#define ADD64(lo, hi, value)                    \
+  {                                             \
+    const uint old_ = atomicAdd(lo, value);     \
+    if (old_ + (value) < old_) atomicAdd(hi, 1u); \
+  }
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  const uint lid = gl_LocalInvocationID.x;
+  if (lid < 8u) counts[lid] = 0u;
+  if (lid == 0u) {
+    requested_lo = 0u;
+    requested_hi = 0u;
+  }
+  barrier();
+
+  uint type = 0xFFFFFFFFu;
+  uint selected = 0u, usable = 0u, corner_count = 0u;
+  if (i < params.instance_count) {
+    type = instances[i].type;
+    const TypeData t = types[type];
+    const bool visible = lods[i].visible != 0u;
+    if (visible) {
+      atomicAdd(counts[0], 1u);
+      if (params.mode == kModeFull) {
+        selected = t.max_vertices;
+      } else {
+        const double sum = stats.weight_sum;
+        precise double vc = sum > 0.0lf ? params.budget * weights[i] / sum : 0.0lf;
+        if (vc > double(t.max_vertices)) {
+          selected = t.max_vertices;
+          atomicAdd(counts[2], 1u);
+        } else if (vc >= double(t.min_vertices)) {
+          selected = uint(floor(vc));
+          atomicAdd(counts[3], 1u);
+        } else if (vc / double(t.min_vertices) >= params.min_t) {
+          selected = t.min_vertices;
+          atomicAdd(counts[4], 1u);
+        } else {
+          atomicAdd(counts[5], 1u);
+        }
+        if (params.mode == kModeDiscrete && selected > 0u) {
+          uint level = t.levels[t.level_count - 1u];
+          for (uint k = 0u; k < t.level_count; ++k) {
+            if (t.levels[k] <= selected) {
+              level = t.levels[k];
+              break;
+            }
+          }
+          selected = level;
+        }
+      }
+    }
+    if (selected > 0u) {
+      atomicAdd(counts[1], 1u);
+      ADD64(counts[6], counts[7], selected);
+      usable = usable_vertices(t, selected);
+      const uint tris = t.progressive != 0u ? mesh_data[t.tcount_offset + usable] : t.triangles;
+      corner_count = min(3u * tris, kSaturated);
+      ADD64(requested_lo, requested_hi, corner_count);
+    }
+    lods[i].selected = selected;
+    lods[i].usable = usable;
+    lods[i].corners = corner_count;
+  }
+
+  // Per-type exclusive prefix within the workgroup (Hillis-Steele over (corners, drawn)),
+  // skipping types no instance of the workgroup has.
+  const uvec2 mine = uvec2(corner_count, corner_count > 0u ? 1u : 0u);
+  uvec2 exclusive = uvec2(0u);
+  for (uint t = 0u; t < params.type_count; ++t) {
+    if (lid == 0u) type_present = 0u;
+    barrier();
+    if (type == t) type_present = 1u;
+    barrier();
+    const uint base = gl_WorkGroupID.x * params.type_count + t;
+    if (type_present == 0u) {
+      if (lid == 0u) group_sums[base] = uvec2(0u);
+      continue;
+    }
+    const uvec2 v = type == t ? mine : uvec2(0u);
+    scan[lid] = v;
+    barrier();
+    for (uint offset = 1u; offset < 256u; offset <<= 1) {
+      const uvec2 other = lid >= offset ? scan[lid - offset] : uvec2(0u);
+      barrier();
+      scan[lid] = uvec2(sat_add(scan[lid].x, other.x), scan[lid].y + other.y);
+      barrier();
+    }
+    if (type == t) exclusive = uvec2(scan[lid].x - v.x, scan[lid].y - v.y);
+    if (lid == 255u) group_sums[base] = scan[255];
+    barrier();
+  }
+  if (i < params.instance_count) {
+    lods[i].local_corner = exclusive.x;
+    lods[i].local_draw = exclusive.y;
+  }
+
+  barrier();
+  if (lid == 0u) {
+    atomicAdd(stats.visible, counts[0]);
+    atomicAdd(stats.drawn, counts[1]);
+    atomicAdd(stats.at_max, counts[2]);
+    atomicAdd(stats.in_range, counts[3]);
+    atomicAdd(stats.promoted, counts[4]);
+    atomicAdd(stats.dropped, counts[5]);
+    uint old = atomicAdd(stats.selected_lo, counts[6]);
+    atomicAdd(stats.selected_hi, counts[7] + (old + counts[6] < old ? 1u : 0u));
+    old = atomicAdd(stats.requested_lo, requested_lo);
+    atomicAdd(stats.requested_hi, requested_hi + (old + requested_lo < old ? 1u : 0u));
+  }
+}

@@ -1,0 +1,56 @@
+#version 450
+// Pass 1: cull + LoD weight per instance, and each workgroup's weight sum (a fixed binary
+// tree, the order lod_weight_sum replays on the CPU).
+#extension GL_GOOGLE_include_directive : require
+#include "crowd_compute.glsl"
+#include "lod_math.glsl"
+
+layout(local_size_x = 256) in;
+
+shared double lanes[256];
+
+// CullJob's test, operation by operation (sphere_visible in cull_job.cpp).
+bool sphere_visible(vec3 c, float radius) {
+  for (int p = 0; p < 6; ++p) {
+    const vec4 plane = params.planes[p];
+    precise float d = plane.x * c.x + plane.y * c.y + plane.z * c.z + plane.w;
+    if (!(d >= -radius)) return false;
+  }
+  return true;
+}
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  const uint lid = gl_LocalInvocationID.x;
+  double w = 0.0lf;
+  if (i < params.instance_count) {
+    const GpuInstance g = instances[i];
+    const TypeData t = types[g.type];
+    const vec3 b = t.bounds.xyz;
+    // CullJob: centre = world · bounds centre, radius = bounds radius · |scale|.
+    precise float cx = g.world0.x * b.x + g.world0.y * b.y + g.world0.z * b.z + g.world0.w;
+    precise float cy = g.world1.x * b.x + g.world1.y * b.y + g.world1.z * b.z + g.world1.w;
+    precise float cz = g.world2.x * b.x + g.world2.y * b.y + g.world2.z * b.z + g.world2.w;
+    precise float r = t.bounds.w * g.color.w;
+    const vec3 c = vec3(cx, cy, cz);
+    const bool visible = sphere_visible(c, r);
+    if (visible && t.triangles > 0u) {
+      double area, distance;
+      lod_area_distance(c, r, params.eye_focal.xyz, params.eye_focal.w, params.near_plane,
+                        params.screen, area, distance);
+      w = lod_weight_root(area, distance, params.alpha, t.type_log_weight);
+    }
+    weights[i] = w;
+    lods[i].visible = visible ? 1u : 0u;
+  }
+  lanes[lid] = w;
+  barrier();
+  for (uint stride = 128u; stride > 0u; stride >>= 1) {
+    if (lid < stride) {
+      precise double s = lanes[lid] + lanes[lid + stride];
+      lanes[lid] = s;
+    }
+    barrier();
+  }
+  if (lid == 0u) partials[gl_WorkGroupID.x] = lanes[0];
+}

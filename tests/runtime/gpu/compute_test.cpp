@@ -1,0 +1,286 @@
+// CrowdCompute against the CPU reference: per-instance selected vertex counts must equal
+// update_frame()'s FrameState::vertex_count and each instance's corners must equal
+// reconstruct_lod() for that count — identical, not close (crowd_compute.h says why they can
+// be). Continuous, discrete and full modes, culling, MinT drops, the per-type layout, overflow
+// of a small corner buffer, and recording into the caller's own command buffer.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/gpu/crowd_compute.h"
+#include "runtime/gpu/compute_test_scene.h"
+#include "runtime/gpu/gpu_test_support.h"
+
+namespace crowdbake::runtime::gpu {
+namespace {
+
+class ComputeTest : public test::GpuTest {
+ protected:
+  void SetUp() override {
+    test::GpuTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+    CROWDBAKE_REQUIRE_BAKED_PACKS();
+  }
+
+  // Runs the CPU reference and the GPU passes for `scene` at `time`.
+  void run_frame(const Scene& scene, float time, CrowdCompute& compute) {
+    const Status cpu = update_frame(scene, time, state_);
+    ASSERT_TRUE(cpu.ok()) << cpu.message();
+    ASSERT_TRUE(fill_gpu_instances(scene, state_, nullptr, instances_).ok());
+    const Status gpu = compute.run(scene, state_, instances_);
+    ASSERT_TRUE(gpu.ok()) << gpu.message();
+  }
+
+  // Every instance: selected count identical; drawn instances: corners identical to
+  // reconstruct_lod. Returns the number of instances checked as drawn.
+  void expect_identical(const Scene& scene, const CrowdCompute& compute, bool expect_all_fit) {
+    std::vector<InstanceLod> lods;
+    ASSERT_TRUE(compute.read_instance_lods(lods).ok());
+    std::vector<uint32_t> corners;
+    ASSERT_TRUE(compute.read_corners(corners).ok());
+    CrowdComputeStats stats;
+    ASSERT_TRUE(compute.read_stats(stats).ok());
+    const size_t n = scene.instances.size();
+    ASSERT_EQ(lods.size(), n);
+    uint32_t mismatched = 0, drawn = 0;
+    std::vector<uint32_t> reference;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t cpu = state_.vertex_count[i];
+      if (lods[i].selected != cpu && ++mismatched <= 5)
+        ADD_FAILURE() << "instance " << i << ": GPU selected " << lods[i].selected << ", CPU "
+                      << cpu << " (weight " << state_.weights[i] << ")";
+      EXPECT_EQ(lods[i].visible, state_.visible[i]) << i;
+      if (cpu == 0) {
+        EXPECT_EQ(lods[i].corner_offset, kNotDrawn) << i;
+        continue;
+      }
+      ASSERT_TRUE(reconstruct_lod(scene, scene.instances.type[i], cpu, reference).ok());
+      ASSERT_EQ(lods[i].corners, reference.size()) << i;
+      if (lods[i].corner_offset == kNotDrawn) {
+        EXPECT_FALSE(expect_all_fit) << "instance " << i << " overflowed";
+        continue;
+      }
+      ++drawn;
+      ASSERT_LE(size_t{lods[i].corner_offset} + reference.size(), corners.size() / 2) << i;
+      uint32_t wrong = 0;
+      for (size_t k = 0; k < reference.size(); ++k) {
+        const size_t at = 2 * (lods[i].corner_offset + k);
+        wrong += corners[at] != i || corners[at + 1] != reference[k];
+      }
+      EXPECT_EQ(wrong, 0u) << "instance " << i << ": " << wrong << " of " << reference.size()
+                           << " corners differ";
+    }
+    EXPECT_EQ(mismatched, 0u) << "instances whose GPU vertex count differs from the CPU's";
+    EXPECT_EQ(stats.instances, n);
+    EXPECT_EQ(stats.visible, state_.lod.visible);
+    EXPECT_EQ(stats.drawn, state_.lod.drawn);
+    EXPECT_EQ(stats.at_max, state_.lod.at_max);
+    EXPECT_EQ(stats.in_range, state_.lod.in_range);
+    EXPECT_EQ(stats.promoted, state_.lod.promoted);
+    EXPECT_EQ(stats.dropped, state_.lod.dropped);
+    EXPECT_EQ(stats.selected_vertices, state_.lod.selected_vertices);
+    EXPECT_EQ(stats.weight_sum, state_.lod.weight_sum);  // bit-identical, not approximately
+    EXPECT_EQ(stats.drawn_instances, drawn);
+    EXPECT_EQ(stats.drawn_instances + stats.overflow_instances, stats.drawn);
+    if (expect_all_fit) {
+      EXPECT_EQ(stats.overflow_instances, 0u);
+    }
+  }
+
+  // Per type: one draw whose range covers exactly that type's drawn instances' corners.
+  void expect_draw_args(const Scene& scene, const CrowdCompute& compute) {
+    std::vector<InstanceLod> lods;
+    ASSERT_TRUE(compute.read_instance_lods(lods).ok());
+    std::vector<VkDrawIndirectCommand> args;
+    ASSERT_TRUE(compute.read_draw_args(args).ok());
+    ASSERT_EQ(args.size(), scene.types.size());
+    uint32_t expected_first = 0;
+    for (uint32_t t = 0; t < args.size(); ++t) {
+      uint64_t corners = 0;
+      uint32_t lowest = kNotDrawn;
+      for (size_t i = 0; i < lods.size(); ++i) {
+        if (scene.instances.type[i] != t || lods[i].corner_offset == kNotDrawn) continue;
+        corners += lods[i].corners;
+        lowest = std::min(lowest, lods[i].corner_offset);
+      }
+      EXPECT_EQ(args[t].vertexCount, corners) << "type " << t;
+      EXPECT_EQ(args[t].instanceCount, 1u);
+      EXPECT_EQ(args[t].firstInstance, 0u);
+      if (corners > 0) {
+        EXPECT_EQ(args[t].firstVertex, lowest) << "type " << t;
+        EXPECT_EQ(args[t].firstVertex, expected_first) << "types are laid out in index order";
+      }
+      expected_first = args[t].firstVertex + args[t].vertexCount;
+    }
+  }
+
+  FrameState state_;
+  std::vector<GpuInstance> instances_;
+};
+
+LodSettings continuous(uint32_t budget, float min_t = 0.5f) {
+  LodSettings lod;
+  lod.mode = LodMode::kContinuous;
+  lod.budget = budget;
+  lod.alpha = 2.0f;
+  lod.min_t = min_t;
+  return lod;
+}
+
+TEST_F(ComputeTest, ContinuousModeIsIdenticalToTheCpu) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 400, 1, continuous(250000)).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  const Status s = CrowdCompute::create(context(), scene, {}, compute);
+  ASSERT_TRUE(s.ok()) << s.message();
+  run_frame(scene, 1.25f, *compute);
+  if (HasFatalFailure()) return;
+  // The scene exercises every case: culled, at max, in range, promoted and dropped.
+  const LodStats& l = state_.lod;
+  SCOPED_TRACE("visible " + std::to_string(l.visible) + " at_max " + std::to_string(l.at_max) +
+               " in_range " + std::to_string(l.in_range) + " promoted " +
+               std::to_string(l.promoted) + " dropped " + std::to_string(l.dropped) + " types " +
+               std::to_string(state_.lod_types[0].min_vertices) + ".." +
+               std::to_string(state_.lod_types[0].max_vertices) + ", " +
+               std::to_string(state_.lod_types[1].min_vertices) + ".." +
+               std::to_string(state_.lod_types[1].max_vertices));
+  EXPECT_LT(state_.lod.visible, scene.instances.size());
+  EXPECT_GT(state_.lod.at_max, 0u);
+  EXPECT_GT(state_.lod.in_range, 0u);
+  EXPECT_GT(state_.lod.promoted, 0u);
+  EXPECT_GT(state_.lod.dropped, 0u);
+  expect_identical(scene, *compute, true);
+  expect_draw_args(scene, *compute);
+}
+
+TEST_F(ComputeTest, OtherAlphaMinTAndFramesStayIdentical) {
+  Scene scene;
+  LodSettings lod = continuous(150000, 0.8f);
+  lod.alpha = 3.5f;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 2, lod).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  for (float time : {0.0f, 0.7f, 3.1f}) {
+    scene.camera.position[0] = time;  // note: a different view every frame
+    run_frame(scene, time, *compute);
+    if (HasFatalFailure()) return;
+    expect_identical(scene, *compute, true);
+  }
+}
+
+TEST_F(ComputeTest, DiscreteModeIsIdenticalToTheCpu) {
+  Scene scene;
+  LodSettings lod = continuous(60000);
+  lod.mode = LodMode::kDiscrete;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 3, lod).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  run_frame(scene, 0.5f, *compute);
+  if (HasFatalFailure()) return;
+  EXPECT_GT(state_.lod.dropped, 0u);
+  expect_identical(scene, *compute, true);
+  expect_draw_args(scene, *compute);
+}
+
+TEST_F(ComputeTest, FullModeIsIdenticalToTheCpu) {
+  Scene scene;
+  LodSettings lod = continuous(1000);
+  lod.mode = LodMode::kFull;
+  ASSERT_TRUE(test::make_compute_scene(scene, 200, 4, lod).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  run_frame(scene, 2.0f, *compute);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(state_.lod.drawn, state_.lod.visible);
+  expect_identical(scene, *compute, true);
+  expect_draw_args(scene, *compute);
+}
+
+TEST_F(ComputeTest, OverflowingInstancesAreCountedNotWritten) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 5, continuous(100000)).ok());
+  CrowdComputeOptions options;
+  options.corner_capacity = 20000;
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+  EXPECT_EQ(compute->corner_capacity(), 20000u);
+  run_frame(scene, 1.0f, *compute);
+  if (HasFatalFailure()) return;
+  CrowdComputeStats stats;
+  ASSERT_TRUE(compute->read_stats(stats).ok());
+  EXPECT_GT(stats.overflow_instances, 0u);
+  EXPECT_LE(stats.drawn_corners, 20000u);
+  EXPECT_GT(stats.requested_corners, 20000u);
+  expect_identical(scene, *compute, false);
+  expect_draw_args(scene, *compute);
+  // What overflows is the end of the (type, instance) order: no drawn instance comes after
+  // one that overflowed.
+  std::vector<InstanceLod> lods;
+  ASSERT_TRUE(compute->read_instance_lods(lods).ok());
+  bool overflowed = false;
+  for (uint32_t t = 0; t < 2; ++t)
+    for (size_t i = 0; i < lods.size(); ++i) {
+      if (scene.instances.type[i] != t || lods[i].corners == 0) continue;
+      if (lods[i].corner_offset == kNotDrawn)
+        overflowed = true;
+      else
+        EXPECT_FALSE(overflowed) << "instance " << i << " drawn after an overflow";
+    }
+}
+
+TEST_F(ComputeTest, RecordsIntoTheCallersCommandBuffer) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 200, 6, continuous(40000)).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  ASSERT_TRUE(update_frame(scene, 0.3f, state_).ok());
+  ASSERT_TRUE(fill_gpu_instances(scene, state_, nullptr, instances_).ok());
+  ASSERT_TRUE(compute->upload(scene, state_, instances_).ok());
+
+  // The host's own pool, command buffer and fence (the embedding case).
+  VkDevice device = context().device();
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.queueFamilyIndex = context().queue_family();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateCommandPool(device, &pool_info, nullptr, &pool), VK_SUCCESS);
+  VkCommandBufferAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  alloc.commandPool = pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  ASSERT_EQ(vkAllocateCommandBuffers(device, &alloc, &cmd), VK_SUCCESS);
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  ASSERT_EQ(vkBeginCommandBuffer(cmd, &begin), VK_SUCCESS);
+  compute->record(cmd);
+  ASSERT_EQ(vkEndCommandBuffer(cmd), VK_SUCCESS);
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  ASSERT_EQ(vkQueueSubmit(context().queue(), 1, &submit, VK_NULL_HANDLE), VK_SUCCESS);
+  ASSERT_EQ(vkQueueWaitIdle(context().queue()), VK_SUCCESS);
+  vkDestroyCommandPool(device, pool, nullptr);
+  expect_identical(scene, *compute, true);
+}
+
+TEST_F(ComputeTest, RejectsMoreInstancesThanItWasSizedFor) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 20, 7, continuous(10000)).ok());
+  CrowdComputeOptions options;
+  options.max_instances = 10;
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+  ASSERT_TRUE(update_frame(scene, 0.0f, state_).ok());
+  ASSERT_TRUE(fill_gpu_instances(scene, state_, nullptr, instances_).ok());
+  const Status s = compute->upload(scene, state_, instances_);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("sized for 10"), std::string::npos) << s.message();
+}
+
+}  // namespace
+}  // namespace crowdbake::runtime::gpu
