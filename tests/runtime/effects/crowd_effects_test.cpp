@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -214,6 +216,24 @@ TEST_F(CrowdEffectsTest, TimeMustNotGoBack) {
   ASSERT_TRUE(effects_->update(scene_, 2.0f, 0.0f, frame_).ok());
   EXPECT_EQ(effects_->update(scene_, 1.0f, 0.0f, frame_).code(),
             runtime::StatusCode::kInvalidArgument);
+}
+
+TEST_F(CrowdEffectsTest, DocumentedExampleLoadsAndRuns) {
+  // The json block of docs/scene-format.md's "Effects" section, on the two-grid scene.
+  std::ifstream in(std::string(CROWDBAKE_SOURCE_DIR) + "/docs/scene-format.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t section = doc.find("\n## Effects\n");
+  ASSERT_NE(section, std::string::npos);
+  const size_t start = doc.find("```json\n", section);
+  ASSERT_NE(start, std::string::npos);
+  const size_t end = doc.find("```", start + 8);
+  const std::string block = doc.substr(start + 8, end - start - 8);
+  const size_t open = block.find("\"effects\": ") + 11, close = block.rfind('}');
+  load(block.substr(open, close - open));
+  EXPECT_EQ(counters().constructed_systems, 2u);
+  EXPECT_EQ(counters().transition_instances, 24u);
+  run(0.0f, 5.0f, 10.0f);
+  EXPECT_GT(counters().fsm_state_changes, 0u);
 }
 
 // Poses come from the pack itself: sampling a clip built from the animation texture at a key
