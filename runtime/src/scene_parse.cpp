@@ -1215,6 +1215,17 @@ void resolve_effects(const RawScene& raw, Scene& scene) {
                    " makes instances of another character type than effects.type ('" + type.name +
                    "')");
     }
+  // Renderer-side effects turned off: applied to the data here, so every renderer (and the
+  // CPU reference path) shows the same thing without an effect it was told not to use.
+  if (!e.lod) scene.lod.mode = LodMode::kFull;
+  if (!e.color_variety)
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+      scene.instances.color[3 * i] = 0.0f;
+      scene.instances.color[3 * i + 1] = 1.0f;
+      scene.instances.color[3 * i + 2] = 1.0f;
+    }
+  if (!e.texture_partition)
+    std::fill(scene.instances.textures.begin(), scene.instances.textures.end(), 0u);
   scene.effects = std::move(e);
 }
 

@@ -165,6 +165,56 @@ TEST_F(CrowdEffectsTest, DeclaredEffectsMoveTheCounters) {
   EXPECT_NE(lines[0].find("2 systems constructed"), std::string::npos) << lines[0];
 }
 
+TEST_F(CrowdEffectsTest, AdditiveLayersFollowTheFsm) {
+  // The goal raises the right arm ("arm-up" held at its end) as a masked layer over "stand".
+  load(R"({"states": [
+      {"name": "stand", "clips": ["idle"], "pose": "up", "rest": true, "interruptible": true},
+      {"name": "wave", "clips": [{"clip": "arm-up", "hold": true}], "pose": "up",
+       "additive": true, "mask": ["right_shoulder"], "instances": 4}],
+    "animation_sharing": {"instances_per_state": 2, "additive_layers": true},
+    "spectators": {"transitions": [{"from": "stand", "to": "wave"}, {"from": "wave", "to": "stand"}],
+      "reactions": [{"event": "goal", "supporters": "wave"}],
+      "teams": [{"name": "A", "generators": [0], "embarrassment": 0.1}, {"name": "B", "generators": [1]}],
+      "events": [{"kind": "goal", "time": 1, "team": "A", "excitement": 1.5}]}})");
+  EXPECT_EQ(counters().state_instances, 2u + 4u);
+  run(0.0f, 3.0f);
+  // Stand's instances are pose slots 0-1, wave's 2-5: the wavers are skinned by the layer.
+  uint32_t layered = 0, waving = 0;
+  for (uint32_t i = 0; i < n(); ++i) {
+    if (effects_->behaviour_state(i) != "wave") continue;
+    ++waving;
+    layered += frame_.pose[i] >= 2u && frame_.pose[i] < 6u;
+  }
+  EXPECT_GT(waving, 0u);
+  EXPECT_EQ(layered, waving);
+  // The layer moves the right arm only: a left-arm joint's matrix equals stand's.
+  const runtime::Pack& pack = scene_.types[0].pack;
+  const size_t joints = pack.contents().joints.size();
+  const uint32_t left = static_cast<uint32_t>(pack.find_joint("left_hand"));
+  const uint32_t right = static_cast<uint32_t>(pack.find_joint("right_hand"));
+  const float* buffer = frame_.pose_buffers[0].data();
+  double left_diff = 0.0, right_diff = 0.0;
+  for (uint32_t i = 0; i < n(); ++i) {
+    if (frame_.pose[i] < 2u || frame_.pose[i] >= 6u) continue;
+    // note: a layer binds to the stand instance its character was on; compare with both.
+    double l = 1e9, r = 0.0;
+    for (uint32_t base = 0; base < 2; ++base) {
+      double dl = 0.0, dr = 0.0;
+      for (int k = 0; k < 12; ++k) {
+        dl += std::fabs(buffer[(frame_.pose[i] * joints + left) * 12 + k] -
+                        buffer[(base * joints + left) * 12 + k]);
+        dr += std::fabs(buffer[(frame_.pose[i] * joints + right) * 12 + k] -
+                        buffer[(base * joints + right) * 12 + k]);
+      }
+      if (dl < l) l = dl, r = dr;
+    }
+    left_diff = std::max(left_diff, l);
+    right_diff = std::max(right_diff, r);
+  }
+  EXPECT_LT(left_diff, 1e-5);
+  EXPECT_GT(right_diff, 0.05);
+}
+
 TEST_F(CrowdEffectsTest, CrossfadeOnlyTurnsFsmChangesIntoGpuFades) {
   load(std::string("{") + test::kStates + R"(, "crossfade": {"time": 0.5}, )" +
        test::spectators_block() + "}");

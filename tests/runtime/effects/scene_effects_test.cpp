@@ -112,6 +112,32 @@ TEST(SceneEffects, FullDeclarationIsRead) {
   EXPECT_FALSE(e.crossfade);
 }
 
+TEST(SceneEffects, RendererSideEffectsTurnedOffApplyAtLoad) {
+  test::EffectScenes files;
+  Scene on, off;
+  const std::string generator =
+      R"({"kind": "scatter", "count": 20, "rectangle": {"min": [0, 0], "max": [5, 5]},
+          "textures": {"head": 0}, "color_variation": {"hue": 30, "saturation": 0.3}})";
+  ASSERT_TRUE(files.load(small_scene(R"({"lod": true})", generator), on).ok());
+  ASSERT_TRUE(files
+                  .load(small_scene(R"({"lod": false, "color_variety": false,
+                                         "texture_partition": false})",
+                                    generator),
+                        off)
+                  .ok());
+  EXPECT_EQ(on.lod.mode, LodMode::kContinuous);
+  EXPECT_EQ(off.lod.mode, LodMode::kFull);
+  bool varied = false;
+  for (size_t i = 0; i < on.instances.size(); ++i) {
+    varied = varied || on.instances.color[3 * i] != 0.0f;
+    EXPECT_EQ(off.instances.color[3 * i], 0.0f);
+    EXPECT_EQ(off.instances.color[3 * i + 1], 1.0f);
+    EXPECT_EQ(off.instances.color[3 * i + 2], 1.0f);
+    EXPECT_EQ(off.instances.textures[i], 0u);
+  }
+  EXPECT_TRUE(varied);
+}
+
 TEST(SceneEffectsErrors, UnknownState) {
   expect_error(small_scene(small_spectators(R"([{"from": "idle", "to": "dance"}])", kGoal)),
                {"effects.spectators.transitions[0].to: unknown state \"dance\"",
