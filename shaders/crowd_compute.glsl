@@ -9,6 +9,8 @@
 #include "instance.glsl"
 
 const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
+const uint kChunk = 64u;             // corners per reconstruction chunk (one instance each)
+const uint kChunksPerGroup = 4u;     // chunks per reconstruction workgroup
 const uint kSaturated = 0x7FFFFFFFu;  // corner sums saturate here (never fit the buffer)
 const uint kNotDrawn = 0xFFFFFFFFu;
 
@@ -34,7 +36,7 @@ struct InstanceLod {
   uint local_corner;   // corners of earlier same-type instances in the workgroup
   uint local_draw;     // drawn earlier same-type instances in the workgroup
   uint visible;
-  uint pad;
+  uint local_chunk;    // reconstruction chunks of earlier same-type instances in the workgroup
 };
 
 struct TypeRange {
@@ -43,7 +45,9 @@ struct TypeRange {
   uint draw_base;     // first entry of the type in the draw list
   uint draw_total;    // drawn instances of the type (before overflow)
   uint drawn_end;     // end of the type's corners that fit (atomicMax)
-  uint pad0, pad1, pad2;
+  uint chunk_base;    // first reconstruction chunk of the type
+  uint chunk_total;   // chunks the type asked for (saturating)
+  uint pad0;
 };
 
 struct Stats {
@@ -51,7 +55,7 @@ struct Stats {
   uint visible, drawn, at_max, in_range;
   uint promoted, dropped, overflow, fitting;
   uint drawn_corners, selected_lo, selected_hi, requested_lo;
-  uint requested_hi, pad0, pad1, pad2;
+  uint requested_hi, chunks, pad0, pad1;  // chunks: reconstruction workgroups
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
@@ -75,14 +79,19 @@ layout(std430, set = 0, binding = 3) readonly buffer MeshData { uint mesh_data[]
 layout(std430, set = 0, binding = 4) buffer Weights { double weights[]; };
 layout(std430, set = 0, binding = 5) buffer Partials { double partials[]; };
 layout(std430, set = 0, binding = 6) buffer Lods { InstanceLod lods[]; };
-layout(std430, set = 0, binding = 7) buffer GroupSums { uvec2 group_sums[]; };  // [group][type]
+// [group][type]: (corners, drawn, chunks) of the workgroup, then their exclusive prefix
+layout(std430, set = 0, binding = 7) buffer GroupSums { uvec4 group_sums[]; };
 layout(std430, set = 0, binding = 8) buffer TypeRanges { TypeRange ranges[]; };
-layout(std430, set = 0, binding = 9) buffer DrawList { uvec2 draw_list[]; };  // (instance, offset)
+// (instance, first corner, first chunk, corners), in corner order
+layout(std430, set = 0, binding = 9) buffer DrawList { uvec4 draw_list[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Corners { uvec2 corners[]; };
 layout(std430, set = 0, binding = 11) buffer DrawArgs { uint draw_args[]; };  // 4 per type
 layout(std430, set = 0, binding = 12) buffer DispatchArgs { uint dispatch_args[]; };
 layout(std430, set = 0, binding = 13) buffer StatsBuffer { Stats stats; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
+
+// (corners, drawn, chunks) sums: corners and chunks saturate, drawn counts cannot overflow.
+uvec3 sum3(uvec3 a, uvec3 b) { return uvec3(sat_add(a.x, b.x), a.y + b.y, sat_add(a.z, b.z)); }
 
 #endif

@@ -23,8 +23,11 @@ void main() {
     for (uint t = 0u; t < params.type_count; ++t)
       total = max(total, ranges[t].drawn_end);
     stats.drawn_corners = total;
-    dispatch_args[0] = (total + 255u) / 256u;
-    dispatch_args[1] = 1u;
+    // note: kChunksPerGroup chunks per workgroup, in rows of at most 65535 workgroups
+    // (maxComputeWorkGroupCount).
+    const uint groups = (stats.chunks + kChunksPerGroup - 1u) / kChunksPerGroup;
+    dispatch_args[0] = min(groups, 65535u);
+    dispatch_args[1] = (groups + 65534u) / 65535u;
     dispatch_args[2] = 1u;
   }
 }

@@ -7,7 +7,7 @@
 
 layout(local_size_x = 256) in;
 
-shared uvec2 scan[256];
+shared uvec3 scan[256];
 shared uint type_present;
 shared uint counts[8];  // visible, drawn, at_max, in_range, promoted, dropped, sel lo, sel hi
 shared uint requested_lo, requested_hi;
@@ -88,10 +88,11 @@ void main() {
     lods[i].corners = corner_count;
   }
 
-  // Per-type exclusive prefix within the workgroup (Hillis-Steele over (corners, drawn)),
-  // skipping types no instance of the workgroup has.
-  const uvec2 mine = uvec2(corner_count, corner_count > 0u ? 1u : 0u);
-  uvec2 exclusive = uvec2(0u);
+  // Per-type exclusive prefix within the workgroup (Hillis-Steele over (corners, drawn,
+  // chunks)), skipping types no instance of the workgroup has.
+  const uvec3 mine =
+      uvec3(corner_count, corner_count > 0u ? 1u : 0u, (corner_count + kChunk - 1u) / kChunk);
+  uvec3 exclusive = uvec3(0u);
   for (uint t = 0u; t < params.type_count; ++t) {
     if (lid == 0u) type_present = 0u;
     barrier();
@@ -99,25 +100,26 @@ void main() {
     barrier();
     const uint base = gl_WorkGroupID.x * params.type_count + t;
     if (type_present == 0u) {
-      if (lid == 0u) group_sums[base] = uvec2(0u);
+      if (lid == 0u) group_sums[base] = uvec4(0u);
       continue;
     }
-    const uvec2 v = type == t ? mine : uvec2(0u);
+    const uvec3 v = type == t ? mine : uvec3(0u);
     scan[lid] = v;
     barrier();
     for (uint offset = 1u; offset < 256u; offset <<= 1) {
-      const uvec2 other = lid >= offset ? scan[lid - offset] : uvec2(0u);
+      const uvec3 other = lid >= offset ? scan[lid - offset] : uvec3(0u);
       barrier();
-      scan[lid] = uvec2(sat_add(scan[lid].x, other.x), scan[lid].y + other.y);
+      scan[lid] = sum3(scan[lid], other);
       barrier();
     }
-    if (type == t) exclusive = uvec2(scan[lid].x - v.x, scan[lid].y - v.y);
-    if (lid == 255u) group_sums[base] = scan[255];
+    if (type == t) exclusive = scan[lid] - v;
+    if (lid == 255u) group_sums[base] = uvec4(scan[255], 0u);
     barrier();
   }
   if (i < params.instance_count) {
     lods[i].local_corner = exclusive.x;
     lods[i].local_draw = exclusive.y;
+    lods[i].local_chunk = exclusive.z;
   }
 
   barrier();

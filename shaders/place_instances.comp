@@ -14,14 +14,18 @@ void main() {
   uint offset = kNotDrawn;
   if (lod.corners > 0u) {
     const uint t = instances[i].type;
-    const uvec2 group = group_sums[gl_WorkGroupID.x * params.type_count + t];
+    const uvec3 group = group_sums[gl_WorkGroupID.x * params.type_count + t].xyz;
     const uint first = sat_add(ranges[t].corner_base, sat_add(group.x, lod.local_corner));
     const uint entry = ranges[t].draw_base + group.y + lod.local_draw;
     const uint capacity = params.corner_capacity;
     if (first <= capacity && lod.corners <= capacity - first) {
       offset = first;
-      draw_list[entry] = uvec2(i, first);
+      // note: chunks of fitting instances never saturate (they hold at most
+      // capacity / kChunk + instances chunks).
+      const uint chunk = ranges[t].chunk_base + group.z + lod.local_chunk;
+      draw_list[entry] = uvec4(i, first, chunk, lod.corners);
       atomicMax(ranges[t].drawn_end, first + lod.corners);
+      atomicMax(stats.chunks, chunk + (lod.corners + kChunk - 1u) / kChunk);
       atomicAdd(stats.fitting, 1u);
     } else {
       atomicAdd(stats.overflow, 1u);

@@ -8,7 +8,7 @@
 
 layout(local_size_x = 256) in;
 
-shared uvec2 scan[256];
+shared uvec3 scan[256];
 
 void main() {
   const uint lid = gl_LocalInvocationID.x;
@@ -16,42 +16,42 @@ void main() {
   const uint chunk = (groups + 255u) / 256u;
   const uint first = min(lid * chunk, groups), last = min(first + chunk, groups);
   for (uint t = 0u; t < params.type_count; ++t) {
-    uvec2 sum = uvec2(0u);
-    for (uint g = first; g < last; ++g) {
-      const uvec2 v = group_sums[g * params.type_count + t];
-      sum = uvec2(sat_add(sum.x, v.x), sum.y + v.y);
-    }
+    uvec3 sum = uvec3(0u);
+    for (uint g = first; g < last; ++g) sum = sum3(sum, group_sums[g * params.type_count + t].xyz);
     scan[lid] = sum;
     barrier();
     for (uint offset = 1u; offset < 256u; offset <<= 1) {
-      const uvec2 other = lid >= offset ? scan[lid - offset] : uvec2(0u);
+      const uvec3 other = lid >= offset ? scan[lid - offset] : uvec3(0u);
       barrier();
-      scan[lid] = uvec2(sat_add(scan[lid].x, other.x), scan[lid].y + other.y);
+      scan[lid] = sum3(scan[lid], other);
       barrier();
     }
-    uvec2 running = lid > 0u ? scan[lid - 1u] : uvec2(0u);
+    uvec3 running = lid > 0u ? scan[lid - 1u] : uvec3(0u);
     for (uint g = first; g < last; ++g) {
       const uint index = g * params.type_count + t;
-      const uvec2 v = group_sums[index];
-      group_sums[index] = running;
-      running = uvec2(sat_add(running.x, v.x), running.y + v.y);
+      const uvec3 v = group_sums[index].xyz;
+      group_sums[index] = uvec4(running, 0u);
+      running = sum3(running, v);
     }
     if (lid == 0u) {
       ranges[t].corner_total = scan[255].x;
       ranges[t].draw_total = scan[255].y;
+      ranges[t].chunk_total = scan[255].z;
     }
     barrier();
   }
   memoryBarrierBuffer();
   barrier();
   if (lid == 0u) {
-    uint corner_base = 0u, draw_base = 0u;
+    uint corner_base = 0u, draw_base = 0u, chunk_base = 0u;
     for (uint t = 0u; t < params.type_count; ++t) {
       ranges[t].corner_base = corner_base;
       ranges[t].draw_base = draw_base;
+      ranges[t].chunk_base = chunk_base;
       ranges[t].drawn_end = 0u;
       corner_base = sat_add(corner_base, ranges[t].corner_total);
       draw_base += ranges[t].draw_total;
+      chunk_base = sat_add(chunk_base, ranges[t].chunk_total);
     }
   }
 }

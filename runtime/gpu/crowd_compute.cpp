@@ -47,7 +47,7 @@ struct StatsData {
   uint32_t visible, drawn, at_max, in_range;
   uint32_t promoted, dropped, overflow, fitting;
   uint32_t drawn_corners, selected_lo, selected_hi, requested_lo;
-  uint32_t requested_hi, pad0, pad1, pad2;
+  uint32_t requested_hi, chunks, pad0, pad1;
 };
 static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
 static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
@@ -130,9 +130,9 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       {&c->weights_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
       {&c->partials_, VkDeviceSize{groups} * 8, storage, MemoryKind::kDeviceLocal},
       {&c->lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
-      {&c->group_sums_, VkDeviceSize{groups} * types * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->group_sums_, VkDeviceSize{groups} * types * 16, storage, MemoryKind::kDeviceLocal},
       {&c->ranges_, VkDeviceSize{types} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
-      {&c->draw_list_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->draw_list_, VkDeviceSize{n} * 16, storage, MemoryKind::kDeviceLocal},
       {&c->corners_, VkDeviceSize{std::max(c->corner_capacity_, 1u)} * 8,
        storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
       {&c->draw_args_, VkDeviceSize{types} * sizeof(VkDrawIndirectCommand), indirect,

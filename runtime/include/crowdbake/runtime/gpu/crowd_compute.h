@@ -15,9 +15,10 @@
 //                         the corner buffer is not drawn and counted (overflow_instances).
 //      draw_args.comp     one VkDrawIndirectCommand per type and the reconstruction's
 //                         dispatch size (vkCmdDispatchIndirect).
-//   5. reconstruct.comp   one thread per corner: corner k of instance i is the pack's triangle
-//                         corner walked down the collapse chain (`while v >= n'`), written
-//                         as uvec2(i, v).
+//   5. reconstruct.comp   one thread per corner, one workgroup per 64 corners of an instance
+//                         (so no thread searches for its instance): corner k of instance i
+//                         is the pack's triangle corner walked down the collapse chain
+//                         (`while v >= n'`), written as uvec2(i, v).
 //
 // Layout of the corner buffer: types in index order, within a type the drawn instances in
 // instance order, each instance's 3·T(n') corners in the pack's triangle order — exactly
@@ -70,7 +71,7 @@ struct InstanceLod {
   uint32_t usable;         // n' = usable_vertices(n_i)
   uint32_t corners;        // 3 · triangle_count[n']
   uint32_t corner_offset;  // first corner in the corner buffer; kNotDrawn when none
-  uint32_t local_corner, local_draw, visible, pad;
+  uint32_t local_corner, local_draw, visible, local_chunk;  // scan internals, culling
 };
 constexpr uint32_t kNotDrawn = 0xFFFFFFFFu;
 
@@ -79,8 +80,8 @@ struct TypeRange {
   uint32_t corner_base;   // first corner of the type
   uint32_t corner_total;  // corners the type's drawn instances need (saturates at 2^31 − 1)
   uint32_t draw_base, draw_total;
-  uint32_t drawn_end;  // end of the type's corners that fit
-  uint32_t pad[3];
+  uint32_t drawn_end;                     // end of the type's corners that fit
+  uint32_t chunk_base, chunk_total, pad;  // reconstruction workgroups
 };
 
 struct CrowdComputeStats {
