@@ -347,7 +347,29 @@ uint32_t AnimSharingInstance::pick_instance(uint32_t slot, uint32_t state,
     i = instances_[i].pre_state_instance;
     if (i != kNone && instances_[i].state == state) return i;
   }
-  return first_instance_[state] + slot % setup_.states[state].instance_count;
+  const uint32_t first = first_instance_[state];
+  const uint32_t count = setup_.states[state].instance_count;
+  if (!setup_.states[state].on_demand) return first + slot % count;
+  // On demand: share a clip started in the join window, else start a free instance, else
+  // join the one that started last (the closest to the clip's start).
+  uint32_t free_instance = kNone, newest = first;
+  for (uint32_t k = first; k < first + count; ++k) {
+    const AnimStateInstance& instance = instances_[k];
+    if (instance.references == 0) {
+      if (free_instance == kNone) free_instance = k;
+      continue;
+    }
+    if (clock_ - instance.start_time <= setup_.transition_join_window) return k;
+    if (instances_[newest].references == 0 || instance.start_time > instances_[newest].start_time)
+      newest = k;
+  }
+  return free_instance != kNone ? free_instance : newest;
+}
+
+void AnimSharingInstance::acquire_instance(uint32_t index) {
+  AnimStateInstance& instance = instances_[index];
+  if (instance.references++ == 0 && setup_.states[instance.state].on_demand)
+    instance.start_time = clock_;  // a free on-demand instance starts its clip now
 }
 
 uint32_t AnimSharingInstance::find_additive_instance(uint32_t state, uint32_t pre) const {
@@ -545,7 +567,7 @@ void AnimSharingInstance::evaluate_instance(uint32_t index) {
 
   SamplingJob sampling;
   sampling.clip = &setup_.clips[state.clips[instance.clip_index]];
-  sampling.time = clock_ + instance.time_offset;
+  sampling.time = state.on_demand ? clock_ - instance.start_time : clock_ + instance.time_offset;
   sampling.output = instance.sampling_pose;
   sampling.Run();
 

@@ -258,6 +258,9 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
     as.id = static_cast<StateId>(s);
     as.is_additive = st.additive;
     as.instance_count = st.instances ? st.instances : decl.instances_per_state;
+    // One-shot clips (stand up, sit down) play from each character's switch, not on the
+    // shared clock: such a state's instances are on demand.
+    as.on_demand = true;
     for (size_t k = 0; k < st.clips.size(); ++k) {
       const std::pair<uint32_t, bool> key{state_scene_clip[s][k] - first_clip, st.clips[k].hold};
       auto it = clip_index.find(key);
@@ -269,6 +272,8 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
         setup.clips.push_back(std::move(clip));
       }
       as.clips.push_back(it->second);
+      as.on_demand =
+          as.on_demand && !st.clips[k].hold && !scene.clips[state_scene_clip[s][k]].clip->looping;
     }
     if (!st.mask.empty()) {
       // A listed joint drives itself and every joint below it (parents come first).

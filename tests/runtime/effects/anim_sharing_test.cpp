@@ -843,3 +843,61 @@ TEST(AnimSharingManager, SeveralSkeletonTypesAtOnce) {
 
 }  // namespace
 }  // namespace crowdbake::effects
+
+namespace crowdbake::effects {
+namespace {
+
+// On-demand states play a one-shot clip from when an instance is taken while free; characters
+// switching in the join window share it, later ones start another free instance, and with
+// none free they join the most recently started one.
+TEST(AnimSharingOnDemand, InstancesStartTheirClipWhenTaken) {
+  AnimSharingSetup setup = testing::make_setup(8, 2, 0);
+  for (AnimState& s : setup.states)
+    if (s.id == kHit) s.on_demand = true;
+  const KeyframeClip hit_clip = setup.clips[4];
+  auto sharing = AnimSharingInstance::create(std::move(setup));
+  ASSERT_TRUE(sharing);
+  std::vector<CharacterId> ids;
+  for (uint64_t k = 0; k < 4; ++k) ids.push_back(sharing->register_character(k, kIdle));
+  for (int f = 0; f < 30; ++f) sharing->update(kDt);
+  const auto hit_instances = sharing->instances_of(kHit);
+
+  ASSERT_TRUE(sharing->set_parameter(ids[0], 0, static_cast<float>(kHit)));
+  ASSERT_TRUE(sharing->set_parameter(ids[1], 0, static_cast<float>(kHit)));
+  sharing->update(kDt);
+  const uint32_t first = sharing->character(ids[0]).instance_index;
+  EXPECT_GE(first, hit_instances.first);
+  EXPECT_LT(first, hit_instances.first + hit_instances.second);
+  EXPECT_EQ(sharing->character(ids[1]).instance_index, first) << "same window: shared";
+  EXPECT_DOUBLE_EQ(sharing->state_instance(first).start_time, sharing->clock());
+  std::vector<Transform> start(hit_clip.joint_count);
+  SamplingJob at_start{&hit_clip, 0.0, start};
+  ASSERT_TRUE(at_start.Run());
+  expect_pose_near(sharing->character_pose(ids[0]), start, 1e-6f);
+
+  for (int f = 0; f < 15; ++f) sharing->update(kDt);
+  ASSERT_TRUE(sharing->set_parameter(ids[2], 0, static_cast<float>(kHit)));
+  sharing->update(kDt);
+  const uint32_t second = sharing->character(ids[2]).instance_index;
+  EXPECT_NE(second, first) << "outside the window: a free instance starts";
+  EXPECT_DOUBLE_EQ(sharing->state_instance(second).start_time, sharing->clock());
+  expect_pose_near(sharing->character_pose(ids[2]), start, 1e-6f);
+  expect_pose_near(sharing->character_pose(ids[0]), sharing->character_pose(ids[1]), 0.0f);
+
+  for (int f = 0; f < 6; ++f) sharing->update(kDt);
+  ASSERT_TRUE(sharing->set_parameter(ids[3], 0, static_cast<float>(kHit)));
+  sharing->update(kDt);
+  EXPECT_EQ(sharing->character(ids[3]).instance_index, second) << "none free: join the most recent";
+  EXPECT_LT(sharing->state_instance(second).start_time, sharing->clock());
+
+  // Back to idle releases them; the next character restarts a freed instance.
+  for (int k = 0; k < 4; ++k) ASSERT_TRUE(sharing->set_parameter(ids[k], 0, float{kIdle}));
+  sharing->update(kDt);
+  ASSERT_TRUE(sharing->set_parameter(ids[0], 0, static_cast<float>(kHit)));
+  sharing->update(kDt);
+  EXPECT_DOUBLE_EQ(sharing->state_instance(sharing->character(ids[0]).instance_index).start_time,
+                   sharing->clock());
+}
+
+}  // namespace
+}  // namespace crowdbake::effects

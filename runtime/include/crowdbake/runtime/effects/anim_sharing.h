@@ -7,8 +7,10 @@
 // - AnimState = (id, clips[], isAdditive, skeletalMask, instanceCount). Each state owns
 //   instanceCount AnimStateInstances; instance k plays clips[k mod clips.size()] at
 //   clock() + timeOffset, the offset drawn once in [0, clip duration) from the setup's seed,
-//   so characters in the same state differ. A character entering a non-additive state gets
-//   instance (slot mod instanceCount) — or, leaving additive layers, the instance under them.
+//   so characters in the same state differ. An on_demand state's instance instead plays from
+//   the moment it was taken while free (clock() − startTime), for one-shot clips. A character
+//   entering a non-additive state gets instance (slot mod instanceCount) — or, leaving additive
+//   layers, the instance under them.
 // - AnimStateInstance = (state, clipIndex, timeOffset, samplingPose, outputPose
 //   [, preStateInstance]). With mask m_j = skeletalMask[j] (empty mask = every m_j = 1):
 //     non-additive: output_j = blend(rest_j, sample_j, m_j)   (m_j = 0 keeps the rest pose)
@@ -84,6 +86,11 @@ struct AnimState {
   bool is_additive = false;
   std::vector<float> skeletal_mask;  // per joint in [0, 1]; empty = every joint 1
   uint32_t instance_count = 1;       // ≥ 1
+  // On-demand instances (one-shot clips: stand up, a hit reaction): an instance plays its clip
+  // from the start when it is taken while free, instead of on the shared clock. A character
+  // entering the state joins an instance started at most transition_join_window ago, else
+  // starts a free one, else joins the most recently started one.
+  bool on_demand = false;
 };
 
 struct StateDecision {
@@ -131,6 +138,7 @@ struct AnimStateInstance {
   std::vector<Transform> output_pose;
   uint32_t pre_state_instance = kNone;  // additive instances while bound, else kNone
   uint32_t references = 0;  // characters on it + transitions and additive instances using it
+  double start_time = 0.0;  // on-demand states: the clock when it was last taken while free
 };
 
 struct AnimTransitionInstance {
@@ -273,7 +281,7 @@ class AnimSharingInstance {
   uint32_t start_transition(bool snapshot, uint32_t from, uint32_t to);
   void leave_transition(uint32_t slot);
   void release_transition(uint32_t index);
-  void acquire_instance(uint32_t index) { ++instances_[index].references; }
+  void acquire_instance(uint32_t index);
   void release_instance(uint32_t index);
   void park(uint32_t slot, uint32_t additive_state);
   void unpark(uint32_t slot);
