@@ -465,6 +465,10 @@ Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFram
     }
     c.frame_ms_crossfade = ms_since(start);
   }
+  c.total_ms_behaviour += c.frame_ms_behaviour;
+  c.total_ms_sharing += c.frame_ms_sharing;
+  c.total_ms_pose_buffer += c.frame_ms_pose_buffer;
+  c.total_ms_crossfade += c.frame_ms_crossfade;
   return {};
 }
 
@@ -515,6 +519,15 @@ std::vector<std::string> format_effect_counters(const EffectCounters& c) {
                 static_cast<unsigned long long>(c.frame_pose_bytes), c.frame_ms_behaviour,
                 c.frame_ms_sharing, c.frame_ms_pose_buffer, c.frame_ms_crossfade);
   lines.emplace_back(line);
+  if (c.updates > 0) {
+    const double n = static_cast<double>(c.updates);
+    std::snprintf(line, sizeof line,
+                  "effects: mean per update: behaviour %.3f ms, sharing %.3f ms, pose buffer %.3f "
+                  "ms, crossfade %.3f ms",
+                  c.total_ms_behaviour / n, c.total_ms_sharing / n, c.total_ms_pose_buffer / n,
+                  c.total_ms_crossfade / n);
+    lines.emplace_back(line);
+  }
   return lines;
 }
 

@@ -161,7 +161,8 @@ TEST_F(CrowdEffectsTest, DeclaredEffectsMoveTheCounters) {
   EXPECT_EQ(b, 0u);
 
   const std::vector<std::string> lines = format_effect_counters(c);
-  ASSERT_EQ(lines.size(), 4u);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_NE(lines[4].find("mean per update"), std::string::npos) << lines[4];
   EXPECT_NE(lines[0].find("2 systems constructed"), std::string::npos) << lines[0];
 }
 

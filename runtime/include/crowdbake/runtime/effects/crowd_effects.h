@@ -59,6 +59,11 @@ struct EffectCounters {
   double frame_ms_sharing = 0.0;      // AnimSharingManager::update (the four stages)
   double frame_ms_pose_buffer = 0.0;  // model matrices → skinning matrices
   double frame_ms_crossfade = 0.0;    // fade arrays
+  // The same times summed over every update (mean = total / updates).
+  double total_ms_behaviour = 0.0;
+  double total_ms_sharing = 0.0;
+  double total_ms_pose_buffer = 0.0;
+  double total_ms_crossfade = 0.0;
   // Load time of "relaxation" generators (from Scene::effects; placed by load_scene).
   bool placement = false;
 };
