@@ -13,6 +13,7 @@
 
 #include "crowdbake/runtime/effects/pack_pose.h"
 #include "crowdbake/runtime/effects/pose_jobs.h"
+#include "crowdbake/runtime/frame.h"
 #include "crowdbake/runtime/skin_job.h"
 #include "runtime/effects/scene_effects_support.h"
 
@@ -246,6 +247,56 @@ TEST_F(CrowdEffectsTest, CrossfadeOnlyTurnsFsmChangesIntoGpuFades) {
     if (effects_->behaviour_state(i) == "cheer" && frame_.fade_weight[i] == 0.0f)
       cheering += frame_.clip[i] == cheer;
   EXPECT_GT(cheering, 0u);
+}
+
+TEST_F(CrowdEffectsTest, CrossfadePathHoldsAndStartsOneShotClips) {
+  // Seated = "sit" held at its last frame; stand_up plays "stand-up" from each switch.
+  load(R"({"states": [
+      {"name": "seated", "clips": [{"clip": "sit", "hold": true}], "pose": "down", "rest": true,
+       "interruptible": true},
+      {"name": "stand_up", "clips": ["stand-up"], "pose_in": "down", "pose_out": "up"},
+      {"name": "cheer", "clips": ["cheer"], "pose": "up", "interruptible": true},
+      {"name": "sit_down", "clips": ["sit"], "pose_in": "up", "pose_out": "down"}],
+    "crossfade": {"time": 0.3},
+    "spectators": {"transitions": [{"from": "seated", "to": "stand_up"},
+        {"from": "stand_up", "to": "cheer"}, {"from": "cheer", "to": "sit_down"},
+        {"from": "sit_down", "to": "seated"}],
+      "reactions": [{"event": "goal", "supporters": "cheer"}],
+      "teams": [{"name": "A", "generators": [0], "embarrassment": 0}, {"name": "B", "generators": [1]}],
+      "events": [{"kind": "goal", "time": 1, "team": "A", "excitement": 2}]}})");
+  const uint32_t sit = static_cast<uint32_t>(scene_.find_clip(0, "sit"));
+  const uint32_t stand_up = static_cast<uint32_t>(scene_.find_clip(0, "stand-up"));
+  const PackClip& sit_clip = *scene_.clips[sit].clip;
+  const PackClip& stand_clip = *scene_.clips[stand_up].clip;
+  const float dt = 1.0f / 30.0f;
+  uint32_t seated_checked = 0, started_checked = 0;
+  std::vector<float> switched_at(n(), -1.0f);
+  for (int step = 0; step <= 75; ++step) {
+    const float t = static_cast<float>(step) * dt;
+    ASSERT_TRUE(effects_->update(scene_, t, dt, frame_).ok());
+    for (uint32_t i = 0; i < n(); ++i) {
+      const std::string state = effects_->behaviour_state(i);
+      if (state == "seated" && frame_.fade_weight[i] == 0.0f) {
+        ASSERT_EQ(frame_.clip[i], sit);
+        const runtime::FrameChoice f = runtime::choose_frame(
+            sit_clip, t, scene_.instances.speed[i], frame_.time_offset[i], scene_.animation.filter);
+        ASSERT_EQ(f.frame0, sit_clip.frame_count - 1) << "held at the last frame";
+        ++seated_checked;
+      }
+      if (state == "stand_up" && switched_at[i] < 0.0f) {
+        switched_at[i] = t;
+        // The fade target starts the clip where the FSM switched (within one tick).
+        ASSERT_EQ(frame_.fade_clip[i], stand_up);
+        const runtime::FrameChoice f = runtime::choose_frame(
+            stand_clip, t, 1.0f, frame_.fade_time_offset[i], FrameFilter::kNearest);
+        EXPECT_LE(f.frame0, 4u) << "instance " << i << " at " << t << " s";
+        ++started_checked;
+      }
+    }
+  }
+  EXPECT_GT(seated_checked, n());
+  EXPECT_GT(started_checked, 0u);
+  EXPECT_EQ(counters().poses_evaluated, 0u);
 }
 
 TEST_F(CrowdEffectsTest, FsmWithoutSharingOrCrossfadeSwitchesClips) {
