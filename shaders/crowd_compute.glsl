@@ -11,6 +11,7 @@
 const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
 const uint kChunk = 64u;             // corners per reconstruction chunk (one instance each)
 const uint kChunksPerGroup = 4u;     // chunks per reconstruction workgroup
+const uint kMaxTypes = 1024u;        // character types (lod_assign's shared running sums)
 const uint kSaturated = 0x7FFFFFFFu;  // corner sums saturate here (never fit the buffer)
 const uint kNotDrawn = 0xFFFFFFFFu;
 

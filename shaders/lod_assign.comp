@@ -7,8 +7,9 @@
 
 layout(local_size_x = 256) in;
 
-shared uvec3 scan[256];
-shared uint type_present;
+shared uvec3 lane_values[256];
+shared uint lane_types[256];
+shared uvec3 type_running[kMaxTypes];
 shared uint counts[8];  // visible, drawn, at_max, in_range, promoted, dropped, sel lo, sel hi
 shared uint requested_lo, requested_hi;
 
@@ -88,34 +89,28 @@ void main() {
     lods[i].corners = corner_count;
   }
 
-  // Per-type exclusive prefix within the workgroup (Hillis-Steele over (corners, drawn,
-  // chunks)), skipping types no instance of the workgroup has.
-  const uvec3 mine =
-      uvec3(corner_count, corner_count > 0u ? 1u : 0u, (corner_count + kChunk - 1u) / kChunk);
-  uvec3 exclusive = uvec3(0u);
-  for (uint t = 0u; t < params.type_count; ++t) {
-    if (lid == 0u) type_present = 0u;
-    barrier();
-    if (type == t) type_present = 1u;
-    barrier();
-    const uint base = gl_WorkGroupID.x * params.type_count + t;
-    if (type_present == 0u) {
-      if (lid == 0u) group_sums[base] = uvec4(0u);
-      continue;
+  // Per-type exclusive prefix of (corners, drawn, chunks) within the workgroup, in instance
+  // order: one thread walks the 256 instances with a running sum per type. (Three barriers
+  // whatever the type count; on a CPU device such as llvmpipe, which runs a workgroup's
+  // invocations in turn, barriers cost far more than 256 additions.)
+  lane_values[lid] = uvec3(corner_count, corner_count > 0u ? 1u : 0u,
+                           (corner_count + kChunk - 1u) / kChunk);
+  lane_types[lid] = type;
+  for (uint t = lid; t < params.type_count; t += 256u) type_running[t] = uvec3(0u);
+  barrier();
+  if (lid == 0u) {
+    for (uint k = 0u; k < 256u; ++k) {
+      const uint t = lane_types[k];
+      if (t >= params.type_count) continue;
+      const uvec3 v = lane_values[k];
+      lane_values[k] = type_running[t];
+      type_running[t] = sum3(type_running[t], v);
     }
-    const uvec3 v = type == t ? mine : uvec3(0u);
-    scan[lid] = v;
-    barrier();
-    for (uint offset = 1u; offset < 256u; offset <<= 1) {
-      const uvec3 other = lid >= offset ? scan[lid - offset] : uvec3(0u);
-      barrier();
-      scan[lid] = sum3(scan[lid], other);
-      barrier();
-    }
-    if (type == t) exclusive = scan[lid] - v;
-    if (lid == 255u) group_sums[base] = uvec4(scan[255], 0u);
-    barrier();
   }
+  barrier();
+  const uvec3 exclusive = lane_values[lid];
+  for (uint t = lid; t < params.type_count; t += 256u)
+    group_sums[gl_WorkGroupID.x * params.type_count + t] = uvec4(type_running[t], 0u);
   if (i < params.instance_count) {
     lods[i].local_corner = exclusive.x;
     lods[i].local_draw = exclusive.y;

@@ -1,6 +1,7 @@
 #version 450
-// Pass 1: cull + LoD weight per instance, and each workgroup's weight sum (a fixed binary
-// tree, the order lod_weight_sum replays on the CPU).
+// Pass 1: cull + LoD weight per instance, and each workgroup's weight sum: 16 runs of 16
+// weights added left to right, then the 16 run sums (the order lod_weight_sum replays on the
+// CPU; two barriers instead of a tree's eight — barriers are what a CPU device pays for).
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 #include "lod_math.glsl"
@@ -8,6 +9,7 @@
 layout(local_size_x = 256) in;
 
 shared double lanes[256];
+shared double runs[16];
 
 // CullJob's test, operation by operation (sphere_visible in cull_job.cpp).
 bool sphere_visible(vec3 c, float radius) {
@@ -45,12 +47,15 @@ void main() {
   }
   lanes[lid] = w;
   barrier();
-  for (uint stride = 128u; stride > 0u; stride >>= 1) {
-    if (lid < stride) {
-      precise double s = lanes[lid] + lanes[lid + stride];
-      lanes[lid] = s;
-    }
-    barrier();
+  if (lid < 16u) {
+    precise double run = 0.0lf;
+    for (uint k = 16u * lid; k < 16u * lid + 16u; ++k) run = run + lanes[k];
+    runs[lid] = run;
   }
-  if (lid == 0u) partials[gl_WorkGroupID.x] = lanes[0];
+  barrier();
+  if (lid == 0u) {
+    precise double block = 0.0lf;
+    for (uint j = 0u; j < 16u; ++j) block = block + runs[j];
+    partials[gl_WorkGroupID.x] = block;
+  }
 }

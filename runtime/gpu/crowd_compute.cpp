@@ -14,6 +14,7 @@ namespace {
 constexpr uint32_t kGroupSize = 256;    // shaders/crowd_compute.glsl: kGroupSize
 constexpr uint32_t kMaxGroups = 65535;  // maxComputeWorkGroupCount[0] guaranteed minimum
 constexpr uint32_t kStatsBytes = 72;    // Stats in crowd_compute.glsl
+constexpr uint32_t kMaxTypes = 1024;    // crowd_compute.glsl: kMaxTypes (lod_assign shared memory)
 
 // C++ mirrors of shaders/crowd_compute.glsl (std430).
 struct Params {
@@ -77,6 +78,8 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   c->type_count_ = static_cast<uint32_t>(scene.types.size());
   c->max_instances_ =
       options.max_instances ? options.max_instances : static_cast<uint32_t>(scene.instances.size());
+  if (c->type_count_ > kMaxTypes)
+    return invalid("at most " + std::to_string(kMaxTypes) + " character types");
   if (groups_for(c->max_instances_) > kMaxGroups)
     return invalid("at most " + std::to_string(kMaxGroups * kGroupSize) + " instances");
 

@@ -110,33 +110,21 @@ double lod_weight_root(double area, double distance, double alpha, double type_l
   return std::isfinite(root) ? root : 0.0;
 }
 
-namespace {
-
-// The GPU's shared-memory tree over kLodReductionBlock values (lane k += lane k + s).
-double tree_sum(double* lanes) {
-  for (uint32_t stride = kLodReductionBlock / 2; stride > 0; stride /= 2)
-    for (uint32_t k = 0; k < stride; ++k) lanes[k] = lanes[k] + lanes[k + stride];
-  return lanes[0];
-}
-
-}  // namespace
-
 double lod_weight_sum(Span<const double> weights) {
+  constexpr size_t kRun = 16;
   const size_t n = weights.size();
-  const size_t blocks = (n + kLodReductionBlock - 1) / kLodReductionBlock;
-  double lanes[kLodReductionBlock];
-  double accumulated[kLodReductionBlock];
-  for (uint32_t l = 0; l < kLodReductionBlock; ++l) accumulated[l] = 0.0;
-  for (size_t b = 0; b < blocks; ++b) {
-    for (uint32_t k = 0; k < kLodReductionBlock; ++k) {
-      const size_t i = b * kLodReductionBlock + k;
-      lanes[k] = i < n ? weights[i] : 0.0;
+  double total = 0.0;
+  for (size_t block = 0; block < n; block += kLodReductionBlock) {
+    double block_sum = 0.0;
+    for (size_t run = block; run < block + kLodReductionBlock && run < n; run += kRun) {
+      double run_sum = 0.0;
+      // note: the GPU adds zeros past the end; x + 0.0 == x, so stopping at n is the same.
+      for (size_t i = run; i < run + kRun && i < n; ++i) run_sum = run_sum + weights[i];
+      block_sum = block_sum + run_sum;
     }
-    const double block_sum = tree_sum(lanes);
-    double& lane = accumulated[b % kLodReductionBlock];
-    lane = lane + block_sum;
+    total = total + block_sum;
   }
-  return tree_sum(accumulated);
+  return total;
 }
 
 bool LodSelectJob::Validate() const {

@@ -145,10 +145,11 @@ double lod_type_log_weight(double alpha, uint32_t triangles);
 // triangles > 0.
 double lod_weight_root(double area, double distance, double alpha, double type_log_weight);
 
-// Σ of the weights in the GPU's order: blocks of kLodReductionBlock consecutive weights
-// (zero-padded) each summed as a binary tree (element k += element k + s for s = 128, 64, ...,
-// 1), then the block sums b_j accumulated by kLodReductionBlock lanes (lane l adds b_l,
-// b_(l+256), ... in order, from 0.0) and the lanes summed as the same tree.
+// Σ of the weights in the GPU's order: blocks of kLodReductionBlock = 256 consecutive weights
+// (one workgroup each), a block summed as 16 runs of 16 consecutive weights (each run added
+// left to right from 0.0, then the 16 run sums left to right from 0.0), and the block sums
+// added left to right from 0.0. (Short sequential runs: on CPU devices such as lavapipe a
+// workgroup barrier costs far more than a few dependent additions.)
 constexpr uint32_t kLodReductionBlock = 256;
 double lod_weight_sum(Span<const double> weights);
 
