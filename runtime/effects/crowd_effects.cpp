@@ -48,14 +48,16 @@ std::string fsm_clip_name(size_t state, size_t variant) {
 
 struct CrowdEffects::Impl {
   SceneEffects decl;
-  uint32_t type = 0;
+  std::vector<uint32_t> types;      // driven character types (SceneEffects::types)
+  std::vector<uint32_t> driven_of;  // per scene type: index into `types`, or kNotDriven
   uint32_t instance_count = 0;
   EffectCounters counters;
   float last_time = 0.0f;
   bool started = false;
 
-  // Per declared state and variant: the Scene::clips index and whether it holds.
-  std::vector<std::vector<uint32_t>> state_scene_clip;
+  // Per driven type, declared state and variant: the Scene::clips index; per state and
+  // variant: whether it holds.
+  std::vector<std::vector<std::vector<uint32_t>>> state_scene_clip;
   std::vector<std::vector<uint8_t>> state_hold;
 
   // Behaviour (only with "spectators").
@@ -71,19 +73,19 @@ struct CrowdEffects::Impl {
   std::vector<float> out_clip_time;
   std::vector<uint32_t> shown_clip;  // scene clip each individual shows (after a change)
 
-  // Animation sharing (only with "animation_sharing").
+  // Animation sharing (only with "animation_sharing"): one skeleton type per driven type.
   std::unique_ptr<AnimSharingManager> sharing;
-  std::vector<CharacterId> character;  // per instance; slot kNone when not driven
-  std::vector<glm::mat4> inverse_bind;
+  std::vector<CharacterHandle> character;            // per instance; id.slot kNone if not driven
+  std::vector<std::vector<glm::mat4>> inverse_bind;  // per driven type
 
   // Clip switches without sharing: per individual, the crossfade (from, to, start).
   std::vector<Crossfade> fades;
 
   Status build(const Scene& scene);
   Status build_behaviour(const Scene& scene);
-  Status build_sharing(const Scene& scene);
-  void switch_clip(uint32_t individual, uint32_t state, uint32_t variant, double clip_start,
-                   double time);
+  Status build_sharing(const Scene& scene, uint32_t driven);
+  void switch_clip(uint32_t individual, uint32_t driven, uint32_t state, uint32_t variant,
+                   double clip_start, double time);
 };
 
 CrowdEffects::CrowdEffects(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -103,24 +105,30 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
   instance_count = static_cast<uint32_t>(scene.instances.size());
   counters.placement = decl.placement;
   if (!decl.animation_sharing && !decl.spectators) return {};  // nothing on the CPU
-  if (decl.type >= scene.types.size())
-    return {StatusCode::kInvalidArgument,
-            "effects.type: no character type " + std::to_string(decl.type)};
+  types = decl.types.empty() ? std::vector<uint32_t>{decl.type} : decl.types;
+  driven_of.assign(scene.types.size(), kNotDriven);
+  for (size_t d = 0; d < types.size(); ++d) {
+    if (types[d] >= scene.types.size() || driven_of[types[d]] != kNotDriven)
+      return {StatusCode::kInvalidArgument,
+              "effects.types: no character type " + std::to_string(types[d]) + " or a repeat"};
+    driven_of[types[d]] = static_cast<uint32_t>(d);
+  }
   if (!scene.instances.consistent())
     return {StatusCode::kInvalidArgument, "effects: the instance arrays are inconsistent"};
-  type = decl.type;
-  const runtime::CharacterType& ct = scene.types[type];
-  state_scene_clip.resize(decl.states.size());
+  state_scene_clip.assign(types.size(), std::vector<std::vector<uint32_t>>(decl.states.size()));
   state_hold.resize(decl.states.size());
-  for (size_t s = 0; s < decl.states.size(); ++s) {
-    for (size_t k = 0; k < decl.states[s].clips.size(); ++k) {
-      const runtime::EffectClip& c = decl.states[s].clips[k];
-      const int32_t clip = scene.find_clip(type, c.clip);
-      if (clip < 0)
-        return invalid("effects.states[" + std::to_string(s) + "].clips[" + std::to_string(k) +
-                       "]: character type '" + ct.name + "' has no clip \"" + c.clip + "\"");
-      state_scene_clip[s].push_back(static_cast<uint32_t>(clip));
-      state_hold[s].push_back(c.hold ? 1 : 0);
+  for (size_t d = 0; d < types.size(); ++d) {
+    const runtime::CharacterType& ct = scene.types[types[d]];
+    for (size_t s = 0; s < decl.states.size(); ++s) {
+      for (size_t k = 0; k < decl.states[s].clips.size(); ++k) {
+        const runtime::EffectClip& c = decl.states[s].clips[k];
+        const int32_t clip = scene.find_clip(types[d], c.clip);
+        if (clip < 0)
+          return invalid("effects.states[" + std::to_string(s) + "].clips[" + std::to_string(k) +
+                         "]: character type '" + ct.name + "' has no clip \"" + c.clip + "\"");
+        state_scene_clip[d][s].push_back(static_cast<uint32_t>(clip));
+        if (d == 0) state_hold[s].push_back(c.hold ? 1 : 0);
+      }
     }
   }
   instance_individual.assign(instance_count, kNotDriven);
@@ -131,8 +139,14 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
     idle_walk = idle_walk || t.idle_weight > 0.0f;
   if (decl.spectators && (!decl.events.empty() || idle_walk))
     if (Status s = build_behaviour(scene); !s) return s;
-  if (decl.animation_sharing)
-    if (Status s = build_sharing(scene); !s) return s;
+  if (decl.animation_sharing) {
+    sharing = std::make_unique<AnimSharingManager>();
+    character.assign(instance_count, CharacterHandle{});
+    for (uint32_t d = 0; d < types.size(); ++d)
+      if (Status s = build_sharing(scene, d); !s) return s;
+    counters.animation_sharing = true;
+    counters.constructed_systems += 1;
+  }
   if (!decl.animation_sharing && fsm) {
     fades.resize(individual_instance.size());
     counters.crossfade = decl.crossfade;
@@ -153,7 +167,8 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
     sd.interruptible = st.interruptible;
     sd.contagious = st.contagious;
     for (size_t k = 0; k < st.clips.size(); ++k) {
-      const PackClip& pc = *scene.clips[state_scene_clip[s][k]].clip;
+      // note: the FSM times clips by the first driven type's clips.
+      const PackClip& pc = *scene.clips[state_scene_clip[0][s][k]].clip;
       sd.clips.push_back({fsm_clip_name(s, k), pc.duration, st.clips[k].weight});
     }
     def.states.push_back(std::move(sd));
@@ -190,7 +205,7 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
                        std::to_string(g) + " does not exist");
       const runtime::InstanceRange range = scene.generated[g];
       for (uint32_t i = range.first; i < range.first + range.count && i < instance_count; ++i) {
-        if (in.type[i] != type || instance_individual[i] != kNotDriven) continue;
+        if (driven_of[in.type[i]] == kNotDriven || instance_individual[i] != kNotDriven) continue;
         crowd::IndividualDef ind;
         ind.position = {in.position[3 * i], in.position[3 * i + 1], in.position[3 * i + 2]};
         const float qy = in.rotation[4 * i + 1], qw = in.rotation[4 * i + 3];
@@ -239,7 +254,8 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   return {};
 }
 
-Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
+Status CrowdEffects::Impl::build_sharing(const Scene& scene, uint32_t driven) {
+  const uint32_t type = types[driven];
   const runtime::Pack& pack = scene.types[type].pack;
   if (!pack.has(runtime::kPackAnimation))
     return {StatusCode::kNotLoaded, "effects.animation_sharing: character type '" +
@@ -262,7 +278,8 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
     // shared clock: such a state's instances are on demand.
     as.on_demand = true;
     for (size_t k = 0; k < st.clips.size(); ++k) {
-      const std::pair<uint32_t, bool> key{state_scene_clip[s][k] - first_clip, st.clips[k].hold};
+      const std::pair<uint32_t, bool> key{state_scene_clip[driven][s][k] - first_clip,
+                                          st.clips[k].hold};
       auto it = clip_index.find(key);
       if (it == clip_index.end()) {
         KeyframeClip clip;
@@ -272,8 +289,8 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
         setup.clips.push_back(std::move(clip));
       }
       as.clips.push_back(it->second);
-      as.on_demand =
-          as.on_demand && !st.clips[k].hold && !scene.clips[state_scene_clip[s][k]].clip->looping;
+      as.on_demand = as.on_demand && !st.clips[k].hold &&
+                     !scene.clips[state_scene_clip[driven][s][k]].clip->looping;
     }
     if (!st.mask.empty()) {
       // A listed joint drives itself and every joint below it (parents come first).
@@ -300,14 +317,15 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
   setup.transition_join_window = decl.transition_join_window;
   setup.process_policy = ProcessPolicy::kChangedOnly;
   setup.seed = decl.params.seed;
-  sharing = std::make_unique<AnimSharingManager>();
-  if (sharing->add_skeleton_type(std::move(setup), &why) == kNone)
-    return invalid("effects.animation_sharing: " + why);
-  AnimSharingInstance& inst = sharing->sharing_instance(0);
+  const uint32_t skeleton_type = sharing->add_skeleton_type(std::move(setup), &why);
+  if (skeleton_type == kNone)
+    return invalid("effects.animation_sharing: character type '" + scene.types[type].name +
+                   "': " + why);
+  AnimSharingInstance& inst = sharing->sharing_instance(skeleton_type);
+  const std::vector<std::vector<uint32_t>>& clips_of_state = state_scene_clip[driven];
 
   // Register the characters: FSM individuals in their FSM state, other instances of the type
   // in the first non-additive state playing their scene clip.
-  character.assign(instance_count, CharacterId{});
   const runtime::InstanceArrays& in = scene.instances;
   for (uint32_t i = 0; i < instance_count; ++i) {
     if (in.type[i] != type) continue;
@@ -317,28 +335,26 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene) {
     } else {
       for (size_t s = 0; s < decl.states.size() && state == kNotDriven; ++s)
         if (!decl.states[s].additive &&
-            std::find(state_scene_clip[s].begin(), state_scene_clip[s].end(), in.clip[i]) !=
-                state_scene_clip[s].end())
+            std::find(clips_of_state[s].begin(), clips_of_state[s].end(), in.clip[i]) !=
+                clips_of_state[s].end())
           state = static_cast<uint32_t>(s);
     }
     if (state == kNotDriven || decl.states[state].additive) continue;
-    character[i] = inst.register_character(i, static_cast<StateId>(state));
-    inst.set_parameter(character[i], 0, static_cast<float>(state));
+    character[i] = {skeleton_type, inst.register_character(i, static_cast<StateId>(state))};
+    inst.set_parameter(character[i].id, 0, static_cast<float>(state));
     ++counters.driven_instances;
   }
-  inverse_bind = inverse_bind_matrices(pack);
-  counters.animation_sharing = true;
-  counters.constructed_systems += 1;
-  counters.state_instances = static_cast<uint32_t>(inst.state_instance_count());
-  counters.transition_instances = static_cast<uint32_t>(inst.transition_slot_count());
+  inverse_bind.push_back(inverse_bind_matrices(pack));
+  counters.state_instances += static_cast<uint32_t>(inst.state_instance_count());
+  counters.transition_instances += static_cast<uint32_t>(inst.transition_slot_count());
   return {};
 }
 
 // The GPU path of a clip change: fade (or switch, without "crossfade") from what the
 // individual shows to the state's variant, started at the FSM's clip start.
-void CrowdEffects::Impl::switch_clip(uint32_t individual, uint32_t state, uint32_t variant,
-                                     double clip_start, double time) {
-  const uint32_t clip = state_scene_clip[state][variant];
+void CrowdEffects::Impl::switch_clip(uint32_t individual, uint32_t driven, uint32_t state,
+                                     uint32_t variant, double clip_start, double time) {
+  const uint32_t clip = state_scene_clip[driven][state][variant];
   const bool hold = state_hold[state][variant] != 0;
   const float offset = hold ? kHoldOffset : static_cast<float>(-clip_start);
   Crossfade& f = fades[individual];
@@ -389,20 +405,24 @@ Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFram
     job.out_clip_time = m.out_clip_time.data();
     job.out_count = m.out_state.size();
     if (!job.Run()) return {StatusCode::kInvalidArgument, "effects: the spectator update failed"};
-    AnimSharingInstance* inst = poses ? &m.sharing->sharing_instance(0) : nullptr;
+    const runtime::InstanceArrays& in = scene.instances;
     for (size_t k = 0; k < m.out_state.size(); ++k) {
       const uint32_t decl_state = m.decl_of_fsm_state[m.out_state[k]];
       const uint32_t variant = m.fsm_clip_variant[m.out_clip[k]];
       const bool state_changed = m.out_state[k] != m.shown_state[k];
       if (state_changed && m.shown_state[k] != crowd::BehaviourFsm::kNone) ++c.fsm_state_changes;
       m.shown_state[k] = m.out_state[k];
-      if (inst) {
-        if (state_changed)
-          inst->set_parameter(m.character[m.individual_instance[k]], 0,
-                              static_cast<float>(decl_state));
-      } else if (state_changed || m.state_scene_clip[decl_state][variant] != m.shown_clip[k]) {
-        m.switch_clip(static_cast<uint32_t>(k), decl_state, variant, m.fsm_state.clip_start_s[k],
-                      time);
+      const uint32_t i = m.individual_instance[k];
+      const uint32_t driven = m.driven_of[in.type[i]];
+      if (poses) {
+        const CharacterHandle h = m.character[i];
+        if (state_changed && h.id.slot != kNone)
+          m.sharing->sharing_instance(h.skeleton_type)
+              .set_parameter(h.id, 0, static_cast<float>(decl_state));
+      } else if (state_changed ||
+                 m.state_scene_clip[driven][decl_state][variant] != m.shown_clip[k]) {
+        m.switch_clip(static_cast<uint32_t>(k), driven, decl_state, variant,
+                      m.fsm_state.clip_start_s[k], time);
       }
     }
     c.frame_ms_behaviour = ms_since(start);
@@ -412,29 +432,36 @@ Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFram
   if (poses) {
     Clock::time_point start = Clock::now();
     m.sharing->update(dt);
-    const AnimSharingInstance& inst = m.sharing->sharing_instance(0);
-    const SharingFrameStats& stats = inst.frame_stats();
-    c.frame_poses_evaluated = stats.pose_evaluations;
-    c.poses_evaluated += stats.pose_evaluations;
-    c.transitions_started += stats.transitions_started + stats.transitions_joined;
-    c.frame_alive_transitions = inst.alive_transition_count();
+    for (uint32_t d = 0; d < m.types.size(); ++d) {
+      const AnimSharingInstance& inst = m.sharing->sharing_instance(d);
+      const SharingFrameStats& stats = inst.frame_stats();
+      c.frame_poses_evaluated += stats.pose_evaluations;
+      c.poses_evaluated += stats.pose_evaluations;
+      c.transitions_started += stats.transitions_started + stats.transitions_joined;
+      c.frame_alive_transitions += inst.alive_transition_count();
+    }
     c.frame_ms_sharing = ms_since(start);
 
     start = Clock::now();
-    const size_t joints = inst.joint_count();
     frame.pose_buffers.resize(scene.types.size());
     for (size_t t = 0; t < frame.pose_buffers.size(); ++t)
-      if (t != m.type) frame.pose_buffers[t].clear();
-    std::vector<float>& buffer = frame.pose_buffers[m.type];
-    buffer.resize(inst.pose_slot_count() * joints * 12);
-    for (uint32_t slot = 0; slot < inst.pose_slot_count(); ++slot)
-      skinning_matrices(inst.model_pose(slot), m.inverse_bind,
-                        buffer.data() + static_cast<size_t>(slot) * joints * 12);
+      if (m.driven_of[t] == kNotDriven) frame.pose_buffers[t].clear();
+    for (uint32_t d = 0; d < m.types.size(); ++d) {
+      const AnimSharingInstance& inst = m.sharing->sharing_instance(d);
+      const size_t joints = inst.joint_count();
+      std::vector<float>& buffer = frame.pose_buffers[m.types[d]];
+      buffer.resize(inst.pose_slot_count() * joints * 12);
+      for (uint32_t slot = 0; slot < inst.pose_slot_count(); ++slot)
+        skinning_matrices(inst.model_pose(slot), m.inverse_bind[d],
+                          buffer.data() + static_cast<size_t>(slot) * joints * 12);
+      c.frame_pose_bytes += buffer.size() * sizeof(float);
+    }
     frame.pose.assign(n, runtime::kNoPose);
-    const Span<const uint32_t> slots = inst.pose_slots();
-    for (size_t i = 0; i < n; ++i)
-      if (m.character[i].slot != kNone) frame.pose[i] = slots[m.character[i].slot];
-    c.frame_pose_bytes = buffer.size() * sizeof(float);
+    for (size_t i = 0; i < n; ++i) {
+      const CharacterHandle h = m.character[i];
+      if (h.id.slot != kNone)
+        frame.pose[i] = m.sharing->sharing_instance(h.skeleton_type).pose_slots()[h.id.slot];
+    }
     c.pose_bytes += c.frame_pose_bytes;
     c.frame_ms_pose_buffer = ms_since(start);
   }

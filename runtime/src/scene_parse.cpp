@@ -255,8 +255,8 @@ struct RawScene {
   std::vector<RawInstance> instances;
   std::vector<RawGenerator> generators;
   SceneEffects effects;
-  std::string effects_type;  // "" = the only type
-  bool has_effects_type = false;
+  std::vector<std::string> effects_types;  // empty = the only type
+  std::string effects_types_path;
 };
 
 void check_view(const Camera& camera, const std::string& path) {
@@ -965,13 +965,23 @@ void parse_spectators(const json& v, size_t generator_count, SceneEffects& e) {
 void parse_effects(const json& v, RawScene& s) {
   const std::string path = "effects";
   check_object(v, path,
-               {"type", "lod", "texture_partition", "color_variety", "states", "animation_sharing",
-                "spectators", "crossfade"});
+               {"type", "types", "lod", "texture_partition", "color_variety", "states",
+                "animation_sharing", "spectators", "crossfade"});
   SceneEffects& e = s.effects;
   e.declared = true;
-  if (const json* p = find(v, "type")) {
-    s.effects_type = string(*p, path + ".type");
-    s.has_effects_type = true;
+  const json* type = find(v, "type");
+  const json* types = find(v, "types");
+  if (type && types) fail(path + ".types", "give either type or types, not both");
+  if (type) {
+    s.effects_types.push_back(string(*type, path + ".type"));
+    s.effects_types_path = path + ".type";
+  }
+  if (types) {
+    const json& arr = array(*types, path + ".types");
+    if (arr.empty()) fail(path + ".types", "needs at least one character type");
+    for (size_t i = 0; i < arr.size(); ++i)
+      s.effects_types.push_back(string(arr[i], item_path(path + ".types", i)));
+    s.effects_types_path = path + ".types";
   }
   if (const json* p = find(v, "lod")) e.lod = boolean(*p, path + ".lod");
   if (const json* p = find(v, "texture_partition"))
@@ -1172,48 +1182,63 @@ void resolve_effects(const RawScene& raw, Scene& scene) {
     scene.effects.placement = e.placement;
     return;
   }
-  if (!raw.has_effects_type) {
+  std::vector<uint8_t> driven(scene.types.size(), 0);
+  if (raw.effects_types.empty()) {
     if (scene.types.size() != 1 && !e.states.empty())
       fail("effects.type", "missing (required when the scene has several character types)");
-    e.type = 0;
+    e.types = {0};
   } else {
-    const int32_t t = scene.find_type(raw.effects_type);
-    if (t < 0) fail("effects.type", "unknown character type \"" + raw.effects_type + "\"");
-    e.type = static_cast<uint32_t>(t);
-  }
-  const CharacterType& type = scene.types[e.type];
-  for (size_t i = 0; i < e.states.size(); ++i) {
-    const std::string sp = item_path("effects.states", i);
-    for (size_t k = 0; k < e.states[i].clips.size(); ++k) {
-      const EffectClip& c = e.states[i].clips[k];
-      const std::string cp = item_path(sp + ".clips", k);
-      const int32_t index = type.pack.find_clip(c.clip);
-      if (index < 0)
-        fail(cp, "character type '" + type.name + "' has no clip \"" + c.clip +
-                     "\" (its clips: " + clip_list(type.pack) + ")");
-      const PackClip& clip = type.pack.contents().clips[static_cast<size_t>(index)];
-      if (c.hold && clip.looping)
-        fail(cp + ".hold", "clip \"" + c.clip +
-                               "\" loops; only a non-looping clip can hold "
-                               "its last frame");
-      if (!(clip.duration > 0.0f) && e.spectators)
-        fail(cp, "clip \"" + c.clip + "\" lasts " + show(clip.duration) +
-                     " s; a behaviour state needs clips longer than 0 s");
+    for (size_t k = 0; k < raw.effects_types.size(); ++k) {
+      const std::string tp =
+          raw.effects_types.size() > 1 || raw.effects_types_path == "effects.types"
+              ? item_path(raw.effects_types_path, k)
+              : raw.effects_types_path;
+      const int32_t t = scene.find_type(raw.effects_types[k]);
+      if (t < 0) fail(tp, "unknown character type \"" + raw.effects_types[k] + "\"");
+      if (driven[static_cast<size_t>(t)])
+        fail(tp, "character type \"" + raw.effects_types[k] + "\" is listed twice");
+      driven[static_cast<size_t>(t)] = 1;
+      e.types.push_back(static_cast<uint32_t>(t));
     }
-    for (size_t k = 0; k < e.states[i].mask.size(); ++k)
-      if (type.pack.find_joint(e.states[i].mask[k]) < 0)
-        fail(item_path(sp + ".mask", k),
-             "character type '" + type.name + "' has no joint \"" + e.states[i].mask[k] + "\"");
+  }
+  e.type = e.types.front();
+  std::fill(driven.begin(), driven.end(), 0);
+  for (uint32_t t : e.types) driven[t] = 1;
+  for (uint32_t t : e.types) {
+    const CharacterType& type = scene.types[t];
+    for (size_t i = 0; i < e.states.size(); ++i) {
+      const std::string sp = item_path("effects.states", i);
+      for (size_t k = 0; k < e.states[i].clips.size(); ++k) {
+        const EffectClip& c = e.states[i].clips[k];
+        const std::string cp = item_path(sp + ".clips", k);
+        const int32_t index = type.pack.find_clip(c.clip);
+        if (index < 0)
+          fail(cp, "character type '" + type.name + "' has no clip \"" + c.clip +
+                       "\" (its clips: " + clip_list(type.pack) + ")");
+        const PackClip& clip = type.pack.contents().clips[static_cast<size_t>(index)];
+        if (c.hold && clip.looping)
+          fail(cp + ".hold",
+               "clip \"" + c.clip + "\" loops; only a non-looping clip can hold its last frame");
+        if (!(clip.duration > 0.0f) && e.spectators)
+          fail(cp, "clip \"" + c.clip + "\" lasts " + show(clip.duration) +
+                       " s; a behaviour state needs clips longer than 0 s");
+      }
+      for (size_t k = 0; k < e.states[i].mask.size(); ++k)
+        if (type.pack.find_joint(e.states[i].mask[k]) < 0)
+          fail(item_path(sp + ".mask", k),
+               "character type '" + type.name + "' has no joint \"" + e.states[i].mask[k] + "\"");
+    }
   }
   for (size_t t = 0; t < e.teams.size(); ++t)
     for (size_t k = 0; k < e.teams[t].generators.size(); ++k) {
       const InstanceRange& range = scene.generated[e.teams[t].generators[k]];
       for (uint32_t i = range.first; i < range.first + range.count; ++i)
-        if (scene.instances.type[i] != e.type)
+        if (!driven[scene.instances.type[i]])
           fail(item_path(item_path("effects.spectators.teams", t) + ".generators", k),
                "generator " + std::to_string(e.teams[t].generators[k]) +
-                   " makes instances of another character type than effects.type ('" + type.name +
-                   "')");
+                   " makes instances of character type '" +
+                   scene.types[scene.instances.type[i]].name +
+                   "', which the effects do not drive (effects.type / effects.types)");
     }
   // Renderer-side effects turned off: applied to the data here, so every renderer (and the
   // CPU reference path) shows the same thing without an effect it was told not to use.

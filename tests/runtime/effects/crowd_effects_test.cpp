@@ -167,6 +167,56 @@ TEST_F(CrowdEffectsTest, DeclaredEffectsMoveTheCounters) {
   EXPECT_NE(lines[0].find("2 systems constructed"), std::string::npos) << lines[0];
 }
 
+TEST_F(CrowdEffectsTest, SeveralSkeletonTypesShareStatesEachInTheirOwnPoseBuffer) {
+  const std::string json = R"({
+  "camera": {"position": [0, 6, 20], "target": [0, 1, 0]},
+  "animation": {"root_motion": false},
+  "character_types": [{"name": "spectator", "pack": "packs/spectator.crowdpack"},
+                      {"name": "other", "pack": "packs/spectator3.crowdpack"}],
+  "generators": [
+    {"kind": "seat_grid", "type": "spectator", "origin": [-6, 0, 0], "rows": 4, "columns": 6,
+     "spacing": [0.6, 0.9], "clip": "idle"},
+    {"kind": "seat_grid", "type": "other", "origin": [3, 0, 0], "rows": 4, "columns": 6,
+     "spacing": [0.6, 0.9], "clip": "idle"}],
+  "effects": {"types": ["spectator", "other"], )" +
+                           std::string(test::kStates) +
+                           R"(, "animation_sharing": {"instances_per_state": 2,
+      "transitions": {"max": 3}}, )" +
+                           test::spectators_block() + "}}";
+  const Status s = files_.load(json, scene_);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(scene_.effects.types, (std::vector<uint32_t>{0, 1}));
+  ASSERT_TRUE(CrowdEffects::create(scene_, effects_).ok());
+  EXPECT_EQ(counters().state_instances, 2u * 3u * 2u);
+  EXPECT_EQ(counters().transition_instances, 2u * 3u);
+  EXPECT_EQ(counters().fsm_individuals, n());
+  run(0.0f, 3.0f);
+  ASSERT_EQ(frame_.pose_buffers.size(), 2u);
+  for (uint32_t t = 0; t < 2; ++t) {
+    const size_t joints = scene_.types[t].pack.contents().joints.size();
+    EXPECT_EQ(frame_.pose_buffers[t].size(), (3u * 2u + 3u) * joints * 12) << "type " << t;
+  }
+  for (uint32_t p : frame_.pose) EXPECT_NE(p, runtime::kNoPose);
+  uint32_t a = 0;
+  for (uint32_t i = 0; i < scene_.generated[0].count; ++i) a += effects_->is_reacting(i);
+  EXPECT_GT(a, 0u);
+  // The two skeletons differ (seed 3 is another body): the same state's poses differ too.
+  EXPECT_NE(frame_.pose_buffers[0][3], frame_.pose_buffers[1][3]);
+
+  test::EffectScenes other;
+  std::string error;
+  ASSERT_TRUE(other.add_spectator(&error)) << error;
+  runtime::Scene bad;
+  std::string wrong = json;
+  wrong.replace(wrong.find(R"("types": ["spectator", "other"])"), 31, R"("type": "spectator")");
+  const Status e = other.load(wrong, bad);
+  EXPECT_NE(e.message().find("effects.spectators.teams[1].generators[0]: generator 1 makes "
+                             "instances of character type 'other', which the effects do not "
+                             "drive"),
+            std::string::npos)
+      << e.message();
+}
+
 TEST_F(CrowdEffectsTest, AdditiveLayersFollowTheFsm) {
   // The goal raises the right arm ("arm-up" held at its end) as a masked layer over "stand".
   load(R"({"states": [

@@ -1,6 +1,7 @@
 // Scenes with an "effects" declaration for the effects tests: a folder holding the baked
-// spectator pack (make_spectator + `crowdbake bake`, runtime_test_support.h) and the
-// hand-built small pack, and a spectator FSM built from the pack's own clips.
+// spectator packs (packs/spectator.crowdpack and packs/spectator3.crowdpack) (make_spectator +
+// `crowdbake bake`, runtime_test_support.h) and the hand-built small pack, and a spectator FSM
+// built from the pack's own clips.
 #pragma once
 
 #include <filesystem>
@@ -27,6 +28,9 @@ class EffectScenes {
       return false;
     }
     std::filesystem::copy_file(packs.spectator(), dir_ / "packs/spectator.crowdpack",
+                               std::filesystem::copy_options::overwrite_existing);
+    // A second skeleton type: another spectator (seed 3, low detail, float32 animation).
+    std::filesystem::copy_file(packs.spectator_f32(), dir_ / "packs/spectator3.crowdpack",
                                std::filesystem::copy_options::overwrite_existing);
     return true;
   }

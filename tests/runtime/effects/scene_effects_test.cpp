@@ -221,7 +221,7 @@ TEST(SceneEffectsErrors, DeclarationsThatDoNotFitTogether) {
                                             R"([{"name": "A", "generators": [5]}])")),
                {"effects.spectators.teams[0].generators[0]: generator 5 does not exist"});
   expect_error(small_scene(R"({"spexctators": {}})"),
-               {"effects.spexctators: unknown key (expected one of: type, lod,"});
+               {"effects.spexctators: unknown key (expected one of: type, types, lod,"});
   std::string both = small_spectators(kGoodTransitions, kGoal);
   both.insert(1, R"("animation_sharing": true, "crossfade": true, )");
   expect_error(small_scene(both), {"effects.crossfade: animation_sharing already blends"});

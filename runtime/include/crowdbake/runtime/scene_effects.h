@@ -90,8 +90,11 @@ struct SceneEffects {
   bool texture_partition = true;
   bool color_variety = true;
 
-  // Which character type the CPU effects drive (index into Scene::types).
+  // The character types the CPU effects drive (indices into Scene::types; "type" or
+  // "types"), each with its own shared states and pose buffer; type = types[0]. Every state
+  // clip must exist in each of them.
   uint32_t type = 0;
+  std::vector<uint32_t> types;
   std::vector<EffectState> states;  // needed by animation_sharing and spectators
 
   // Shared animation states (CPU poses into the per-type pose buffer).
