@@ -83,12 +83,15 @@ layout(std430, set = 0, binding = 6) buffer Lods { InstanceLod lods[]; };
 // [group][type]: (corners, drawn, chunks) of the workgroup, then their exclusive prefix
 layout(std430, set = 0, binding = 7) buffer GroupSums { uvec4 group_sums[]; };
 layout(std430, set = 0, binding = 8) buffer TypeRanges { TypeRange ranges[]; };
-// (instance, first corner, first chunk, corners), in corner order
+// Two per drawn instance, in corner order: (instance, first corner, first chunk, corners) and
+// (tri_offset, collapse_offset, usable n', progressive) — all reconstruction needs.
 layout(std430, set = 0, binding = 9) buffer DrawList { uvec4 draw_list[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Corners { uvec2 corners[]; };
 layout(std430, set = 0, binding = 11) buffer DrawArgs { uint draw_args[]; };  // 4 per type
 layout(std430, set = 0, binding = 12) buffer DispatchArgs { uint dispatch_args[]; };
 layout(std430, set = 0, binding = 13) buffer StatsBuffer { Stats stats; };
+// Draw-list entry of each reconstruction chunk.
+layout(std430, set = 0, binding = 14) buffer ChunkTable { uint chunk_entry[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
 

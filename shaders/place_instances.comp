@@ -1,6 +1,7 @@
 #version 450
-// Pass 4b: each drawn instance's first corner (type base + workgroup prefix + local prefix)
-// and its entry in the draw list. Instances whose corners do not fit the corner buffer are
+// Pass 4b: each drawn instance's first corner (type base + workgroup prefix + local prefix),
+// its entry in the draw list and its reconstruction chunks in the chunk table (a loop of
+// corners / 64 iterations: at most a few hundred, and it spares reconstruction any search). Instances whose corners do not fit the corner buffer are
 // not drawn and counted (stats.overflow); they are the last ones in (type, instance) order.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
@@ -23,9 +24,14 @@ void main() {
       // note: chunks of fitting instances never saturate (they hold at most
       // capacity / kChunk + instances chunks).
       const uint chunk = ranges[t].chunk_base + group.z + lod.local_chunk;
-      draw_list[entry] = uvec4(i, first, chunk, lod.corners);
+      const TypeData type = types[t];
+      draw_list[2u * entry] = uvec4(i, first, chunk, lod.corners);
+      draw_list[2u * entry + 1u] =
+          uvec4(type.tri_offset, type.collapse_offset, lod.usable, type.progressive);
+      const uint chunks = (lod.corners + kChunk - 1u) / kChunk;
+      for (uint c = 0u; c < chunks; ++c) chunk_entry[chunk + c] = entry;
       atomicMax(ranges[t].drawn_end, first + lod.corners);
-      atomicMax(stats.chunks, chunk + (lod.corners + kChunk - 1u) / kChunk);
+      atomicMax(stats.chunks, chunk + chunks);
       atomicAdd(stats.fitting, 1u);
     } else {
       atomicAdd(stats.overflow, 1u);

@@ -56,7 +56,8 @@ static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compu
 constexpr const char* kShaders[7] = {"lod_weights.comp", "lod_sum.comp",         "lod_assign.comp",
                                      "scan_types.comp",  "place_instances.comp", "draw_args.comp",
                                      "reconstruct.comp"};
-constexpr uint32_t kBindings = 14;
+constexpr uint32_t kBindings = 15;
+constexpr uint32_t kChunk = 64;  // crowd_compute.glsl: kChunk
 
 uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
 
@@ -135,13 +136,16 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       {&c->lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
       {&c->group_sums_, VkDeviceSize{groups} * types * 16, storage, MemoryKind::kDeviceLocal},
       {&c->ranges_, VkDeviceSize{types} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
-      {&c->draw_list_, VkDeviceSize{n} * 16, storage, MemoryKind::kDeviceLocal},
+      {&c->draw_list_, VkDeviceSize{n} * 32, storage, MemoryKind::kDeviceLocal},
       {&c->corners_, VkDeviceSize{std::max(c->corner_capacity_, 1u)} * 8,
        storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
       {&c->draw_args_, VkDeviceSize{types} * sizeof(VkDrawIndirectCommand), indirect,
        MemoryKind::kDeviceLocal},
       {&c->dispatch_args_, 16, indirect, MemoryKind::kDeviceLocal},
       {&c->stats_, kStatsBytes, storage, MemoryKind::kDeviceLocal},
+      // note: fitting instances hold at most capacity / kChunk + one partial chunk each.
+      {&c->chunk_table_, (VkDeviceSize{c->corner_capacity_} / kChunk + n) * 4, storage,
+       MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;

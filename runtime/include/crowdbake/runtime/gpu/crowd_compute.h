@@ -161,7 +161,7 @@ class CrowdCompute {
   std::vector<uint8_t> progressive_;    // per type
   std::vector<uint32_t> vertex_counts_, triangle_counts_;
   GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
-      draw_list_, corners_, draw_args_, dispatch_args_, stats_;
+      draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_;
   std::array<ComputeKernel, 7> kernels_;
   TimestampQueries queries_;  // for run()
 };
