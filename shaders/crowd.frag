@@ -4,6 +4,7 @@
 // directional shadow map.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "instance.glsl"
 #include "crowd_frame.glsl"
@@ -77,7 +78,7 @@ float shadow_factor(vec3 world) {
 
 void main() {
   vec3 albedo;
-  if (uint(in_color.w) == kDrawGround) {
+  if (kDrawMode == kDrawGround) {
     albedo = frame.ground_color.rgb;
   } else {
     const uint region = partition_region();

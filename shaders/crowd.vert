@@ -3,6 +3,7 @@
 // partition and the colour variation need.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "instance.glsl"
 #include "crowd_frame.glsl"
@@ -17,7 +18,7 @@ layout(location = 5) flat out vec4 out_color;      // hue shift, saturation, bri
 layout(location = 6) flat out vec2 out_partition;  // the instance's neck and waist heights
 
 void main() {
-  if (draw_push.mode == kDrawGround) {
+  if (kDrawMode == kDrawGround) {
     const vec3 p = ground_corner(uint(gl_VertexIndex));
     out_world = p;
     out_normal = vec3(0.0, 1.0, 0.0);

@@ -8,8 +8,8 @@ layout(std430, set = 0, binding = 0) readonly buffer InstanceBlock { GpuInstance
 // One corner of a drawn triangle: (instance, vertex of its type), written by the compute passes.
 layout(std430, set = 0, binding = 1) readonly buffer CornerBlock { uvec2 corners[]; };
 
-// crowd_draw.cpp FrameConstants (std140).
-layout(std140, set = 0, binding = 2) uniform FrameBlock {
+// crowd_draw.cpp FrameConstants (a storage buffer for the reason given in skin.glsl).
+layout(std430, set = 0, binding = 2) readonly buffer FrameBlock {
   mat4 view_proj;        // world → clip (runtime::view_matrix, projection_matrix)
   mat4 light_view_proj;  // world → shadow-map clip (orthographic, depth 0..1)
   vec4 light_dir;        // xyz: unit vector towards the light; w: shadows on (1) or off (0)
@@ -22,15 +22,18 @@ layout(std140, set = 0, binding = 2) uniform FrameBlock {
 }
 frame;
 
-// Push constants of every crowd draw: where the type's corners start and what is drawn.
+// Push constants of every crowd draw: where the type's corners start. (Nothing pushed steers
+// a branch: lavapipe may recompile shaders whose branches depend on pushed values.)
 layout(push_constant) uniform DrawPush {
   uint corner_base;  // added to gl_VertexIndex
-  uint mode;         // 0 = crowd, 1 = ground quad
+  uint unused;
 }
 draw_push;
 
 const uint kDrawCrowd = 0u;
 const uint kDrawGround = 1u;
+// What the pipeline draws (a specialization constant: the ground is its own pipeline).
+layout(constant_id = 1) const uint kDrawMode = kDrawCrowd;
 
 // Corner i of the ground quad (two triangles, counter-clockwise seen from above).
 vec3 ground_corner(uint i) {

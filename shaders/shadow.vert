@@ -2,6 +2,7 @@
 // animated, LoD-selected mesh (never the bind pose); depth only.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "instance.glsl"
 #include "crowd_frame.glsl"

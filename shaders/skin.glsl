@@ -3,7 +3,8 @@
 // formats/animation_codec.h. Every decode mirrors the CPU codec operation by operation
 // (docs/animation-encoding.md), so the GPU draws what the joint queries report.
 //
-// The includer includes instance.glsl (GpuInstance, kNoPose) before this file. This file
+// The includer includes instance.glsl (GpuInstance, kNoPose) before this file and enables
+// GL_EXT_control_flow_attributes (loops are kept rolled to keep the shader small). This file
 // declares the per-type descriptor set (SKIN_SET, default 1): the type's constants, its
 // vertices, its animation texture as raw words and its pose buffer.
 #ifndef CROWDBAKE_SKIN_GLSL
@@ -17,8 +18,14 @@ const uint kEncodingFloat32 = 0u;
 const uint kEncodingFloat16 = 1u;
 const uint kEncodingQuantized = 2u;
 
-// Per character type (crowd_draw.cpp TypeConstants, std140).
-layout(std140, set = SKIN_SET, binding = 0) uniform TypeBlock {
+// The type's AnimationEncoding, a specialization constant: each pipeline compiles one decoder
+// (lavapipe's compile time grows fast with shader size; a shader with all three took 80 s).
+layout(constant_id = 0) const uint kSkinEncoding = kEncodingQuantized;
+
+// Per character type (crowd_draw.cpp TypeConstants). A storage buffer, not a uniform block:
+// lavapipe (Mesa 22.3) recompiles a shader each time a uniform block whose values steer
+// branches is rebound ("inline uniforms"), seconds per draw for this shader.
+layout(std430, set = SKIN_SET, binding = 0) readonly buffer TypeBlock {
   uvec4 anim_layout;     // encoding, joints, texels per joint, bytes per texel
   vec4 decode_center;    // kQuantized decode params: center (tx, ty, tz, s)
   vec4 decode_half;      // and half range
@@ -62,15 +69,14 @@ uint texel_byte(uint row, uint joint, uint k) {
   return ((row * a.y + joint) * a.z + k) * a.w;
 }
 
-// The codec's half_to_float: exact for every half.
+// The codec's half_to_float for the finite halves a checked texture holds: exact.
 float half_to_float(uint bits) {
   const uint sign = (bits & 0x8000u) << 16;
   const uint exponent = (bits >> 10) & 0x1Fu;
   const uint mantissa = bits & 0x3FFu;
-  if (exponent == 0u) return uintBitsToFloat(floatBitsToUint(float(mantissa) * 5.9604644775390625e-8) | sign);
-  if (exponent == 31u)
-    return uintBitsToFloat(sign | 0x7F800000u | (mantissa << 13) | (mantissa != 0u ? 0x00400000u : 0u));
-  return uintBitsToFloat(sign | ((exponent + 112u) << 23) | (mantissa << 13));
+  const float denormal = uintBitsToFloat(floatBitsToUint(float(mantissa) * 5.9604644775390625e-8) | sign);
+  const float normal = uintBitsToFloat(sign | ((exponent + 112u) << 23) | (mantissa << 13));
+  return exponent == 0u ? denormal : normal;
 }
 
 // The codec's snorm(): max(c / 32767, -1) of a signed 16-bit value.
@@ -113,29 +119,22 @@ Similarity decode_quantized(uint row, uint joint) {
 
 Affine similarity_to_affine(Similarity r) { return quat_to_affine(r.q, r.s, r.t); }
 
-// The codec's decode_joint.
-Affine decode_joint(uint row, uint joint) {
-  const uint encoding = type_block.anim_layout.x;
-  if (encoding == kEncodingQuantized) return similarity_to_affine(decode_quantized(row, joint));
+// The codec's decode_joint for the float encodings.
+Affine decode_float(uint row, uint joint) {
+  const uint w = texel_byte(row, joint, 0u) >> 2;
   Affine m;
-  if (encoding == kEncodingFloat32) {
-    const uint w = texel_byte(row, joint, 0u) >> 2;
+  if (kSkinEncoding == kEncodingFloat32) {
     m.r0 = uintBitsToFloat(uvec4(anim_words[w], anim_words[w + 1u], anim_words[w + 2u], anim_words[w + 3u]));
     m.r1 = uintBitsToFloat(uvec4(anim_words[w + 4u], anim_words[w + 5u], anim_words[w + 6u], anim_words[w + 7u]));
     m.r2 = uintBitsToFloat(uvec4(anim_words[w + 8u], anim_words[w + 9u], anim_words[w + 10u], anim_words[w + 11u]));
     return m;
   }
   // kFloat16: three texels of four halves, two halves per word.
-  const uint w = texel_byte(row, joint, 0u) >> 2;
-  vec4 rows[3];
-  for (uint r = 0u; r < 3u; ++r) {
-    const uint lo = anim_words[w + 2u * r], hi = anim_words[w + 2u * r + 1u];
-    rows[r] = vec4(half_to_float(lo & 0xFFFFu), half_to_float(lo >> 16), half_to_float(hi & 0xFFFFu),
-                   half_to_float(hi >> 16));
-  }
-  m.r0 = rows[0];
-  m.r1 = rows[1];
-  m.r2 = rows[2];
+  uint h[6];
+  for (uint k = 0u; k < 6u; ++k) h[k] = anim_words[w + k];
+  m.r0 = vec4(half_to_float(h[0] & 0xFFFFu), half_to_float(h[0] >> 16), half_to_float(h[1] & 0xFFFFu), half_to_float(h[1] >> 16));
+  m.r1 = vec4(half_to_float(h[2] & 0xFFFFu), half_to_float(h[2] >> 16), half_to_float(h[3] & 0xFFFFu), half_to_float(h[3] >> 16));
+  m.r2 = vec4(half_to_float(h[4] & 0xFFFFu), half_to_float(h[4] >> 16), half_to_float(h[5] & 0xFFFFu), half_to_float(h[5] >> 16));
   return m;
 }
 
@@ -163,18 +162,27 @@ Similarity blend_similarity(Similarity a, Similarity b, float u) {
 }
 
 // decode_skinning_matrix (skin_job.h) = decode_joint_blend: row0 alone at u = 0 or equal
-// rows, row1 alone at u >= 1, else the encoding's blend.
-Affine decode_rows(uint row0, uint row1, float u, uint joint) {
-  if (!(u > 0.0) || row0 == row1) return decode_joint(row0, joint);
-  if (u >= 1.0) return decode_joint(row1, joint);
-  if (type_block.anim_layout.x == kEncodingQuantized)
-    return similarity_to_affine(blend_similarity(decode_quantized(row0, joint), decode_quantized(row1, joint), u));
-  const Affine a = decode_joint(row0, joint), b = decode_joint(row1, joint);
-  Affine m;
-  m.r0 = (1.0 - u) * a.r0 + u * b.r0;
-  m.r1 = (1.0 - u) * a.r1 + u * b.r1;
-  m.r2 = (1.0 - u) * a.r2 + u * b.r2;
-  return m;
+// rows, row1 alone at u >= 1, else the encoding's blend (entry-wise for the float encodings,
+// dual quaternions for kQuantized). For kQuantized `sim` receives the similarity behind `m`.
+void decode_slot(uint row0, uint row1, float u, uint joint, out Affine m, out Similarity sim) {
+  const bool first_only = !(u > 0.0) || row0 == row1;
+  const bool single = first_only || u >= 1.0;
+  const uint row = first_only ? row0 : (single ? row1 : row0);
+  if (kSkinEncoding == kEncodingQuantized) {
+    sim = decode_quantized(row, joint);
+    if (!single) sim = blend_similarity(sim, decode_quantized(row1, joint), u);
+    m = similarity_to_affine(sim);
+    return;
+  }
+  sim.q = vec4(0.0, 0.0, 0.0, 1.0);
+  sim.t = vec3(0.0);
+  sim.s = 1.0;
+  m = decode_float(row, joint);
+  if (single) return;
+  const Affine b = decode_float(row1, joint);
+  m.r0 = (1.0 - u) * m.r0 + u * b.r0;
+  m.r1 = (1.0 - u) * m.r1 + u * b.r1;
+  m.r2 = (1.0 - u) * m.r2 + u * b.r2;
 }
 
 // ---- GPU crossfade ----------------------------------------------------------------------
@@ -184,12 +192,7 @@ Affine decode_rows(uint row0, uint row1, float u, uint joint) {
 // docs/performance.md ("GPU crossfade") because it stays rigid and keeps each joint on its
 // arc. A quantized texture gives each clip's (q, t, s) directly; a float texture's matrix is
 // turned into its similarity first (rotation by Shepperd's method, s = cbrt(det)).
-
-Similarity rows_similarity(uint row0, uint row1, float u, uint joint) {
-  if (!(u > 0.0) || row0 == row1) return decode_quantized(row0, joint);
-  if (u >= 1.0) return decode_quantized(row1, joint);
-  return blend_similarity(decode_quantized(row0, joint), decode_quantized(row1, joint), u);
-}
+// (A matrix blend would lose volume: docs/performance.md measures the candy wrapper.)
 
 Similarity affine_to_similarity(Affine m) {
   Similarity r;
@@ -222,11 +225,6 @@ Similarity affine_to_similarity(Affine m) {
   }
   r.q = q * (1.0 / sqrt(dot(q, q)));
   return r;
-}
-
-Similarity clip_similarity(uint row0, uint row1, float u, uint joint) {
-  if (type_block.anim_layout.x == kEncodingQuantized) return rows_similarity(row0, row1, u, joint);
-  return affine_to_similarity(decode_rows(row0, row1, u, joint));
 }
 
 // Quaternion product a·b, (x, y, z, w).
@@ -264,12 +262,31 @@ Affine instance_joint(GpuInstance inst, uint joint) {
     return m;
   }
   const float w = inst.crossfade;
-  if (w > 0.0 && w < 1.0)
-    return crossfade_blend(clip_similarity(inst.row0, inst.row1, inst.blend, joint),
-                           clip_similarity(inst.row2, inst.row3, inst.blend23, joint), w);
+  const bool fading = w > 0.0 && w < 1.0;
   const bool faded = w >= 1.0;
-  return decode_rows(faded ? inst.row2 : inst.row0, faded ? inst.row3 : inst.row1,
-                     faded ? inst.blend23 : inst.blend, joint);
+  Affine m0, m1;
+  Similarity s0, s1;
+  // note: one decoder in the code for both clips (a rolled loop), for the compile time.
+  [[dont_unroll]] for (uint k = 0u; k < (fading ? 2u : 1u); ++k) {
+    const bool second = k == 1u || faded;
+    Affine m;
+    Similarity s;
+    decode_slot(second ? inst.row2 : inst.row0, second ? inst.row3 : inst.row1,
+                second ? inst.blend23 : inst.blend, joint, m, s);
+    if (k == 0u) {
+      m0 = m;
+      s0 = s;
+    } else {
+      m1 = m;
+      s1 = s;
+    }
+  }
+  if (!fading) return m0;
+  if (kSkinEncoding != kEncodingQuantized) {
+    s0 = affine_to_similarity(m0);
+    s1 = affine_to_similarity(m1);
+  }
+  return crossfade_blend(s0, s1, w);
 }
 
 struct SkinnedVertex {
@@ -284,7 +301,7 @@ SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) {
   m.r1 = vec4(0.0);
   m.r2 = vec4(0.0);
   const uint joints[4] = uint[4](v.joints_v.x & 0xFFFFu, v.joints_v.x >> 16, v.joints_v.y & 0xFFFFu, v.joints_v.y >> 16);
-  for (uint k = 0u; k < 4u; ++k) {
+  [[dont_unroll]] for (uint k = 0u; k < 4u; ++k) {
     const float weight = v.weights[k];
     if (weight == 0.0) continue;
     const Affine s = instance_joint(inst, joints[k]);

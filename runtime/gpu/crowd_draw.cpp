@@ -22,7 +22,7 @@ namespace {
 // Draw push constants (crowd_frame.glsl DrawPush).
 struct DrawPush {
   uint32_t corner_base = 0;
-  uint32_t mode = 0;  // 0 crowd, 1 ground
+  uint32_t unused = 0;
 };
 
 constexpr uint32_t kRegions = 3;
@@ -190,11 +190,15 @@ struct TypeResources {
   GpuImage mask;
   VkDescriptorSet set = VK_NULL_HANDLE;
   uint32_t vertex_count = 0, joints = 0;
+  uint32_t encoding = 0;  // AnimationEncoding
 };
+
+constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline each (skin.glsl)
 
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkPipeline pipelines[kEncodings] = {};  // only the encodings the scene's types use
+  VkPipeline ground = VK_NULL_HANDLE;
 };
 
 }  // namespace
@@ -217,7 +221,7 @@ struct CrowdDraw::Impl {
   GpuImage swatches, shadow_map;
   VkRenderPass shadow_pass = VK_NULL_HANDLE;
   VkFramebuffer shadow_framebuffer = VK_NULL_HANDLE;
-  VkPipeline shadow_pipeline = VK_NULL_HANDLE;
+  VkPipeline shadow_pipelines[kEncodings] = {};
   uint32_t shadow_size = 1;
   uint32_t swatches_per_region = 1;
 
@@ -233,10 +237,11 @@ struct CrowdDraw::Impl {
     VkDevice d = context->device();
     for (auto& [key, fb] : framebuffers) vkDestroyFramebuffer(d, fb, nullptr);
     for (auto& [key, p] : color_pipelines) {
-      vkDestroyPipeline(d, p.pipeline, nullptr);
+      for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+      vkDestroyPipeline(d, p.ground, nullptr);
       vkDestroyRenderPass(d, p.render_pass, nullptr);
     }
-    vkDestroyPipeline(d, shadow_pipeline, nullptr);
+    for (VkPipeline pipeline : shadow_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
     vkDestroyRenderPass(d, shadow_pass, nullptr);
     vkDestroyShaderModule(d, crowd_vert, nullptr);
@@ -256,7 +261,10 @@ struct CrowdDraw::Impl {
   Status upload_image(GpuImage& image, const void* data, VkDeviceSize bytes);
   Status create_type(const CharacterType& type, TypeResources& out);
   Status create_shadow();
-  Status create_graphics_pipeline(VkRenderPass pass, bool shadow, VkPipeline& out);
+  Status create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
+                                  VkPipeline& out, bool ground = false);
+  // Creates `pipelines[e]` for every encoding e a type uses.
+  Status create_pipelines(VkRenderPass pass, bool shadow, VkPipeline (&pipelines)[kEncodings]);
   Status color_pipeline(const HostTarget& target, ColorPipeline*& out);
   void write_frame_set();
   void write_type_set(const TypeResources& t);
@@ -268,12 +276,12 @@ Status CrowdDraw::Impl::create_layouts() {
   const VkDescriptorSetLayoutBinding frame_bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
   };
   const VkDescriptorSetLayoutBinding type_bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
@@ -308,14 +316,13 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 + 3 * type_count},
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1 + type_count},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + 4 * type_count},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
   };
   VkDescriptorPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   pool_info.maxSets = 1 + type_count;
-  pool_info.poolSizeCount = 3;
+  pool_info.poolSizeCount = 2;
   pool_info.pPoolSizes = sizes;
   if (Status s =
           check(vkCreateDescriptorPool(d, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
@@ -418,7 +425,7 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   k.variants[3] = swatches_per_region;
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  if (Status s = GpuBuffer::create(*context, sizeof(k), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+  if (Status s = GpuBuffer::create(*context, sizeof(k), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                    MemoryKind::kHostVisible, out.constants);
       !s)
     return s;
@@ -427,6 +434,7 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   const std::vector<GpuVertex> vertices = make_gpu_vertices(c);
   out.vertex_count = static_cast<uint32_t>(vertices.size());
   out.joints = anim.joints;
+  out.encoding = static_cast<uint32_t>(anim.encoding);
   const VkDeviceSize vertex_bytes = std::max<VkDeviceSize>(vertices.size() * sizeof(GpuVertex), 64);
   if (Status s = GpuBuffer::create(*context, vertex_bytes, storage, MemoryKind::kDeviceLocal,
                                    out.vertices);
@@ -463,12 +471,32 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
                   : upload_image(out.mask, &unused, 1);
 }
 
-Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, VkPipeline& out) {
+Status CrowdDraw::Impl::create_pipelines(VkRenderPass pass, bool shadow,
+                                         VkPipeline (&pipelines)[kEncodings]) {
+  for (const TypeResources& t : types)
+    if (pipelines[t.encoding] == VK_NULL_HANDLE)
+      if (Status s = create_graphics_pipeline(pass, shadow, t.encoding, pipelines[t.encoding]); !s)
+        return s;
+  return {};
+}
+
+Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
+                                                 VkPipeline& out, bool ground) {
+  // Specialization constants: 0 = the animation encoding, 1 = crowd (0) or ground (1).
+  const uint32_t constants[2] = {encoding, ground ? 1u : 0u};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
+                                               {1, sizeof(uint32_t), sizeof(uint32_t)}};
+  VkSpecializationInfo specialization{};
+  specialization.mapEntryCount = 2;
+  specialization.pMapEntries = entries;
+  specialization.dataSize = sizeof(constants);
+  specialization.pData = constants;
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
   stages[0].module = shadow ? shadow_vert : crowd_vert;
   stages[0].pName = stages[1].pName = "main";
+  stages[0].pSpecializationInfo = stages[1].pSpecializationInfo = &specialization;
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = crowd_frag;
 
@@ -601,7 +629,7 @@ Status CrowdDraw::Impl::create_shadow() {
           check(vkCreateFramebuffer(d, &fb, nullptr, &shadow_framebuffer), "vkCreateFramebuffer");
       !s)
     return s;
-  return create_graphics_pipeline(shadow_pass, true, shadow_pipeline);
+  return create_pipelines(shadow_pass, true, shadow_pipelines);
 }
 
 Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*& out) {
@@ -665,7 +693,12 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
                        "vkCreateRenderPass");
       !s)
     return s;
-  if (Status s = create_graphics_pipeline(p.render_pass, false, p.pipeline); !s) {
+  Status s = create_pipelines(p.render_pass, false, p.pipelines);
+  if (s.ok() && settings.ground && !types.empty())
+    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, true);
+  if (!s) {
+    for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(context->device(), pipeline, nullptr);
+    vkDestroyPipeline(context->device(), p.ground, nullptr);
     vkDestroyRenderPass(context->device(), p.render_pass, nullptr);
     return s;
   }
@@ -691,7 +724,7 @@ void CrowdDraw::Impl::write_frame_set() {
   writes[0].descriptorType = writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[0].pBufferInfo = &instances;
   writes[1].pBufferInfo = &corners;
-  writes[2].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[2].pBufferInfo = &frame;
   writes[3].descriptorType = writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[3].pImageInfo = &shadow;
@@ -713,7 +746,6 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
     writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     if (b < 4) writes[b].pBufferInfo = &buffers[b];
   }
-  writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[4].pImageInfo = &mask;
   vkUpdateDescriptorSets(context->device(), 5, writes, 0, nullptr);
@@ -755,7 +787,7 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
 
   if (Status s = impl->create_shadow(); !s) return s;
   if (Status s =
-          GpuBuffer::create(context, sizeof(FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+          GpuBuffer::create(context, sizeof(FrameConstants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             MemoryKind::kHostVisible, impl->frame_buffer);
       !s)
     return s;
@@ -832,6 +864,37 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   std::memcpy(k.eye, eye, sizeof(eye));
   if (Status s = m.frame_buffer.upload(&k, sizeof(k)); !s) return s;
 
+  // note: the shader indexes the pose buffer without bounds checks: refuse what would overrun.
+  if (effects && effects->has_poses()) {
+    if (effects->pose.size() != n)
+      return {StatusCode::kInvalidArgument, "effects: pose array has " +
+                                                std::to_string(effects->pose.size()) +
+                                                " entries for " + std::to_string(n) + " instances"};
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t pose = effects->pose[i];
+      if (pose == kNoPose) continue;
+      const uint32_t t = scene.instances.type[i];
+      const size_t floats = t < effects->pose_buffers.size() ? effects->pose_buffers[t].size() : 0;
+      const size_t per_pose = 12 * static_cast<size_t>(t < m.types.size() ? m.types[t].joints : 0);
+      if (per_pose == 0 || pose >= floats / per_pose)
+        return {StatusCode::kInvalidArgument,
+                "effects: instance " + std::to_string(i) + " takes pose " + std::to_string(pose) +
+                    " but its type's pose buffer holds " +
+                    std::to_string(per_pose ? floats / per_pose : 0) + " poses"};
+    }
+  }
+  if (Status s = upload_poses(effects); !s) return s;
+
+  if (instances.buffer() != m.bound_instances || corners.buffer() != m.bound_corners) {
+    m.bound_instances = instances.buffer();
+    m.bound_corners = corners.buffer();
+    m.write_frame_set();
+  }
+  return {};
+}
+
+Status CrowdDraw::upload_poses(const EffectFrame* effects) {
+  Impl& m = *impl_;
   // Pose buffers: only types some instance takes a pose of get one (a baked-only scene
   // uploads nothing here).
   for (size_t t = 0; t < m.types.size(); ++t) {
@@ -852,11 +915,6 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
     if (Status s = type.poses.upload(poses->data(), bytes); !s) return s;
   }
 
-  if (instances.buffer() != m.bound_instances || corners.buffer() != m.bound_corners) {
-    m.bound_instances = instances.buffer();
-    m.bound_corners = corners.buffer();
-    m.write_frame_set();
-  }
   return {};
 }
 
@@ -877,10 +935,14 @@ void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
   const VkRect2D scissor{{0, 0}, {m.shadow_size, m.shadow_size}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.shadow_pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 0, 1,
                           &m.frame_set, 0, nullptr);
+  VkPipeline bound = VK_NULL_HANDLE;
   for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
+    if (m.shadow_pipelines[m.types[t].encoding] != bound) {
+      bound = m.shadow_pipelines[m.types[t].encoding];
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
+    }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,
                             &m.types[t].set, 0, nullptr);
     const DrawPush push{draws[t].corner_base, 0};
@@ -938,21 +1000,26 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   if (!m.types.empty()) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 0, 1,
                             &m.frame_set, 0, nullptr);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    VkPipeline bound = VK_NULL_HANDLE;
     for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
+      if (pipeline->pipelines[m.types[t].encoding] != bound) {
+        bound = pipeline->pipelines[m.types[t].encoding];
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
+      }
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,
                               &m.types[t].set, 0, nullptr);
       const DrawPush push{draws[t].corner_base, 0};
       vkCmdPushConstants(cmd, m.pipeline_layout, stages, 0, sizeof(push), &push);
       vkCmdDrawIndirect(cmd, draws[t].args, draws[t].args_offset, 1, sizeof(VkDrawIndirectCommand));
     }
-    if (m.constants.ground_min[3] != 0.0f) {
+    if (m.constants.ground_min[3] != 0.0f && pipeline->ground != VK_NULL_HANDLE) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->ground);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,
                               &m.types[0].set, 0, nullptr);
-      const DrawPush push{0, 1};
+      const DrawPush push{0, 0};
       vkCmdPushConstants(cmd, m.pipeline_layout, stages, 0, sizeof(push), &push);
       vkCmdDraw(cmd, 6, 1, 0, 0);
     }
@@ -968,6 +1035,9 @@ uint32_t CrowdDraw::type_vertices(uint32_t type) const {
   return impl_->types.at(type).vertex_count;
 }
 uint32_t CrowdDraw::type_joints(uint32_t type) const { return impl_->types.at(type).joints; }
+AnimationEncoding CrowdDraw::type_encoding(uint32_t type) const {
+  return static_cast<AnimationEncoding>(impl_->types.at(type).encoding);
+}
 const FrameConstants& CrowdDraw::frame_constants() const { return impl_->constants; }
 const DrawSettings& CrowdDraw::settings() const { return impl_->settings; }
 

@@ -13,14 +13,16 @@ struct SkinProbe::Impl {
   const CrowdDraw* draw = nullptr;
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkShaderModule module = VK_NULL_HANDLE;
+  VkPipeline pipelines[3] = {};  // per AnimationEncoding (skin.glsl's specialization constant)
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
 
   ~Impl() {
     if (!context) return;
     VkDevice d = context->device();
-    vkDestroyPipeline(d, pipeline, nullptr);
+    for (VkPipeline pipeline : pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+    vkDestroyShaderModule(d, module, nullptr);
     vkDestroyPipelineLayout(d, pipeline_layout, nullptr);
     vkDestroyDescriptorPool(d, pool, nullptr);
     vkDestroyDescriptorSetLayout(d, layout, nullptr);
@@ -46,27 +48,13 @@ Status SkinProbe::create(VulkanContext& context, const CrowdDraw& draw,
   VkResult r = vkCreateDescriptorSetLayout(d, &set_info, nullptr, &impl->layout);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorSetLayout", r);
   const VkDescriptorSetLayout layouts[2] = {impl->layout, draw.type_set_layout()};
-  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 4};
   VkPipelineLayoutCreateInfo layout_info{};
   layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
   layout_info.setLayoutCount = 2;
   layout_info.pSetLayouts = layouts;
-  layout_info.pushConstantRangeCount = 1;
-  layout_info.pPushConstantRanges = &push;
   r = vkCreatePipelineLayout(d, &layout_info, nullptr, &impl->pipeline_layout);
   if (r != VK_SUCCESS) return vulkan_error("vkCreatePipelineLayout", r);
-  VkShaderModule module = VK_NULL_HANDLE;
-  if (Status s = context.create_shader_module("skin_probe.comp", module); !s) return s;
-  VkComputePipelineCreateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  info.stage.module = module;
-  info.stage.pName = "main";
-  info.layout = impl->pipeline_layout;
-  r = vkCreateComputePipelines(d, VK_NULL_HANDLE, 1, &info, nullptr, &impl->pipeline);
-  vkDestroyShaderModule(d, module, nullptr);
-  if (r != VK_SUCCESS) return vulkan_error("vkCreateComputePipelines", r);
+  if (Status s = context.create_shader_module("skin_probe.comp", impl->module); !s) return s;
   const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
   VkDescriptorPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -102,8 +90,13 @@ Status SkinProbe::run(uint32_t type, const std::vector<GpuInstance>& instances,
   }
   out.assign(queries.size(), SkinResult{});
   if (queries.empty()) return {};
+  // note: padded to whole workgroups of 64 by repeating the last query (see skin_probe.comp).
+  const size_t padded = (queries.size() + 63) / 64 * 64;
   std::vector<uint32_t> words;
-  for (const SkinQuery& q : queries) words.insert(words.end(), {q.instance, q.index, q.kind, 0u});
+  for (size_t i = 0; i < padded; ++i) {
+    const SkinQuery& q = queries[std::min(i, queries.size() - 1)];
+    words.insert(words.end(), {q.instance, q.index, q.kind, 0u});
+  }
   GpuBuffer instance_buffer, query_buffer, result_buffer;
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   if (Status s = GpuBuffer::create(*m.context, instances.size() * sizeof(GpuInstance), storage,
@@ -118,7 +111,7 @@ Status SkinProbe::run(uint32_t type, const std::vector<GpuInstance>& instances,
       !s)
     return s;
   if (Status s = query_buffer.upload(words.data(), words.size() * 4); !s) return s;
-  const VkDeviceSize result_bytes = queries.size() * 12 * sizeof(float);
+  const VkDeviceSize result_bytes = padded * 12 * sizeof(float);
   if (Status s = GpuBuffer::create(*m.context, result_bytes, storage, MemoryKind::kHostVisible,
                                    result_buffer);
       !s)
@@ -136,18 +129,40 @@ Status SkinProbe::run(uint32_t type, const std::vector<GpuInstance>& instances,
     writes[b].pBufferInfo = &infos[b];
   }
   vkUpdateDescriptorSets(m.context->device(), 3, writes, 0, nullptr);
-  const uint32_t count = static_cast<uint32_t>(queries.size());
+  const uint32_t groups = static_cast<uint32_t>(padded / 64);
+  const uint32_t encoding = static_cast<uint32_t>(m.draw->type_encoding(type));
+  if (encoding >= 3)
+    return {StatusCode::kInvalidArgument, "skin probe: unknown animation encoding"};
+  VkPipeline& pipeline = m.pipelines[encoding];
+  if (pipeline == VK_NULL_HANDLE) {
+    const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+    VkSpecializationInfo specialization{};
+    specialization.mapEntryCount = 1;
+    specialization.pMapEntries = &entry;
+    specialization.dataSize = sizeof(uint32_t);
+    specialization.pData = &encoding;
+    VkComputePipelineCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = m.module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = &specialization;
+    info.layout = m.pipeline_layout;
+    const VkResult r =
+        vkCreateComputePipelines(m.context->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+    if (r != VK_SUCCESS) return vulkan_error("vkCreateComputePipelines", r);
+  }
   const VkDescriptorSet sets[2] = {m.set, m.draw->type_set(type)};
   if (Status s = m.context->submit_and_wait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.pipeline);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.pipeline_layout, 0, 2, sets,
                                 0, nullptr);
-        vkCmdPushConstants(cmd, m.pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &count);
-        vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
+        vkCmdDispatch(cmd, groups, 1, 1);
       });
       !s)
     return s;
-  std::vector<float> results(queries.size() * 12);
+  std::vector<float> results(padded * 12);
   if (Status s = result_buffer.download(results.data(), result_bytes); !s) return s;
   for (size_t i = 0; i < queries.size(); ++i) {
     const float* r = &results[12 * i];

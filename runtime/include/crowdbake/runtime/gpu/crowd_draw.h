@@ -119,6 +119,10 @@ class CrowdDraw {
   Status update(const Scene& scene, const FrameState& state, const EffectFrame* effects,
                 const GpuBuffer& instances, const GpuBuffer& corners);
 
+  // The pose buffers alone (update() calls it): uploads each type's EffectFrame::pose_buffers
+  // entry, growing the buffer when needed; types without poses keep what they had.
+  Status upload_poses(const EffectFrame* effects);
+
   // The shadow-map pass (outside any render pass); records nothing when shadows are off.
   // draws: one per character type, in type order
   void record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws);
@@ -131,6 +135,7 @@ class CrowdDraw {
   VkDescriptorSet type_set(uint32_t type) const;
   uint32_t type_vertices(uint32_t type) const;  // the pack's vertex count
   uint32_t type_joints(uint32_t type) const;    // joints per animation-texture row
+  AnimationEncoding type_encoding(uint32_t type) const;
   const FrameConstants& frame_constants() const;
   const DrawSettings& settings() const;
 
