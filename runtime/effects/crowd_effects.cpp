@@ -149,6 +149,7 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
   }
   if (!decl.animation_sharing && fsm) {
     fades.resize(individual_instance.size());
+    counters.driven_instances = counters.fsm_individuals;
     counters.crossfade = decl.crossfade;
     counters.constructed_systems += decl.crossfade ? 1 : 0;
   }

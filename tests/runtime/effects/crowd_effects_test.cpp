@@ -271,6 +271,7 @@ TEST_F(CrowdEffectsTest, CrossfadeOnlyTurnsFsmChangesIntoGpuFades) {
   load(std::string("{") + test::kStates + R"(, "crossfade": {"time": 0.5}, )" +
        test::spectators_block() + "}");
   EXPECT_TRUE(counters().crossfade && counters().behaviour_fsm);
+  EXPECT_EQ(counters().driven_instances, n());
   EXPECT_FALSE(counters().animation_sharing);
   const uint32_t cheer = static_cast<uint32_t>(scene_.find_clip(0, "cheer"));
   const uint32_t idle = static_cast<uint32_t>(scene_.find_clip(0, "idle"));
