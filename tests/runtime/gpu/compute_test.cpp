@@ -170,6 +170,31 @@ TEST_F(ComputeTest, OtherAlphaMinTAndFramesStayIdentical) {
   }
 }
 
+// Identity is not luck of one setting: a sweep over α, MinT and budgets (each frame's counts
+// land on many different rounding and clamping boundaries).
+TEST_F(ComputeTest, IdenticalOverASweepOfSettings) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 250, 12, continuous(1000)).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  const float alphas[] = {1.05f, 1.5f, 2.0f, 3.0f, 7.5f};
+  const float min_ts[] = {0.0f, 0.3f, 1.0f};
+  const uint32_t budgets[] = {5000, 77777, 400000};
+  uint32_t frame = 0;
+  for (float alpha : alphas)
+    for (float min_t : min_ts)
+      for (uint32_t budget : budgets) {
+        scene.lod = continuous(budget, min_t);
+        scene.lod.alpha = alpha;
+        SCOPED_TRACE("alpha " + std::to_string(alpha) + " min_t " + std::to_string(min_t) +
+                     " budget " + std::to_string(budget));
+        run_frame(scene, 0.05f * static_cast<float>(frame++), *compute);
+        if (HasFatalFailure()) return;
+        expect_identical(scene, *compute, true);
+        if (HasFailure()) return;
+      }
+}
+
 TEST_F(ComputeTest, DiscreteModeIsIdenticalToTheCpu) {
   Scene scene;
   LodSettings lod = continuous(60000);
