@@ -1,0 +1,219 @@
+#include "crowdbake/runtime/gpu/renderer.h"
+
+#include <chrono>
+#include <cstring>
+#include <utility>
+
+#include "crowdbake/runtime/gpu/gpu_instance.h"
+
+namespace crowdbake::runtime::gpu {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Timestamps of render(): the compute passes write 0..7, then shadow, colour, readback ends.
+constexpr uint32_t kShadowEnd = CrowdCompute::kTimestampCount;
+constexpr uint32_t kColorEnd = kShadowEnd + 1;
+constexpr uint32_t kReadbackEnd = kColorEnd + 1;
+constexpr uint32_t kQueryCount = kReadbackEnd + 1;
+
+}  // namespace
+
+struct Renderer::Impl {
+  VulkanContext* context = nullptr;
+  RenderOptions options;
+  std::unique_ptr<CrowdCompute> compute;
+  std::unique_ptr<CrowdDraw> draw;
+  FrameState state;
+  std::vector<GpuInstance> instances;
+  bool prepared = false;
+
+  // The offscreen target of render() and its readback buffer, sized to the camera.
+  GpuImage color, depth;
+  GpuBuffer readback;
+  TimestampQueries queries;
+
+  std::vector<TypeDraw> type_draws() const {
+    std::vector<TypeDraw> draws(compute->type_count());
+    for (uint32_t t = 0; t < draws.size(); ++t) {
+      draws[t].args = compute->draw_args_buffer().buffer();
+      draws[t].args_offset = VkDeviceSize{t} * sizeof(VkDrawIndirectCommand);
+      draws[t].corner_base = 0;  // note: CrowdCompute writes the type's base as firstVertex
+    }
+    return draws;
+  }
+
+  Status ensure_target(uint32_t width, uint32_t height) {
+    if (color.valid() && color.desc().width == width && color.desc().height == height) return {};
+    ImageDesc c;
+    c.width = width;
+    c.height = height;
+    c.format = VK_FORMAT_R8G8B8A8_UNORM;
+    c.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ImageDesc d = c;
+    d.format = VK_FORMAT_D32_SFLOAT;
+    d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    GpuImage new_color, new_depth;
+    if (Status s = GpuImage::create(*context, c, new_color); !s) return s;
+    if (Status s = GpuImage::create(*context, d, new_depth); !s) return s;
+    GpuBuffer new_readback;
+    if (Status s = GpuBuffer::create(*context, VkDeviceSize{width} * height * 4,
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::kHostVisible,
+                                     new_readback);
+        !s)
+      return s;
+    color = std::move(new_color);
+    depth = std::move(new_depth);
+    readback = std::move(new_readback);
+    return {};
+  }
+
+  // The CPU side of a frame: crowd update, instance records, uploads.
+  Status update(const Scene& scene, float time, const EffectFrame* effects, double* update_ms,
+                double* upload_ms) {
+    prepared = false;
+    auto start = Clock::now();
+    if (Status s = update_frame(scene, time, state); !s) return s;
+    if (Status s = fill_gpu_instances(scene, state, effects, instances); !s) return s;
+    if (update_ms) *update_ms = ms_since(start);
+    start = Clock::now();
+    if (Status s = compute->upload(scene, state,
+                                   Span<const GpuInstance>(instances.data(), instances.size()));
+        !s)
+      return s;
+    if (Status s = draw->update(scene, state, effects, compute->instance_buffer(),
+                                compute->corner_buffer());
+        !s)
+      return s;
+    if (upload_ms) *upload_ms = ms_since(start);
+    return {};
+  }
+};
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+Status Renderer::create(VulkanContext& context, const Scene& scene, const RenderOptions& options,
+                        std::unique_ptr<Renderer>& out) {
+  auto impl = std::make_unique<Impl>();
+  impl->context = &context;
+  impl->options = options;
+  if (Status s = CrowdCompute::create(context, scene, options.compute, impl->compute); !s) return s;
+  DrawSettings settings;
+  settings.shadows = options.shadows;
+  settings.shadow_map_size = options.shadow_map_size;
+  settings.ground = options.ground;
+  if (Status s = CrowdDraw::create(context, scene, settings, impl->draw); !s) return s;
+  // note: without timestamp support (timestampValidBits 0) profiles carry CPU times only.
+  if (context.limits().timestampComputeAndGraphics)
+    if (Status s = TimestampQueries::create(context, kQueryCount, impl->queries); !s) return s;
+  out.reset(new Renderer(std::move(impl)));
+  return {};
+}
+
+Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile* profile,
+                        const EffectFrame* effects) {
+  Impl& m = *impl_;
+  double update_ms = 0, upload_ms = 0;
+  if (Status s = m.update(scene, time, effects, &update_ms, &upload_ms); !s) return s;
+  const uint32_t width = m.state.view.width, height = m.state.view.height;
+  if (Status s = m.ensure_target(width, height); !s) return s;
+
+  HostTarget target;
+  target.color_view = m.color.view();
+  target.depth_view = m.depth.view();
+  target.width = width;
+  target.height = height;
+  target.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  const std::vector<TypeDraw> draws = m.type_draws();
+  const TimestampQueries* queries = m.queries.count() ? &m.queries : nullptr;
+  Status recorded;
+  double record_ms = 0;
+  const auto submit_start = Clock::now();
+  if (Status s = m.context->submit_and_wait([&](VkCommandBuffer cmd) {
+        const auto record_start = Clock::now();
+        if (queries) queries->reset(cmd);
+        m.compute->record(cmd, queries, 0);
+        m.draw->record_shadow(cmd, Span<const TypeDraw>(draws.data(), draws.size()));
+        if (queries) queries->write(cmd, kShadowEnd);
+        recorded =
+            m.draw->record_color(cmd, target, Span<const TypeDraw>(draws.data(), draws.size()));
+        if (queries) queries->write(cmd, kColorEnd);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {width, height, 1};
+        vkCmdCopyImageToBuffer(cmd, m.color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               m.readback.buffer(), 1, &copy);
+        if (queries) queries->write(cmd, kReadbackEnd);
+        record_ms = ms_since(record_start);
+      });
+      !s)
+    return s;
+  if (!recorded) return recorded;
+  const double submit_ms = ms_since(submit_start) - record_ms;
+
+  const auto read_start = Clock::now();
+  out.width = width;
+  out.height = height;
+  out.rgba.resize(size_t{width} * height * 4);
+  if (Status s = m.readback.download(out.rgba.data(), out.rgba.size()); !s) return s;
+  const double read_ms = ms_since(read_start);
+  m.prepared = false;  // note: render() drew its own frame; record_draw needs a prepare()
+
+  if (!profile) return {};
+  *profile = FrameProfile{};
+  auto gpu = [&](uint32_t from, uint32_t to) {
+    double ms = 0;
+    if (!queries || !m.queries.elapsed_ms(from, to, ms).ok()) return 0.0;
+    return ms;
+  };
+  profile->passes.push_back({"update (cpu)", update_ms, 0});
+  profile->passes.push_back({"upload", upload_ms, 0});
+  profile->passes.push_back({"record", record_ms, 0});
+  for (uint32_t p = 0; p < ComputeTimings::kPasses; ++p)
+    profile->passes.push_back(
+        {std::string("compute: ") + ComputeTimings::kNames[p], 0, gpu(p, p + 1)});
+  profile->passes.push_back({"shadow", 0, gpu(ComputeTimings::kPasses, kShadowEnd)});
+  profile->passes.push_back({"colour", 0, gpu(kShadowEnd, kColorEnd)});
+  profile->passes.push_back({"readback", read_ms, gpu(kColorEnd, kReadbackEnd)});
+  profile->passes.push_back({"submit + wait", submit_ms, 0});
+  CrowdComputeStats stats;
+  if (Status s = m.compute->read_stats(stats); !s) return s;
+  profile->instances = stats.instances;
+  profile->visible = stats.visible;
+  profile->drawn = stats.drawn_instances;
+  profile->overflow = stats.overflow_instances;
+  profile->vertices = stats.selected_vertices;
+  profile->triangles = stats.drawn_corners / 3;
+  return {};
+}
+
+Status Renderer::prepare(const Scene& scene, float time, VkCommandBuffer cmd,
+                         const EffectFrame* effects) {
+  Impl& m = *impl_;
+  if (Status s = m.update(scene, time, effects, nullptr, nullptr); !s) return s;
+  m.compute->record(cmd);
+  m.prepared = true;
+  return {};
+}
+
+Status Renderer::record_draw(VkCommandBuffer cmd, const HostTarget& target) {
+  Impl& m = *impl_;
+  if (!m.prepared)
+    return {StatusCode::kInvalidArgument,
+            "Renderer::record_draw: no frame prepared (call prepare first)"};
+  const std::vector<TypeDraw> draws = m.type_draws();
+  m.draw->record_shadow(cmd, Span<const TypeDraw>(draws.data(), draws.size()));
+  return m.draw->record_color(cmd, target, Span<const TypeDraw>(draws.data(), draws.size()));
+}
+
+const FrameState& Renderer::frame_state() const { return impl_->state; }
+CrowdCompute& Renderer::compute() { return *impl_->compute; }
+CrowdDraw& Renderer::draw() { return *impl_->draw; }
+
+}  // namespace crowdbake::runtime::gpu
