@@ -23,7 +23,7 @@ struct TypeData {
   vec4 bounds;  // bounding sphere of the type (centre, radius), model space
   uint min_vertices, max_vertices, triangles, vertex_count;
   uint level_count, progressive, tri_offset, collapse_offset;  // offsets into mesh_data
-  uint tcount_offset, group_offset, pad0, pad1;
+  uint tcount_offset, group_offset, mesh_triangles, pad1;  // mesh_triangles: GEOM's count
   uint levels[8];          // discrete levels, finest first
   double type_log_weight;  // lod_type_log_weight(α, triangles)
   double pad2;

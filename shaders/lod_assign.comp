@@ -80,7 +80,8 @@ void main() {
       atomicAdd(counts[1], 1u);
       ADD64(counts[6], counts[7], selected);
       usable = usable_vertices(t, selected);
-      const uint tris = t.progressive != 0u ? mesh_data[t.tcount_offset + usable] : t.triangles;
+      const uint tris =
+          t.progressive != 0u ? mesh_data[t.tcount_offset + usable] : t.mesh_triangles;
       corner_count = min(3u * tris, kSaturated);
       ADD64(requested_lo, requested_hi, corner_count);
     }

@@ -34,7 +34,7 @@ struct TypeData {
   float bounds[4];
   uint32_t min_vertices, max_vertices, triangles, vertex_count;
   uint32_t level_count, progressive, tri_offset, collapse_offset;
-  uint32_t tcount_offset, group_offset, pad0, pad1;
+  uint32_t tcount_offset, group_offset, mesh_triangles, pad1;
   uint32_t levels[8];
   double type_log_weight;
   double pad2;
@@ -227,6 +227,7 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
     d.collapse_offset = type_offsets_[4 * t + 1];
     d.tcount_offset = type_offsets_[4 * t + 2];
     d.group_offset = type_offsets_[4 * t + 3];
+    d.mesh_triangles = triangle_counts_[t];
     d.type_log_weight = lt.triangles ? lod_type_log_weight(scene.lod.alpha, lt.triangles) : 0.0;
     if (lt.min_vertices > lt.max_vertices) return invalid("a type has min > max vertices");
   }

@@ -293,6 +293,23 @@ TEST_F(ComputeTest, RecordsIntoTheCallersCommandBuffer) {
   expect_identical(scene, *compute, true);
 }
 
+TEST_F(ComputeTest, AnEmptyCrowdDrawsNothing) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 0, 8, continuous(10000)).ok());
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
+  run_frame(scene, 0.0f, *compute);
+  if (HasFatalFailure()) return;
+  CrowdComputeStats stats;
+  ASSERT_TRUE(compute->read_stats(stats).ok());
+  EXPECT_EQ(stats.visible, 0u);
+  EXPECT_EQ(stats.drawn_corners, 0u);
+  std::vector<VkDrawIndirectCommand> args;
+  ASSERT_TRUE(compute->read_draw_args(args).ok());
+  ASSERT_EQ(args.size(), 2u);
+  for (const VkDrawIndirectCommand& a : args) EXPECT_EQ(a.vertexCount, 0u);
+}
+
 TEST_F(ComputeTest, RejectsMoreInstancesThanItWasSizedFor) {
   Scene scene;
   ASSERT_TRUE(test::make_compute_scene(scene, 20, 7, continuous(10000)).ok());
