@@ -1,0 +1,304 @@
+// Renderer: a small crowd of the baked spectator against a golden image
+// (tests/data/gpu/renderer_crowd.ppm; regenerate with CROWDBAKE_UPDATE_GOLDEN=1 after an
+// intended change and look at it), determinism, the empty scene, the embedding path
+// (prepare + record_draw into a caller's target) and the GPU crossfade in a picture.
+#include "crowdbake/runtime/gpu/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "crowdbake/runtime/gpu/gpu_buffer.h"
+#include "runtime/gpu/draw_test_support.h"
+#include "runtime/gpu/gpu_test_support.h"
+
+namespace crowdbake {
+namespace {
+
+using runtime::Scene;
+using runtime::gpu::FrameProfile;
+using runtime::gpu::Image;
+using runtime::gpu::Renderer;
+using runtime::gpu::RenderOptions;
+
+const std::string kGolden =
+    std::string(CROWDBAKE_SOURCE_DIR) + "/tests/data/gpu/renderer_crowd.ppm";
+
+bool write_ppm(const std::string& path, const Image& image) {
+  std::ofstream out(path, std::ios::binary);
+  out << "P6\n" << image.width << " " << image.height << "\n255\n";
+  for (size_t i = 0; i < image.rgba.size(); i += 4)
+    out.write(reinterpret_cast<const char*>(&image.rgba[i]), 3);
+  return static_cast<bool>(out);
+}
+
+bool read_ppm(const std::string& path, Image& image) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  uint32_t max = 0;
+  if (!(in >> magic >> image.width >> image.height >> max) || magic != "P6" || max != 255)
+    return false;
+  in.get();
+  std::vector<char> rgb(size_t{image.width} * image.height * 3);
+  if (!in.read(rgb.data(), static_cast<std::streamsize>(rgb.size()))) return false;
+  image.rgba.assign(size_t{image.width} * image.height * 4, 255);
+  for (size_t p = 0; p < size_t{image.width} * image.height; ++p)
+    for (int c = 0; c < 3; ++c) image.rgba[4 * p + c] = static_cast<uint8_t>(rgb[3 * p + c]);
+  return true;
+}
+
+struct ImageDiff {
+  double mean_abs = 0;   // over every RGB channel, in 0..255
+  double differing = 0;  // fraction of pixels with a channel more than 24 apart
+};
+
+ImageDiff compare(const Image& a, const Image& b) {
+  ImageDiff d;
+  const size_t pixels = size_t{a.width} * a.height;
+  size_t differing = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int diff = std::abs(int(a.rgba[4 * p + c]) - int(b.rgba[4 * p + c]));
+      d.mean_abs += diff;
+      worst = std::max(worst, diff);
+    }
+    if (worst > 24) ++differing;
+  }
+  d.mean_abs /= 3.0 * static_cast<double>(pixels);
+  d.differing = static_cast<double>(differing) / static_cast<double>(pixels);
+  return d;
+}
+
+size_t non_background_pixels(const Image& image, const std::array<float, 4>& clear) {
+  size_t count = 0;
+  for (size_t p = 0; p < size_t{image.width} * image.height; ++p)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(image.rgba[4 * p + c]) - int(std::lround(clear[c] * 255.0f))) > 1) {
+        ++count;
+        break;
+      }
+  return count;
+}
+
+// Twelve spectators in three rows, seen from the front and above, at 256x144.
+void crowd_scene(Scene& scene) {
+  runtime::TextureVariants variants;
+  variants.head = 3;
+  variants.upper_body = 5;
+  variants.trousers = 3;
+  ASSERT_TRUE(
+      test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator(), variants).ok());
+  test::add_grid(scene, 0, 3, 4, 1.3f);
+  scene.camera.position = {0.5f, 3.5f, 6.5f};
+  scene.camera.target = {0.0f, 0.9f, -1.3f};
+  scene.camera.width = 256;
+  scene.camera.height = 144;
+}
+
+class RendererTest : public test::GpuTest {
+ protected:
+  void make_renderer(const Scene& scene, const RenderOptions& options = {}) {
+    renderer_.reset();
+    const runtime::Status s = Renderer::create(context(), scene, options, renderer_);
+    ASSERT_TRUE(s.ok()) << s.message();
+  }
+  Image render(const Scene& scene, float time, FrameProfile* profile = nullptr,
+               const runtime::EffectFrame* effects = nullptr) {
+    Image image;
+    const runtime::Status s = renderer_->render(scene, time, image, profile, effects);
+    EXPECT_TRUE(s.ok()) << s.message();
+    return image;
+  }
+  std::unique_ptr<Renderer> renderer_;
+};
+
+TEST_F(RendererTest, CrowdMatchesGoldenImage) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  FrameProfile profile;
+  const Image image = render(scene, 1.3f, &profile);
+  ASSERT_EQ(image.width, 256u);
+  ASSERT_EQ(image.height, 144u);
+  EXPECT_EQ(profile.instances, 12u);
+  EXPECT_EQ(profile.drawn, 12u);
+  EXPECT_GT(profile.triangles, 0u);
+  const char* update = std::getenv("CROWDBAKE_UPDATE_GOLDEN");
+  if (update && std::string(update) == "1") {
+    ASSERT_TRUE(write_ppm(kGolden, image)) << kGolden;
+    GTEST_SKIP() << "golden image written to " << kGolden;
+  }
+  Image golden;
+  ASSERT_TRUE(read_ppm(kGolden, golden)) << "cannot read " << kGolden;
+  ASSERT_EQ(golden.width, image.width);
+  ASSERT_EQ(golden.height, image.height);
+  const ImageDiff diff = compare(image, golden);
+  // note: a different CPU (LLVM code generation) may move edges by a pixel; not more.
+  EXPECT_LT(diff.mean_abs, 1.0) << "mean absolute difference to " << kGolden;
+  EXPECT_LT(diff.differing, 0.01) << "fraction of differing pixels";
+  if (HasFailure()) write_ppm(::testing::TempDir() + "renderer_crowd_actual.ppm", image);
+}
+
+TEST_F(RendererTest, RerenderingGivesIdenticalPixels) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image first = render(scene, 0.7f);
+  render(scene, 2.1f);  // something else in between
+  const Image again = render(scene, 0.7f);
+  ASSERT_EQ(first.rgba.size(), again.rgba.size());
+  EXPECT_TRUE(first.rgba == again.rgba);
+  EXPECT_GT(non_background_pixels(first, runtime::gpu::DrawSettings{}.clear_color), 1000u);
+}
+
+TEST_F(RendererTest, SceneWithoutInstancesIsTheClearColour) {
+  Scene scene;
+  ASSERT_TRUE(test::add_pack_bytes(scene, "small",
+                                   test::small_pack_bytes_encoded(AnimationEncoding::kFloat32))
+                  .ok());
+  scene.camera.width = 160;
+  scene.camera.height = 90;
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  FrameProfile profile;
+  const Image image = render(scene, 0.0f, &profile);
+  ASSERT_EQ(image.rgba.size(), 160u * 90u * 4u);
+  EXPECT_EQ(non_background_pixels(image, runtime::gpu::DrawSettings{}.clear_color), 0u);
+  EXPECT_EQ(profile.instances, 0u);
+  EXPECT_EQ(profile.triangles, 0u);
+}
+
+TEST_F(RendererTest, ProfileNamesEveryPassAndCounts) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  scene.lod.budget = 6000;  // not enough for everyone at full resolution
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  FrameProfile profile;
+  render(scene, 1.0f, &profile);
+  std::vector<std::string> names;
+  for (const auto& p : profile.passes) {
+    names.push_back(p.name);
+    EXPECT_GE(p.cpu_ms, 0.0) << p.name;
+    EXPECT_GE(p.gpu_ms, 0.0) << p.name;
+  }
+  for (const char* expected : {"shadow", "colour", "compute: reconstruct", "update (cpu)"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  EXPECT_EQ(profile.instances, 12u);
+  EXPECT_LE(profile.drawn, profile.visible);
+  EXPECT_LE(profile.vertices, 6000u);
+  EXPECT_GT(profile.triangles, 0u);
+}
+
+TEST_F(RendererTest, ShadowsDarkenTheGround) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image lit = render(scene, 1.3f);
+  RenderOptions options;
+  options.shadows = false;
+  make_renderer(scene, options);
+  if (HasFatalFailure()) return;
+  const Image unlit = render(scene, 1.3f);
+  size_t darker = 0, brighter = 0;
+  for (size_t p = 0; p < lit.rgba.size(); p += 4) {
+    const int a = lit.rgba[p] + lit.rgba[p + 1] + lit.rgba[p + 2];
+    const int b = unlit.rgba[p] + unlit.rgba[p + 1] + unlit.rgba[p + 2];
+    darker += a + 30 < b;
+    brighter += a > b + 30;
+  }
+  EXPECT_GT(darker, 100u) << "shadows should darken pixels";
+  EXPECT_EQ(brighter, 0u) << "a shadow never brightens";
+}
+
+TEST_F(RendererTest, CrossfadeChangesThePictureOnlyBetweenTheEnds) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  runtime::EffectFrame fade;
+  const uint32_t clips = static_cast<uint32_t>(scene.types[0].pack.contents().clips.size());
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    fade.fade_clip.push_back((scene.instances.clip[i] + 1) % clips);
+    fade.fade_time_offset.push_back(0.0f);
+    fade.fade_weight.push_back(0.0f);
+  }
+  const Image plain = render(scene, 1.3f);
+  EXPECT_TRUE(render(scene, 1.3f, nullptr, &fade).rgba == plain.rgba);
+  for (float& w : fade.fade_weight) w = 0.5f;
+  EXPECT_FALSE(render(scene, 1.3f, nullptr, &fade).rgba == plain.rgba);
+}
+
+TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image reference = render(scene, 0.9f);
+
+  using namespace runtime::gpu;
+  VkCommandBuffer none = VK_NULL_HANDLE;
+  HostTarget empty;
+  EXPECT_FALSE(renderer_->record_draw(none, empty).ok()) << "no frame prepared";
+
+  ImageDesc color_desc;
+  color_desc.width = 256;
+  color_desc.height = 144;
+  color_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  ImageDesc depth_desc = color_desc;
+  depth_desc.format = VK_FORMAT_D32_SFLOAT;
+  depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  depth_desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  GpuImage color, depth;
+  ASSERT_TRUE(GpuImage::create(context(), color_desc, color).ok());
+  ASSERT_TRUE(GpuImage::create(context(), depth_desc, depth).ok());
+  GpuBuffer readback;
+  ASSERT_TRUE(GpuBuffer::create(context(), 256 * 144 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                MemoryKind::kHostVisible, readback)
+                  .ok());
+  HostTarget target;
+  target.color_view = color.view();
+  target.depth_view = depth.view();
+  target.width = 256;
+  target.height = 144;
+  target.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  runtime::Status recorded;
+  ASSERT_TRUE(context()
+                  .submit_and_wait([&](VkCommandBuffer cmd) {
+                    recorded = renderer_->prepare(scene, 0.9f, cmd);
+                    if (recorded.ok()) recorded = renderer_->record_draw(cmd, target);
+                    VkBufferImageCopy copy{};
+                    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                    copy.imageExtent = {256, 144, 1};
+                    vkCmdCopyImageToBuffer(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                           readback.buffer(), 1, &copy);
+                  })
+                  .ok());
+  ASSERT_TRUE(recorded.ok()) << recorded.message();
+  Image mine;
+  mine.width = 256;
+  mine.height = 144;
+  mine.rgba.resize(256 * 144 * 4);
+  ASSERT_TRUE(readback.download(mine.rgba.data(), mine.rgba.size()).ok());
+  EXPECT_TRUE(mine.rgba == reference.rgba);
+}
+
+}  // namespace
+}  // namespace crowdbake
