@@ -11,7 +11,8 @@
 const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
 const uint kChunk = 64u;             // corners per reconstruction chunk (one instance each)
 const uint kChunksPerGroup = 4u;     // chunks per reconstruction workgroup
-const uint kMaxTypes = 1024u;        // character types (lod_assign's shared running sums)
+const uint kMaxTypes = 1024u;        // scan keys (lod_assign's shared running sums)
+const uint kMaxLevels = 8u;          // static levels per type (kMaxDiscreteLevels)
 const uint kSaturated = 0x7FFFFFFFu;  // corner sums saturate here (never fit the buffer)
 const uint kNotDrawn = 0xFFFFFFFFu;
 
@@ -72,7 +73,10 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint corner_capacity;
   uint group_count;
   float near_plane;
-  uint pad0, pad1;
+  uint instanced;      // 1: static levels drawn instanced (full/discrete), no corner buffer
+  uint key_count;      // scan keys: types, or types · kMaxLevels when instanced
+  uint indexed_slots;  // VkDrawIndexedIndirectCommands in indexed_args (0 when none)
+  uint pad0, pad1, pad2;
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };
@@ -92,8 +96,30 @@ layout(std430, set = 0, binding = 12) buffer DispatchArgs { uint dispatch_args[]
 layout(std430, set = 0, binding = 13) buffer StatsBuffer { Stats stats; };
 // Draw-list entry of each reconstruction chunk.
 layout(std430, set = 0, binding = 14) buffer ChunkTable { uint chunk_entry[]; };
+// Instanced static levels: (first index, index count) of slot type · kMaxLevels + level in the
+// level index buffer, one VkDrawIndexedIndirectCommand (5 uints) per slot, and the instances
+// of each slot (firstInstance = the slot's first entry).
+layout(std430, set = 0, binding = 15) readonly buffer LevelRanges { uvec2 level_ranges[]; };
+layout(std430, set = 0, binding = 16) buffer IndexedArgs { uint indexed_args[]; };
+layout(std430, set = 0, binding = 17) buffer InstanceList { uint instance_list[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
+
+// The scan key of a drawn instance: its type, or with instanced static levels its slot
+// type · kMaxLevels + level (the first level equal to its count; full mode has one level).
+uint draw_key(TypeData t, uint type, uint selected) {
+  if (params.instanced == 0u) return type;
+  uint level = 0u;
+  if (params.mode == kModeDiscrete) {
+    for (uint k = 0u; k < t.level_count; ++k) {
+      if (t.levels[k] == selected) {
+        level = k;
+        break;
+      }
+    }
+  }
+  return type * kMaxLevels + level;
+}
 
 // (corners, drawn, chunks) sums: corners and chunks saturate, drawn counts cannot overflow.
 uvec3 sum3(uvec3 a, uvec3 b) { return uvec3(sat_add(a.x, b.x), a.y + b.y, sat_add(a.z, b.z)); }

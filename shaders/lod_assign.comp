@@ -94,15 +94,21 @@ void main() {
   // order: one thread walks the 256 instances with a running sum per type. (Three barriers
   // whatever the type count; on a CPU device such as llvmpipe, which runs a workgroup's
   // invocations in turn, barriers cost far more than 256 additions.)
-  lane_values[lid] = uvec3(corner_count, corner_count > 0u ? 1u : 0u,
-                           (corner_count + kChunk - 1u) / kChunk);
-  lane_types[lid] = type;
-  for (uint t = lid; t < params.type_count; t += 256u) type_running[t] = uvec3(0u);
+  // With instanced static levels the key is the (type, level) slot and only the instance
+  // count matters (no corners are written).
+  uint key = type;
+  if (i < params.instance_count && selected > 0u) key = draw_key(types[type], type, selected);
+  lane_values[lid] = params.instanced != 0u
+                         ? uvec3(0u, selected > 0u ? 1u : 0u, 0u)
+                         : uvec3(corner_count, corner_count > 0u ? 1u : 0u,
+                                 (corner_count + kChunk - 1u) / kChunk);
+  lane_types[lid] = i < params.instance_count ? key : 0xFFFFFFFFu;
+  for (uint t = lid; t < params.key_count; t += 256u) type_running[t] = uvec3(0u);
   barrier();
   if (lid == 0u) {
     for (uint k = 0u; k < 256u; ++k) {
       const uint t = lane_types[k];
-      if (t >= params.type_count) continue;
+      if (t >= params.key_count) continue;
       const uvec3 v = lane_values[k];
       lane_values[k] = type_running[t];
       type_running[t] = sum3(type_running[t], v);
@@ -110,8 +116,8 @@ void main() {
   }
   barrier();
   const uvec3 exclusive = lane_values[lid];
-  for (uint t = lid; t < params.type_count; t += 256u)
-    group_sums[gl_WorkGroupID.x * params.type_count + t] = uvec4(type_running[t], 0u);
+  for (uint t = lid; t < params.key_count; t += 256u)
+    group_sums[gl_WorkGroupID.x * params.key_count + t] = uvec4(type_running[t], 0u);
   if (i < params.instance_count) {
     lods[i].local_corner = exclusive.x;
     lods[i].local_draw = exclusive.y;

@@ -1,8 +1,11 @@
 #version 450
-// Pass 4b: each drawn instance's first corner (type base + workgroup prefix + local prefix),
-// its entry in the draw list and its reconstruction chunks in the chunk table (a loop of
-// corners / 64 iterations: at most a few hundred, and it spares reconstruction any search). Instances whose corners do not fit the corner buffer are
-// not drawn and counted (stats.overflow); they are the last ones in (type, instance) order.
+// Pass 4b: each drawn instance's place.
+//   Corner buffer: its first corner (type base + workgroup prefix + local prefix), its entry in
+//   the draw list and its reconstruction chunks in the chunk table (a loop of corners / 64
+//   iterations: at most a few hundred, and it spares reconstruction any search). Instances
+//   whose corners do not fit are not drawn and counted (stats.overflow); they are the last
+//   ones in (type, instance) order.
+//   Instanced static levels: its entry in the instance list of its (type, level) slot.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
@@ -13,9 +16,17 @@ void main() {
   if (i >= params.instance_count) return;
   const InstanceLod lod = lods[i];
   uint offset = kNotDrawn;
-  if (lod.corners > 0u) {
+  if (params.instanced != 0u) {
+    if (lod.selected > 0u) {
+      const uint t = instances[i].type;
+      const uint key = draw_key(types[t], t, lod.selected);
+      const uint local = group_sums[gl_WorkGroupID.x * params.key_count + key].y;
+      instance_list[ranges[key].draw_base + local + lod.local_draw] = i;
+      atomicAdd(stats.fitting, 1u);
+    }
+  } else if (lod.corners > 0u) {
     const uint t = instances[i].type;
-    const uvec3 group = group_sums[gl_WorkGroupID.x * params.type_count + t].xyz;
+    const uvec3 group = group_sums[gl_WorkGroupID.x * params.key_count + t].xyz;
     const uint first = sat_add(ranges[t].corner_base, sat_add(group.x, lod.local_corner));
     const uint entry = ranges[t].draw_base + group.y + lod.local_draw;
     const uint capacity = params.corner_capacity;

@@ -24,9 +24,10 @@ struct Params {
   uint32_t instance_count, type_count, mode, corner_capacity;
   uint32_t group_count;
   float near_plane;
-  uint32_t pad[2];
+  uint32_t instanced, key_count, indexed_slots;
+  uint32_t pad[3];
 };
-static_assert(sizeof(Params) == 176 && offsetof(Params, screen) == 112 &&
+static_assert(sizeof(Params) == 192 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
               "Params must match crowd_compute.glsl");
 
@@ -56,7 +57,7 @@ static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compu
 constexpr const char* kShaders[7] = {"lod_weights.comp", "lod_sum.comp",         "lod_assign.comp",
                                      "scan_types.comp",  "place_instances.comp", "draw_args.comp",
                                      "reconstruct.comp"};
-constexpr uint32_t kBindings = 15;
+constexpr uint32_t kBindings = 18;
 constexpr uint32_t kChunk = 64;  // crowd_compute.glsl: kChunk
 
 uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
@@ -79,8 +80,10 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   c->type_count_ = static_cast<uint32_t>(scene.types.size());
   c->max_instances_ =
       options.max_instances ? options.max_instances : static_cast<uint32_t>(scene.instances.size());
-  if (c->type_count_ > kMaxTypes)
-    return invalid("at most " + std::to_string(kMaxTypes) + " character types");
+  const uint32_t key_limit =
+      options.instanced_static_levels ? kMaxTypes / kMaxDiscreteLevels : kMaxTypes;
+  if (c->type_count_ > key_limit)
+    return invalid("at most " + std::to_string(key_limit) + " character types");
   if (groups_for(c->max_instances_) > kMaxGroups)
     return invalid("at most " + std::to_string(kMaxGroups * kGroupSize) + " instances");
 
@@ -115,6 +118,10 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
 
   const uint32_t n = std::max(c->max_instances_, 1u);
   const uint32_t types = std::max(c->type_count_, 1u);
+  c->instanced_levels_ = options.instanced_static_levels;
+  // note: scan keys are types, or (type, level) slots when static levels are drawn instanced.
+  const uint32_t slots = c->instanced_levels_ ? types * kMaxDiscreteLevels : 1;
+  const uint32_t keys = c->instanced_levels_ ? slots : types;
   const uint32_t groups = std::max(groups_for(c->max_instances_), 1u);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
@@ -134,8 +141,8 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       {&c->weights_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
       {&c->partials_, VkDeviceSize{groups} * 8, storage, MemoryKind::kDeviceLocal},
       {&c->lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
-      {&c->group_sums_, VkDeviceSize{groups} * types * 16, storage, MemoryKind::kDeviceLocal},
-      {&c->ranges_, VkDeviceSize{types} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
+      {&c->group_sums_, VkDeviceSize{groups} * keys * 16, storage, MemoryKind::kDeviceLocal},
+      {&c->ranges_, VkDeviceSize{keys} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
       {&c->draw_list_, VkDeviceSize{n} * 32, storage, MemoryKind::kDeviceLocal},
       {&c->corners_, VkDeviceSize{std::max(c->corner_capacity_, 1u)} * 8,
        storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
@@ -146,6 +153,10 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       // note: fitting instances hold at most capacity / kChunk + one partial chunk each.
       {&c->chunk_table_, (VkDeviceSize{c->corner_capacity_} / kChunk + n) * 4, storage,
        MemoryKind::kDeviceLocal},
+      {&c->level_ranges_, VkDeviceSize{slots} * 8, storage, MemoryKind::kHostVisible},
+      {&c->indexed_args_, VkDeviceSize{slots} * sizeof(VkDrawIndexedIndirectCommand), indirect,
+       MemoryKind::kDeviceLocal},
+      {&c->instance_list_, VkDeviceSize{n} * 4, storage, MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;
@@ -201,6 +212,14 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.corner_capacity = corner_capacity_;
   p.group_count = groups_for(instance_count_);
   p.near_plane = view.near_plane;
+  instanced_ = instanced_levels_ && scene.lod.mode != LodMode::kContinuous;
+  p.instanced = instanced_ ? 1 : 0;
+  p.key_count = instanced_ ? type_count_ * kMaxDiscreteLevels : type_count_;
+  p.indexed_slots = instanced_levels_ ? type_count_ * kMaxDiscreteLevels : 0;
+  if (instanced_) {
+    Status st = update_levels(scene, state);
+    if (!st.ok()) return st;
+  }
   Status s = params_.upload(&p, sizeof p);
   if (!s.ok()) return s;
 
@@ -234,6 +253,51 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   s = types_.upload(types.data(), types.size() * sizeof(TypeData));
   if (!s.ok()) return s;
   return instances_.upload(instances.data(), n * sizeof(GpuInstance));
+}
+
+Status CrowdCompute::update_levels(const Scene& scene, const FrameState& state) {
+  // The static levels this frame draws: full mode one per type (max_vertices), discrete mode
+  // the type's levels. Rebuilt only when they change (a settings change).
+  std::vector<uint32_t> wanted;
+  for (uint32_t t = 0; t < type_count_; ++t) {
+    const LodType& lt = state.lod_types[t];
+    for (uint32_t k = 0; k < kMaxDiscreteLevels; ++k) {
+      uint32_t vertices = 0;
+      if (scene.lod.mode == LodMode::kFull)
+        vertices = k == 0 ? lt.max_vertices : 0;
+      else if (k < lt.level_count)
+        vertices = lt.levels[k];
+      wanted.push_back(vertices);
+    }
+  }
+  if (wanted == level_vertices_ && level_indices_.valid()) return {};
+  std::vector<uint32_t> indices, ranges;
+  std::vector<uint32_t> lod;
+  for (uint32_t s = 0; s < wanted.size(); ++s) {
+    const uint32_t first = static_cast<uint32_t>(indices.size());
+    uint32_t count = 0;
+    if (wanted[s] > 0) {
+      Status st = reconstruct_lod(scene, s / kMaxDiscreteLevels, wanted[s], lod);
+      if (!st.ok()) return st;
+      indices.insert(indices.end(), lod.begin(), lod.end());
+      count = static_cast<uint32_t>(lod.size());
+    }
+    ranges.push_back(first);
+    ranges.push_back(count);
+  }
+  if (!level_indices_.valid() || level_indices_.size() < std::max<size_t>(indices.size(), 1) * 4) {
+    Status st =
+        GpuBuffer::create(*context_, std::max<size_t>(indices.size(), 1) * 4,
+                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          MemoryKind::kDeviceLocal, level_indices_);
+    if (!st.ok()) return st;
+  }
+  Status st = level_indices_.upload(indices.data(), indices.size() * 4);
+  if (!st.ok()) return st;
+  st = level_ranges_.upload(ranges.data(), ranges.size() * 4);
+  if (!st.ok()) return st;
+  level_vertices_ = wanted;
+  return {};
 }
 
 void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
@@ -313,8 +377,23 @@ Status CrowdCompute::read_draw_args(std::vector<VkDrawIndirectCommand>& out) con
   return draw_args_.download(out.data(), out.size() * sizeof(VkDrawIndirectCommand));
 }
 
+Status CrowdCompute::read_indexed_args(std::vector<VkDrawIndexedIndirectCommand>& out) const {
+  out.resize(instanced_levels_ ? size_t{type_count_} * kMaxDiscreteLevels : 0);
+  return indexed_args_.download(out.data(), out.size() * sizeof(VkDrawIndexedIndirectCommand));
+}
+
+Status CrowdCompute::read_instance_list(std::vector<uint32_t>& out) const {
+  out.resize(instanced_levels_ ? instance_count_ : 0);
+  return instance_list_.download(out.data(), out.size() * 4);
+}
+
+Status CrowdCompute::read_level_indices(std::vector<uint32_t>& out) const {
+  out.resize(level_indices_.valid() ? level_indices_.size() / 4 : 0);
+  return level_indices_.download(out.data(), out.size() * 4);
+}
+
 Status CrowdCompute::read_type_ranges(std::vector<TypeRange>& out) const {
-  out.resize(type_count_);
+  out.resize(instanced_ ? size_t{type_count_} * kMaxDiscreteLevels : type_count_);
   return ranges_.download(out.data(), out.size() * sizeof(TypeRange));
 }
 

@@ -5,6 +5,7 @@
 // of a small corner buffer, and recording into the caller's own command buffer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -291,6 +292,84 @@ TEST_F(ComputeTest, RecordsIntoTheCallersCommandBuffer) {
   ASSERT_EQ(vkQueueWaitIdle(context().queue()), VK_SUCCESS);
   vkDestroyCommandPool(device, pool, nullptr);
   expect_identical(scene, *compute, true);
+}
+
+// Instanced static levels: every instance the CPU draws is in exactly one (type, level) slot
+// whose indices are reconstruct_lod(type, n_i) for the CPU's n_i; the corner path draws nothing.
+void expect_instanced_identical(const Scene& scene, const FrameState& state,
+                                const CrowdCompute& compute) {
+  ASSERT_TRUE(compute.instanced());
+  std::vector<VkDrawIndexedIndirectCommand> args;
+  std::vector<uint32_t> list, indices, reference;
+  ASSERT_TRUE(compute.read_indexed_args(args).ok());
+  ASSERT_TRUE(compute.read_instance_list(list).ok());
+  ASSERT_TRUE(compute.read_level_indices(indices).ok());
+  ASSERT_EQ(args.size(), scene.types.size() * CrowdCompute::kSlotsPerType);
+  std::vector<uint32_t> seen(scene.instances.size(), 0);
+  for (uint32_t s = 0; s < args.size(); ++s) {
+    const VkDrawIndexedIndirectCommand& a = args[s];
+    const uint32_t type = s / CrowdCompute::kSlotsPerType;
+    if (a.instanceCount == 0) continue;
+    ASSERT_LE(size_t{a.firstInstance} + a.instanceCount, list.size()) << "slot " << s;
+    ASSERT_LE(size_t{a.firstIndex} + a.indexCount, indices.size()) << "slot " << s;
+    EXPECT_EQ(a.vertexOffset, 0);
+    uint32_t previous = 0;
+    for (uint32_t k = 0; k < a.instanceCount; ++k) {
+      const uint32_t i = list[a.firstInstance + k];
+      ASSERT_LT(i, scene.instances.size());
+      ++seen[i];
+      EXPECT_EQ(scene.instances.type[i], type) << "instance " << i << " in slot " << s;
+      if (k > 0) {
+        EXPECT_GT(i, previous) << "instances of a slot in instance order";
+      }
+      previous = i;
+      ASSERT_GT(state.vertex_count[i], 0u) << "instance " << i << " drawn but not selected";
+      ASSERT_TRUE(reconstruct_lod(scene, type, state.vertex_count[i], reference).ok());
+      ASSERT_EQ(reference.size(), a.indexCount) << "instance " << i;
+      EXPECT_TRUE(std::equal(reference.begin(), reference.end(), indices.begin() + a.firstIndex))
+          << "instance " << i << ": its level's indices differ from reconstruct_lod";
+    }
+  }
+  for (size_t i = 0; i < seen.size(); ++i)
+    EXPECT_EQ(seen[i], state.vertex_count[i] > 0 ? 1u : 0u) << "instance " << i;
+  std::vector<VkDrawIndirectCommand> corner_args;
+  ASSERT_TRUE(compute.read_draw_args(corner_args).ok());
+  for (const VkDrawIndirectCommand& a : corner_args) EXPECT_EQ(a.vertexCount, 0u);
+}
+
+TEST_F(ComputeTest, InstancedStaticLevelsDrawTheCpuMeshes) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 13, continuous(60000)).ok());
+  CrowdComputeOptions options;
+  options.instanced_static_levels = true;
+  options.corner_capacity = 3000;  // note: far too small for the full-mode crowd as corners
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+  for (LodMode mode : {LodMode::kFull, LodMode::kDiscrete, LodMode::kFull}) {
+    scene.lod.mode = mode;
+    SCOPED_TRACE("mode " + std::to_string(static_cast<int>(mode)));
+    run_frame(scene, 0.4f, *compute);
+    if (HasFatalFailure()) return;
+    expect_instanced_identical(scene, state_, *compute);
+    std::vector<InstanceLod> lods;
+    ASSERT_TRUE(compute->read_instance_lods(lods).ok());
+    for (size_t i = 0; i < lods.size(); ++i)
+      ASSERT_EQ(lods[i].selected, state_.vertex_count[i]) << i;
+    CrowdComputeStats stats;
+    ASSERT_TRUE(compute->read_stats(stats).ok());
+    EXPECT_EQ(stats.overflow_instances, 0u);
+    EXPECT_EQ(stats.drawn_instances, state_.lod.drawn);
+  }
+  // A continuous frame goes through the corner buffer and leaves the indexed draws empty.
+  scene.lod.mode = LodMode::kContinuous;
+  scene.lod.budget = 3000;
+  run_frame(scene, 0.4f, *compute);
+  if (HasFatalFailure()) return;
+  EXPECT_FALSE(compute->instanced());
+  std::vector<VkDrawIndexedIndirectCommand> args;
+  ASSERT_TRUE(compute->read_indexed_args(args).ok());
+  for (const VkDrawIndexedIndirectCommand& a : args) EXPECT_EQ(a.instanceCount, 0u);
+  expect_identical(scene, *compute, false);
 }
 
 TEST_F(ComputeTest, AnEmptyCrowdDrawsNothing) {

@@ -44,6 +44,20 @@
 // — firstVertex is the type's first corner, so `uvec2 c = corners[gl_VertexIndex]` gives
 // (instance, vertex of that type's pack) directly (per-type bases are in type_ranges_buffer()
 // too). The buffers are rewritten by every record(): draw before the next frame's passes.
+//
+// Instanced static levels (CrowdComputeOptions::instanced_static_levels; full and discrete
+// modes only — continuous frames still use the corner buffer): full and discrete LoD draw a
+// few fixed meshes per type, so their index lists are reconstructed once on the CPU
+// (reconstruct_lod, exactly the CPU reference) into level_index_buffer(), and the passes only
+// sort the drawn instances by (type, level) slot, slot = type · 8 + level (full mode: level 0
+// = max_vertices; discrete: the type's levels in order). Per type draw
+//   vkCmdBindIndexBuffer(cmd, level_index_buffer().buffer(), 0, VK_INDEX_TYPE_UINT32);
+//   vkCmdDrawIndexedIndirect(cmd, indexed_args_buffer().buffer(), type * 8 * 20, 8, 20)
+// (8 draws without multiDrawIndirect); in the vertex shader the instance is
+// instance_list[gl_InstanceIndex] (firstInstance is the slot's first entry) and the vertex is
+// gl_VertexIndex (vertexOffset 0). No corner buffer is needed, so a full-resolution crowd of
+// any size is drawn whole. Whichever path a frame does not use gets zero counts in its
+// commands, so a renderer may record both kinds of draws every frame.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -68,6 +82,10 @@ struct CrowdComputeOptions {
   uint32_t corner_capacity = 0;
   // Instances the buffers are sized for; 0: the scene's instance count at create.
   uint32_t max_instances = 0;
+  // Full and discrete modes draw static levels: with this set they are drawn instanced from
+  // static index buffers (reconstructed once per level) instead of through the corner buffer,
+  // so a full-resolution crowd of any size fits (see "Instanced static levels" above).
+  bool instanced_static_levels = false;
 };
 
 // Per-instance result of the passes (instance_lod_buffer(), std430, 32 bytes).
@@ -150,15 +168,26 @@ class CrowdCompute {
   uint32_t type_count() const { return type_count_; }
   uint32_t instance_count() const { return instance_count_; }
 
+  // Instanced static levels (options.instanced_static_levels, full/discrete mode frames).
+  bool instanced() const { return instanced_; }  // the last upload() chose this path
+  const GpuBuffer& level_index_buffer() const { return level_indices_; }    // uint32 indices
+  const GpuBuffer& indexed_args_buffer() const { return indexed_args_; }    // per slot, stride 20
+  const GpuBuffer& instance_list_buffer() const { return instance_list_; }  // uint32 instances
+  static constexpr uint32_t kSlotsPerType = kMaxDiscreteLevels;  // slot = type · 8 + level
+
   // Readback for tests and profiles (after the passes completed).
   Status read_stats(CrowdComputeStats& out) const;
   Status read_instance_lods(std::vector<InstanceLod>& out) const;        // instance_count()
   Status read_corners(std::vector<uint32_t>& out) const;                 // 2 per drawn corner
   Status read_draw_args(std::vector<VkDrawIndirectCommand>& out) const;  // one per type
-  Status read_type_ranges(std::vector<TypeRange>& out) const;
+  Status read_type_ranges(std::vector<TypeRange>& out) const;            // per key (type or slot)
+  Status read_indexed_args(std::vector<VkDrawIndexedIndirectCommand>& out) const;  // per slot
+  Status read_instance_list(std::vector<uint32_t>& out) const;  // instance_count()
+  Status read_level_indices(std::vector<uint32_t>& out) const;
 
  private:
   CrowdCompute() = default;
+  Status update_levels(const Scene& scene, const FrameState& state);
 
   VulkanContext* context_ = nullptr;
   uint32_t type_count_ = 0, max_instances_ = 0, instance_count_ = 0, corner_capacity_ = 0;
@@ -166,7 +195,10 @@ class CrowdCompute {
   std::vector<uint8_t> progressive_;    // per type
   std::vector<uint32_t> vertex_counts_, triangle_counts_;
   GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
-      draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_;
+      draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_, level_ranges_,
+      indexed_args_, instance_list_, level_indices_;
+  bool instanced_levels_ = false, instanced_ = false;
+  std::vector<uint32_t> level_vertices_;  // per slot: the level's vertex count (0 = none)
   std::array<ComputeKernel, 7> kernels_;
   TimestampQueries queries_;  // for run()
 };
