@@ -36,10 +36,13 @@ int main(int argc, char** argv) {
     const char* name;
     LodMode mode;
     uint32_t budget;
-  } configs[] = {{"continuous", LodMode::kContinuous, 250000},
-                 {"continuous", LodMode::kContinuous, 1000000},
-                 {"discrete", LodMode::kDiscrete, 250000},
-                 {"full", LodMode::kFull, 250000}};
+    bool instanced;
+  } configs[] = {{"continuous", LodMode::kContinuous, 250000, false},
+                 {"continuous", LodMode::kContinuous, 1000000, false},
+                 {"discrete", LodMode::kDiscrete, 250000, false},
+                 {"full", LodMode::kFull, 250000, false},
+                 {"discrete-i", LodMode::kDiscrete, 250000, true},
+                 {"full-i", LodMode::kFull, 250000, true}};
   for (uint32_t n : counts) {
     for (const auto& c : configs) {
       LodSettings lod;
@@ -49,7 +52,9 @@ int main(int argc, char** argv) {
       s = test::make_compute_scene(scene, n, 11, lod);
       if (!s.ok()) return std::fprintf(stderr, "%s\n", s.message().c_str()), 1;
       std::unique_ptr<CrowdCompute> compute;
-      s = CrowdCompute::create(*context, scene, {}, compute);
+      CrowdComputeOptions options;
+      options.instanced_static_levels = c.instanced;
+      s = CrowdCompute::create(*context, scene, options, compute);
       if (!s.ok()) return std::fprintf(stderr, "%s\n", s.message().c_str()), 1;
       FrameState state;
       std::vector<GpuInstance> instances;
