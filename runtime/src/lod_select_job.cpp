@@ -151,15 +151,21 @@ bool LodSelectJob::Run() const {
 
   // Pass 1: w_i^(1/α) of every visible instance and their sum (in the GPU's order).
   const double alpha = settings.alpha;
+  uint32_t cached_type = UINT32_MAX;  // note: crowds come in runs of one type
+  double type_log_weight = 0.0;
   for (size_t i = 0; i < n; ++i) {
     weights[i] = 0.0;
     if (!visible[i]) continue;
     ++s.visible;
     const LodType& t = types[type[i]];
     if (t.triangles == 0) continue;  // note: nothing to see: weight 0
+    if (type[i] != cached_type) {
+      cached_type = type[i];
+      type_log_weight = lod_type_log_weight(alpha, t.triangles);
+    }
     double area = 0.0, distance = 0.0;
     lod_area_distance(*view, &spheres[4 * i], &area, &distance);
-    weights[i] = lod_weight_root(area, distance, alpha, lod_type_log_weight(alpha, t.triangles));
+    weights[i] = lod_weight_root(area, distance, alpha, type_log_weight);
   }
   const double sum = lod_weight_sum(Span<const double>(weights.data(), n));
   s.weight_sum = sum;

@@ -34,7 +34,8 @@ inline void make_test_context(std::unique_ptr<runtime::gpu::VulkanContext>& out)
   if (s.ok()) return;
   out.reset();
   if (s.code() == runtime::StatusCode::kNotLoaded && !vulkan_required())
-    GTEST_SKIP() << "no Vulkan device (lavapipe / mesa-vulkan-drivers missing?): " << s.message();
+    GTEST_SKIP() << "Vulkan unavailable (set CROWDBAKE_REQUIRE_VULKAN=1 to fail instead): "
+                 << s.message();
   FAIL() << "Vulkan context creation failed"
          << (vulkan_required() ? " (CROWDBAKE_REQUIRE_VULKAN=1)" : "") << ": " << s.message();
 }
