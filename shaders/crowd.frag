@@ -7,6 +7,7 @@
 #extension GL_EXT_control_flow_attributes : require
 
 #include "instance.glsl"
+#include "skin_common.glsl"
 #include "crowd_frame.glsl"
 #include "skin.glsl"
 

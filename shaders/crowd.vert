@@ -1,11 +1,12 @@
 // Colour pass: one invocation per drawn corner. Pulls (instance, vertex) from the corner buffer
-// the compute passes wrote, skins it (skin.glsl) and hands the fragment shader what the
-// partition and the colour variation need.
+// the compute passes wrote, fetches the vertex the skinning pass skinned (skin_pass.comp,
+// skin.glsl) and hands the fragment shader what the partition and the colour variation need.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
 #include "instance.glsl"
+#include "skin_common.glsl"
 #include "crowd_frame.glsl"
 #include "skin.glsl"
 
@@ -31,15 +32,28 @@ void main() {
     return;
   }
   const uvec2 corner = corners[draw_push.corner_base + uint(gl_VertexIndex)];
+  const uint base = skin_base[corner.x];
+  if (base == kSkinNotDrawn) {
+    // note: no skinned slots (buffer full): every corner of the instance at one point, so its
+    // triangles have no area and draw nothing.
+    out_world = out_normal = vec3(0.0);
+    out_uv = vec2(0.0);
+    out_height = 0.0;
+    out_textures = 0u;
+    out_color = vec4(0.0);
+    out_partition = vec2(0.0);
+    gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
+    return;
+  }
   const GpuInstance inst = instances[corner.x];
   const GpuVertex v = vertices[corner.y];
-  const SkinnedVertex s = skin_vertex(inst, v);
-  out_world = s.position;
-  out_normal = s.normal;
+  const vec4 skinned_vertex = skinned[base + corner.y];
+  out_world = skinned_vertex.xyz;
+  out_normal = unpack_normal(floatBitsToUint(skinned_vertex.w));
   out_uv = vec2(v.normal_u.w, uintBitsToFloat(v.joints_v.z));
   out_height = v.position_height.w;
   out_textures = inst.textures;
   out_color = vec4(inst.color.xyz, float(kDrawCrowd));
   out_partition = vec2(inst.neck_height, inst.waist_height);
-  gl_Position = frame.view_proj * vec4(s.position, 1.0);
+  gl_Position = frame.view_proj * vec4(out_world, 1.0);
 }

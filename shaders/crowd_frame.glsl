@@ -1,6 +1,7 @@
 // The frame's descriptor set (set 0) shared by crowd.vert, crowd.frag and shadow.vert
 // (crowd_draw.cpp binds it once per pass): instances, corners, the frame constants, the shadow
-// map and the swatch texture array. The includer declares `GpuInstance` first.
+// map, the swatch texture array, and the skinning pass's output. The includer includes
+// instance.glsl and skin_common.glsl first.
 #ifndef CROWDBAKE_CROWD_FRAME_GLSL
 #define CROWDBAKE_CROWD_FRAME_GLSL
 
@@ -19,8 +20,13 @@ layout(std430, set = 0, binding = 2) readonly buffer FrameBlock {
   vec4 ground_max;       // max x, unused, max z, unused
   vec4 ground_color;     // rgb
   vec4 eye;              // camera position
+  uvec4 skin;            // x: skinned-vertex slots (skin_common.glsl)
 }
 frame;
+
+// The skinning pass's output (skin_common.glsl): each instance's first slot, the vertices.
+layout(std430, set = 0, binding = 5) readonly buffer BaseBlock { uint skin_base[]; };
+layout(std430, set = 0, binding = 6) readonly buffer SkinnedBlock { vec4 skinned[]; };
 
 // Push constants of every crowd draw: where the type's corners start. (Nothing pushed steers
 // a branch: lavapipe may recompile shaders whose branches depend on pushed values.)

@@ -9,10 +9,12 @@
 #include <tuple>
 #include <utility>
 
+#include "crowdbake/runtime/gpu/crowd_compute.h"
+
 namespace crowdbake::runtime::gpu {
 
 // note: the shaders read these as std140 / std430 blocks; any change must match the GLSL.
-static_assert(sizeof(FrameConstants) == 2 * 64 + 7 * 16, "FrameBlock layout");
+static_assert(sizeof(FrameConstants) == 2 * 64 + 8 * 16, "FrameBlock layout");
 static_assert(offsetof(FrameConstants, light_dir) == 128, "FrameBlock layout");
 static_assert(sizeof(TypeConstants) == 6 * 16, "TypeBlock layout");
 static_assert(sizeof(GpuVertex) == 64, "GpuVertex layout");
@@ -226,7 +228,18 @@ struct CrowdDraw::Impl {
   uint32_t swatches_per_region = 1;
 
   std::vector<TypeResources> types;
-  VkBuffer bound_instances = VK_NULL_HANDLE, bound_corners = VK_NULL_HANDLE;
+  VkBuffer bound_instances = VK_NULL_HANDLE, bound_corners = VK_NULL_HANDLE,
+           bound_lods = VK_NULL_HANDLE;
+
+  // The skinning pass (skin_list.comp, skin_pass.comp; see shaders/skin_common.glsl).
+  VkDescriptorSetLayout skin_layout = VK_NULL_HANDLE;
+  VkPipelineLayout skin_pipeline_layout = VK_NULL_HANDLE;
+  VkDescriptorSet skin_set = VK_NULL_HANDLE;
+  VkShaderModule skin_list_module = VK_NULL_HANDLE, skin_pass_module = VK_NULL_HANDLE;
+  VkPipeline skin_list_pipeline = VK_NULL_HANDLE;
+  VkPipeline skin_pipelines[kEncodings] = {};
+  GpuBuffer skin_params, type_args, skin_list, skin_base, skinned;
+  uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
   std::map<std::tuple<VkFormat, VkFormat, VkImageLayout>, ColorPipeline> color_pipelines;
   std::map<std::tuple<VkRenderPass, VkImageView, VkImageView, uint32_t, uint32_t>, VkFramebuffer>
@@ -243,6 +256,12 @@ struct CrowdDraw::Impl {
     }
     for (VkPipeline pipeline : shadow_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
+    vkDestroyPipeline(d, skin_list_pipeline, nullptr);
+    for (VkPipeline pipeline : skin_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+    vkDestroyShaderModule(d, skin_list_module, nullptr);
+    vkDestroyShaderModule(d, skin_pass_module, nullptr);
+    vkDestroyPipelineLayout(d, skin_pipeline_layout, nullptr);
+    vkDestroyDescriptorSetLayout(d, skin_layout, nullptr);
     vkDestroyRenderPass(d, shadow_pass, nullptr);
     vkDestroyShaderModule(d, crowd_vert, nullptr);
     vkDestroyShaderModule(d, crowd_frag, nullptr);
@@ -267,6 +286,9 @@ struct CrowdDraw::Impl {
   Status create_pipelines(VkRenderPass pass, bool shadow, VkPipeline (&pipelines)[kEncodings]);
   Status color_pipeline(const HostTarget& target, ColorPipeline*& out);
   void write_frame_set();
+  Status create_skin_pass();
+  Status create_compute_pipeline(VkShaderModule module, const uint32_t* encoding, VkPipeline& out);
+  void write_skin_set();
   void write_type_set(const TypeResources& t);
 };
 
@@ -279,6 +301,8 @@ Status CrowdDraw::Impl::create_layouts() {
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   const VkDescriptorSetLayoutBinding type_bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
@@ -289,12 +313,13 @@ Status CrowdDraw::Impl::create_layouts() {
   };
   VkDescriptorSetLayoutCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  info.bindingCount = 5;
+  info.bindingCount = 7;
   info.pBindings = frame_bindings;
   if (Status s = check(vkCreateDescriptorSetLayout(d, &info, nullptr, &frame_layout),
                        "vkCreateDescriptorSetLayout");
       !s)
     return s;
+  info.bindingCount = 5;
   info.pBindings = type_bindings;
   if (Status s = check(vkCreateDescriptorSetLayout(d, &info, nullptr, &type_layout),
                        "vkCreateDescriptorSetLayout");
@@ -316,12 +341,12 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + 4 * type_count},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 + 4 * type_count + 7},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
   };
   VkDescriptorPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1 + type_count;
+  pool_info.maxSets = 2 + type_count;
   pool_info.poolSizeCount = 2;
   pool_info.pPoolSizes = sizes;
   if (Status s =
@@ -483,14 +508,14 @@ Status CrowdDraw::Impl::create_pipelines(VkRenderPass pass, bool shadow,
 Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
                                                  VkPipeline& out, bool ground) {
   // Specialization constants: 0 = the animation encoding, 1 = crowd (0) or ground (1).
-  const uint32_t constants[2] = {encoding, ground ? 1u : 0u};
+  const uint32_t spec[2] = {encoding, ground ? 1u : 0u};
   const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
                                                {1, sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
   specialization.mapEntryCount = 2;
   specialization.pMapEntries = entries;
-  specialization.dataSize = sizeof(constants);
-  specialization.pData = constants;
+  specialization.dataSize = sizeof(spec);
+  specialization.pData = spec;
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -714,8 +739,10 @@ void CrowdDraw::Impl::write_frame_set() {
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo swatch{swatch_sampler, swatches.view(),
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet writes[5] = {};
-  for (uint32_t b = 0; b < 5; ++b) {
+  const VkDescriptorBufferInfo base_info = skin_base.descriptor();
+  const VkDescriptorBufferInfo skinned_info = skinned.descriptor();
+  VkWriteDescriptorSet writes[7] = {};
+  for (uint32_t b = 0; b < 7; ++b) {
     writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[b].dstSet = frame_set;
     writes[b].dstBinding = b;
@@ -729,7 +756,103 @@ void CrowdDraw::Impl::write_frame_set() {
   writes[3].descriptorType = writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[3].pImageInfo = &shadow;
   writes[4].pImageInfo = &swatch;
-  vkUpdateDescriptorSets(context->device(), 5, writes, 0, nullptr);
+  writes[5].descriptorType = writes[6].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  writes[5].pBufferInfo = &base_info;
+  writes[6].pBufferInfo = &skinned_info;
+  vkUpdateDescriptorSets(context->device(), 7, writes, 0, nullptr);
+}
+
+void CrowdDraw::Impl::write_skin_set() {
+  const VkDescriptorBufferInfo buffers[7] = {{bound_instances, 0, VK_WHOLE_SIZE},
+                                             {bound_lods, 0, VK_WHOLE_SIZE},
+                                             type_args.descriptor(),
+                                             skin_list.descriptor(),
+                                             skin_base.descriptor(),
+                                             skin_params.descriptor(),
+                                             skinned.descriptor()};
+  VkWriteDescriptorSet writes[7] = {};
+  for (uint32_t b = 0; b < 7; ++b) {
+    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[b].dstSet = skin_set;
+    writes[b].dstBinding = b;
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &buffers[b];
+  }
+  vkUpdateDescriptorSets(context->device(), 7, writes, 0, nullptr);
+}
+
+Status CrowdDraw::Impl::create_compute_pipeline(VkShaderModule module, const uint32_t* encoding,
+                                                VkPipeline& out) {
+  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+  VkSpecializationInfo specialization{};
+  specialization.mapEntryCount = 1;
+  specialization.pMapEntries = &entry;
+  specialization.dataSize = sizeof(uint32_t);
+  specialization.pData = encoding;
+  VkComputePipelineCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = encoding ? &specialization : nullptr;
+  info.layout = skin_pipeline_layout;
+  return check(vkCreateComputePipelines(context->device(), VK_NULL_HANDLE, 1, &info, nullptr, &out),
+               "vkCreateComputePipelines");
+}
+
+Status CrowdDraw::Impl::create_skin_pass() {
+  VkDevice d = context->device();
+  VkDescriptorSetLayoutBinding bindings[7] = {};
+  for (uint32_t b = 0; b < 7; ++b)
+    bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  info.bindingCount = 7;
+  info.pBindings = bindings;
+  if (Status s = check(vkCreateDescriptorSetLayout(d, &info, nullptr, &skin_layout),
+                       "vkCreateDescriptorSetLayout");
+      !s)
+    return s;
+  const VkDescriptorSetLayout layouts[2] = {skin_layout, type_layout};
+  const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(uint32_t)};
+  VkPipelineLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  layout_info.setLayoutCount = 2;
+  layout_info.pSetLayouts = layouts;
+  layout_info.pushConstantRangeCount = 1;
+  layout_info.pPushConstantRanges = &push;
+  if (Status s = check(vkCreatePipelineLayout(d, &layout_info, nullptr, &skin_pipeline_layout),
+                       "vkCreatePipelineLayout");
+      !s)
+    return s;
+  VkDescriptorSetAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  alloc.descriptorPool = pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &skin_layout;
+  if (Status s = check(vkAllocateDescriptorSets(d, &alloc, &skin_set), "vkAllocateDescriptorSets");
+      !s)
+    return s;
+  if (Status s = context->create_shader_module("skin_list.comp", skin_list_module); !s) return s;
+  if (Status s = context->create_shader_module("skin_pass.comp", skin_pass_module); !s) return s;
+  if (Status s = create_compute_pipeline(skin_list_module, nullptr, skin_list_pipeline); !s)
+    return s;
+  for (const TypeResources& t : types)
+    if (skin_pipelines[t.encoding] == VK_NULL_HANDLE)
+      if (Status s =
+              create_compute_pipeline(skin_pass_module, &t.encoding, skin_pipelines[t.encoding]);
+          !s)
+        return s;
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // note: one entry per type plus the totals (skin_list.comp).
+  const VkDeviceSize type_bytes = 16 * (types.size() + 1);
+  if (Status s = GpuBuffer::create(*context, 16, storage, MemoryKind::kHostVisible, skin_params);
+      !s)
+    return s;
+  return GpuBuffer::create(*context, type_bytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                           MemoryKind::kDeviceLocal, type_args);
 }
 
 void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
@@ -786,6 +909,7 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
   if (Status s = impl->upload_image(impl->swatches, swatches.data(), swatches.size()); !s) return s;
 
   if (Status s = impl->create_shadow(); !s) return s;
+  if (Status s = impl->create_skin_pass(); !s) return s;
   if (Status s =
           GpuBuffer::create(context, sizeof(FrameConstants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             MemoryKind::kHostVisible, impl->frame_buffer);
@@ -796,8 +920,51 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
 }
 
 Status CrowdDraw::update(const Scene& scene, const FrameState& state, const EffectFrame* effects,
-                         const GpuBuffer& instances, const GpuBuffer& corners) {
+                         const CrowdCompute& compute) {
   Impl& m = *impl_;
+  const GpuBuffer& instances = compute.instance_buffer();
+  const GpuBuffer& corners = compute.corner_buffer();
+  const GpuBuffer& lods = compute.instance_lod_buffer();
+  bool sets_dirty = false;
+  // Skinned-vertex slots (skin_common.glsl): as many as the corner buffer has corners (a LoD
+  // has fewer vertices than corners), capped by the device's storage buffer range; instances
+  // finding no room are counted and not drawn.
+  const uint32_t slots = static_cast<uint32_t>(
+      std::max<uint64_t>(1, std::min<uint64_t>(compute.corner_capacity(),
+                                               m.context->limits().maxStorageBufferRange / 16)));
+  if (!m.skinned.valid() || slots != m.skin_capacity) {
+    GpuBuffer buffer;
+    if (Status s =
+            GpuBuffer::create(*m.context, VkDeviceSize{slots} * 16,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::kDeviceLocal, buffer);
+        !s)
+      return s;
+    m.skinned = std::move(buffer);
+    m.skin_capacity = slots;
+    sets_dirty = true;
+  }
+  m.instance_count = static_cast<uint32_t>(scene.instances.size());
+  if (!m.skin_list.valid() || m.instance_count > m.list_stride) {
+    const uint32_t stride = std::max<uint32_t>(m.instance_count, 1);
+    GpuBuffer list, base;
+    if (Status s = GpuBuffer::create(
+            *m.context, VkDeviceSize{stride} * 4 * std::max<VkDeviceSize>(m.types.size(), 1),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::kDeviceLocal, list);
+        !s)
+      return s;
+    if (Status s =
+            GpuBuffer::create(*m.context, VkDeviceSize{stride} * 4,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::kDeviceLocal, base);
+        !s)
+      return s;
+    m.skin_list = std::move(list);
+    m.skin_base = std::move(base);
+    m.list_stride = stride;
+    sets_dirty = true;
+  }
+  const uint32_t params[4] = {m.instance_count, static_cast<uint32_t>(m.types.size()),
+                              m.list_stride, m.skin_capacity};
+  if (Status s = m.skin_params.upload(params, sizeof(params)); !s) return s;
   FrameConstants& k = m.constants;
   const View& view = state.view;
   float view_m[16], proj[16];
@@ -862,6 +1029,7 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   std::memcpy(k.ground_color, ground_color, sizeof(ground_color));
   const float eye[4] = {view.eye[0], view.eye[1], view.eye[2], 1.0f};
   std::memcpy(k.eye, eye, sizeof(eye));
+  k.skin[0] = m.skin_capacity;
   if (Status s = m.frame_buffer.upload(&k, sizeof(k)); !s) return s;
 
   // note: the shader indexes the pose buffer without bounds checks: refuse what would overrun.
@@ -885,10 +1053,13 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   }
   if (Status s = upload_poses(effects); !s) return s;
 
-  if (instances.buffer() != m.bound_instances || corners.buffer() != m.bound_corners) {
+  if (sets_dirty || instances.buffer() != m.bound_instances ||
+      corners.buffer() != m.bound_corners || lods.buffer() != m.bound_lods) {
     m.bound_instances = instances.buffer();
     m.bound_corners = corners.buffer();
+    m.bound_lods = lods.buffer();
     m.write_frame_set();
+    m.write_skin_set();
   }
   return {};
 }
@@ -916,6 +1087,56 @@ Status CrowdDraw::upload_poses(const EffectFrame* effects) {
   }
 
   return {};
+}
+
+Status CrowdDraw::read_skin_stats(uint32_t& slots_used, uint32_t& no_room) const {
+  const Impl& m = *impl_;
+  uint32_t totals[4] = {0, 0, 0, 0};
+  if (Status s = m.type_args.download(totals, sizeof(totals), 16 * m.types.size()); !s) return s;
+  slots_used = std::min(totals[0], m.skin_capacity);
+  no_room = totals[1];
+  return {};
+}
+
+void CrowdDraw::record_skinning(VkCommandBuffer cmd) {
+  Impl& m = *impl_;
+  const uint32_t types = static_cast<uint32_t>(m.types.size());
+  if (types == 0 || m.skin_set == VK_NULL_HANDLE || m.bound_lods == VK_NULL_HANDLE) return;
+  // note: the compute passes' outputs (LoD, corner offsets) feed the list pass.
+  full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT);
+  std::vector<uint32_t> cleared(4 * (static_cast<size_t>(types) + 1));
+  for (uint32_t t = 0; t < types; ++t) {
+    cleared[4 * t + 1] = 1;
+    cleared[4 * t + 2] = 1;
+  }
+  // note: vkCmdUpdateBuffer takes at most 65536 bytes at a time.
+  for (size_t first = 0; first < cleared.size(); first += 16384) {
+    const size_t words = std::min<size_t>(16384, cleared.size() - first);
+    vkCmdUpdateBuffer(cmd, m.type_args.buffer(), first * 4, words * 4, &cleared[first]);
+  }
+  full_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_pipeline_layout, 0, 1,
+                          &m.skin_set, 0, nullptr);
+  if (m.instance_count > 0) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_list_pipeline);
+    vkCmdDispatch(cmd, std::min<uint32_t>((m.instance_count + 255) / 256, 65535), 1, 1);
+  }
+  full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
+  VkPipeline bound = VK_NULL_HANDLE;
+  for (uint32_t t = 0; t < types; ++t) {
+    if (m.skin_pipelines[m.types[t].encoding] != bound) {
+      bound = m.skin_pipelines[m.types[t].encoding];
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bound);
+    }
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_pipeline_layout, 1, 1,
+                            &m.types[t].set, 0, nullptr);
+    vkCmdPushConstants(cmd, m.skin_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(t), &t);
+    vkCmdDispatchIndirect(cmd, m.type_args.buffer(), VkDeviceSize{t} * 16);
+  }
+  full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
 }
 
 void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {

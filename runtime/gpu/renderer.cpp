@@ -1,5 +1,6 @@
 #include "crowdbake/runtime/gpu/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <utility>
@@ -15,8 +16,10 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Timestamps of render(): the compute passes write 0..7, then shadow, colour, readback ends.
-constexpr uint32_t kShadowEnd = CrowdCompute::kTimestampCount;
+// Timestamps of render(): the compute passes write 0..7, then skinning, shadow, colour and
+// readback ends.
+constexpr uint32_t kSkinEnd = CrowdCompute::kTimestampCount;
+constexpr uint32_t kShadowEnd = kSkinEnd + 1;
 constexpr uint32_t kColorEnd = kShadowEnd + 1;
 constexpr uint32_t kReadbackEnd = kColorEnd + 1;
 constexpr uint32_t kQueryCount = kReadbackEnd + 1;
@@ -86,10 +89,7 @@ struct Renderer::Impl {
                                    Span<const GpuInstance>(instances.data(), instances.size()));
         !s)
       return s;
-    if (Status s = draw->update(scene, state, effects, compute->instance_buffer(),
-                                compute->corner_buffer());
-        !s)
-      return s;
+    if (Status s = draw->update(scene, state, effects, *compute); !s) return s;
     if (upload_ms) *upload_ms = ms_since(start);
     return {};
   }
@@ -139,6 +139,8 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
         const auto record_start = Clock::now();
         if (queries) queries->reset(cmd);
         m.compute->record(cmd, queries, 0);
+        m.draw->record_skinning(cmd);
+        if (queries) queries->write(cmd, kSkinEnd);
         m.draw->record_shadow(cmd, Span<const TypeDraw>(draws.data(), draws.size()));
         if (queries) queries->write(cmd, kShadowEnd);
         recorded =
@@ -178,7 +180,8 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   for (uint32_t p = 0; p < ComputeTimings::kPasses; ++p)
     profile->passes.push_back(
         {std::string("compute: ") + ComputeTimings::kNames[p], 0, gpu(p, p + 1)});
-  profile->passes.push_back({"shadow", 0, gpu(ComputeTimings::kPasses, kShadowEnd)});
+  profile->passes.push_back({"skinning", 0, gpu(ComputeTimings::kPasses, kSkinEnd)});
+  profile->passes.push_back({"shadow", 0, gpu(kSkinEnd, kShadowEnd)});
   profile->passes.push_back({"colour", 0, gpu(kShadowEnd, kColorEnd)});
   profile->passes.push_back({"readback", read_ms, gpu(kColorEnd, kReadbackEnd)});
   profile->passes.push_back({"submit + wait", submit_ms, 0});
@@ -186,8 +189,10 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   if (Status s = m.compute->read_stats(stats); !s) return s;
   profile->instances = stats.instances;
   profile->visible = stats.visible;
-  profile->drawn = stats.drawn_instances;
-  profile->overflow = stats.overflow_instances;
+  uint32_t slots = 0, no_room = 0;
+  if (Status s = m.draw->read_skin_stats(slots, no_room); !s) return s;
+  profile->overflow = stats.overflow_instances + no_room;
+  profile->drawn = stats.drawn_instances - std::min(no_room, stats.drawn_instances);
   profile->vertices = stats.selected_vertices;
   profile->triangles = stats.drawn_corners / 3;
   return {};
@@ -198,6 +203,7 @@ Status Renderer::prepare(const Scene& scene, float time, VkCommandBuffer cmd,
   Impl& m = *impl_;
   if (Status s = m.update(scene, time, effects, nullptr, nullptr); !s) return s;
   m.compute->record(cmd);
+  m.draw->record_skinning(cmd);
   m.prepared = true;
   return {};
 }

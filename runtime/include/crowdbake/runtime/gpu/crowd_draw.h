@@ -27,6 +27,8 @@
 
 namespace crowdbake::runtime::gpu {
 
+class CrowdCompute;
+
 // Light, shadow and ground settings of the colour pass.
 struct DrawSettings {
   bool shadows = true;
@@ -70,6 +72,7 @@ struct FrameConstants {
   float ground_max[4];
   float ground_color[4];
   float eye[4];
+  uint32_t skin[4];  // x: skinned-vertex slots
 };
 
 struct TypeConstants {
@@ -114,10 +117,18 @@ class CrowdDraw {
 
   // Per frame, before recording: the frame constants (camera of `state`, the light box over the
   // visible instances, the ground under every instance), the pose buffers of `effects` (null or
-  // empty: none) and set 0 pointed at this frame's instance and corner buffers. The previous
-  // frame's commands must have completed (sets and constants are rewritten in place).
+  // empty: none) and the descriptor sets pointed at the compute passes' instance, LoD and corner
+  // buffers. The previous frame's commands must have completed (sets and constants are
+  // rewritten in place).
   Status update(const Scene& scene, const FrameState& state, const EffectFrame* effects,
-                const GpuBuffer& instances, const GpuBuffer& corners);
+                const CrowdCompute& compute);
+
+  // The skinning pass, after the compute passes and before the shadow and colour passes
+  // (outside any render pass): each selected vertex of each drawn instance skinned once
+  // (shaders/skin_common.glsl), with the barriers around it.
+  void record_skinning(VkCommandBuffer cmd);
+  // After the skinning pass ran: slots used and drawn instances that found no room (not drawn).
+  Status read_skin_stats(uint32_t& slots_used, uint32_t& no_room) const;
 
   // The pose buffers alone (update() calls it): uploads each type's EffectFrame::pose_buffers
   // entry, growing the buffer when needed; types without poses keep what they had.
