@@ -88,6 +88,46 @@ int main(int argc, char** argv) {
                                "Only the generated spectator");
   bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
 
+  crowdbake::cli::BenchRenderSettings bench_render;
+  CLI::App* bench_render_cmd = bench_cmd->add_subcommand(
+      "render",
+      "Frame time, triangles and image error of continuous/discrete LoD vs. full resolution on "
+      "lavapipe; popping over a camera dolly (docs/performance.md)");
+  bench_render_cmd->add_option("--pack", bench_render.pack,
+                               "Pack to render (default: bake the generated spectator)");
+  bench_render_cmd
+      ->add_option("--sizes", bench_render.sizes, "Instance counts (default 1000,10000,50000)")
+      ->delimiter(',');
+  bench_render_cmd
+      ->add_option("--budgets", bench_render.budgets,
+                   "LoD budgets N in vertices (default 100000,300000,1000000,3000000)")
+      ->delimiter(',');
+  bench_render_cmd->add_option("--frames", bench_render.frames,
+                               "Timed frames per configuration after one warm-up (default 3)");
+  bench_render_cmd->add_option("--resolution", bench_render.resolution,
+                               "Image size WIDTHxHEIGHT (default 1280x720)");
+  bench_render_cmd->add_option(
+      "--full-single-frame", bench_render.full_single_frame_triangles,
+      "Full resolution above this many triangles is timed on one frame (default 50000000)");
+  bench_render_cmd->add_option("--pop-size", bench_render.pop_size,
+                               "Instances of the popping dolly (default 1000; 0 = skip)");
+  bench_render_cmd->add_option("--pop-frames", bench_render.pop_frames,
+                               "Frames of the dolly at 30 frames/s (default 60)");
+  bench_render_cmd->add_option("--pop-budget", bench_render.pop_budget,
+                               "Continuous budget of the dolly (default 10% of full vertices)");
+  bench_render_cmd->add_option(
+      "--out", bench_render.out,
+      "Folder for render-bench.csv, render-popping.csv (default docs/data)");
+  bench_render_cmd->add_option("--plot", bench_render.plot,
+                               "PNG plot (default docs/render-bench.png; '' = none)");
+  bench_render_cmd->add_option("--plot-script", bench_render.plot_script,
+                               "gnuplot script (default scripts/plot-render.gp)");
+  bench_render_cmd->add_option("--frames-dir", bench_render.frames_dir,
+                               "Write the dolly's frames as PNGs into this folder");
+  bench_render_cmd->add_flag("!--no-shadows", bench_render.shadows, "No shadow map");
+  bench_render_cmd->add_flag("--quick", bench_render.quick,
+                             "Tiny sizes, resolution and dolly (CI smoke test)");
+
   crowdbake::cli::BakeCommandSettings bake;
   CLI::App* bake_cmd =
       app.add_subcommand("bake",
@@ -185,6 +225,7 @@ int main(int argc, char** argv) {
     if (*bake_cmd) return crowdbake::cli::run_bake(bake);
     if (*diff_cmd) return crowdbake::cli::run_diff(diff);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
+    if (*bench_render_cmd) return crowdbake::cli::run_bench_render(bench_render);
     if (*render_cmd) {
       render.frames_given = frames_opt->count() > 0;
       render.fps_given = fps_opt->count() > 0;

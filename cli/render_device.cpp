@@ -13,6 +13,25 @@ std::unique_ptr<runtime::gpu::VulkanContext> open_vulkan(bool validation) {
   return context;
 }
 
+std::unique_ptr<runtime::gpu::Renderer> make_renderer(runtime::gpu::VulkanContext& context,
+                                                      const runtime::Scene& scene, bool shadows,
+                                                      const std::string& scene_name) {
+  runtime::gpu::RenderOptions options;
+  options.shadows = shadows;
+  std::unique_ptr<runtime::gpu::Renderer> renderer;
+  const runtime::Status status = runtime::gpu::Renderer::create(context, scene, options, renderer);
+  if (!status.ok()) throw input_error(scene_name, status.message());
+  return renderer;
+}
+
+RgbaImage to_rgba(runtime::gpu::Image&& image) {
+  RgbaImage out;
+  out.width = image.width;
+  out.height = image.height;
+  out.rgba = std::move(image.rgba);
+  return out;
+}
+
 void check_validation(const runtime::gpu::VulkanContext& context) {
   if (context.validation_enabled() && context.validation_errors() > 0)
     throw input_error("vulkan", std::to_string(context.validation_errors()) +

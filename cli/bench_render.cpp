@@ -1,0 +1,392 @@
+// crowdbake bench render: for each stand size, full resolution first (the reference image and
+// frame time), then continuous and discrete LoD at each budget; then the popping measure over
+// a camera dolly, continuous against discrete at an equal mean triangle count.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+
+#include "cli/bench_child.h"
+#include "cli/bench_render_report.h"
+#include "cli/bench_render_scene.h"
+#include "cli/commands.h"
+#include "cli/image_compare.h"
+#include "cli/image_png.h"
+#include "cli/render_device.h"
+#include "cli/render_plan.h"
+#include "crowdbake/pipeline/error.h"
+#include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/reconstruct_job.h"
+
+namespace crowdbake::cli {
+namespace fs = std::filesystem;
+namespace gpu = runtime::gpu;
+namespace {
+
+constexpr float kTableTime = 1.0f;  // scene time of the table's frames (clips mid-motion)
+constexpr float kPopFps = 30.0f;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double gpu_total(const gpu::FrameProfile& p) {
+  double ms = 0;
+  for (const gpu::PassTiming& pass : p.passes) ms += pass.gpu_ms;
+  return ms;
+}
+
+const char* mode_name(runtime::LodMode mode) {
+  switch (mode) {
+    case runtime::LodMode::kContinuous:
+      return "continuous";
+    case runtime::LodMode::kDiscrete:
+      return "discrete";
+    case runtime::LodMode::kFull:
+      return "full";
+  }
+  return "?";
+}
+
+struct Frame {
+  RgbaImage image;
+  gpu::FrameProfile profile;
+  double wall_ms = 0;
+};
+
+Frame render_frame(gpu::VulkanContext& context, gpu::Renderer& renderer,
+                   const runtime::Scene& scene, float time) {
+  Frame f;
+  gpu::Image image;
+  const auto start = std::chrono::steady_clock::now();
+  const runtime::Status s = renderer.render(scene, time, image, &f.profile);
+  f.wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!s.ok()) throw input_error("bench", s.message());
+  check_validation(context);
+  f.image = to_rgba(std::move(image));
+  return f;
+}
+
+// Times `frames` renders after `warmup` untimed ones; the row's counts and the returned image
+// are the last frame's.
+RgbaImage measure(gpu::VulkanContext& context, gpu::Renderer& renderer, runtime::Scene& scene,
+                  runtime::LodMode mode, uint32_t budget, uint32_t warmup, uint32_t frames,
+                  RenderBenchRow& row) {
+  scene.lod.mode = mode;
+  if (budget) scene.lod.budget = budget;
+  row.mode = mode_name(mode);
+  row.budget = mode == runtime::LodMode::kFull ? 0 : budget;
+  row.instances = static_cast<uint32_t>(scene.instances.size());
+  std::vector<double> wall, gpu_ms;
+  Frame last;
+  for (uint32_t i = 0; i < warmup + frames; ++i) {
+    last = render_frame(context, renderer, scene, kTableTime);
+    if (i >= warmup) {
+      wall.push_back(last.wall_ms);
+      gpu_ms.push_back(gpu_total(last.profile));
+    }
+  }
+  row.frames = frames;
+  row.frame_ms = median(wall);
+  row.gpu_ms = median(gpu_ms);
+  row.visible = last.profile.visible;
+  row.drawn = last.profile.drawn;
+  row.overflow = last.profile.overflow;
+  row.vertices = last.profile.vertices;
+  row.triangles = last.profile.triangles;
+  if (row.overflow > 0)
+    row.note = std::to_string(row.overflow) + " instances not drawn: corner buffer full";
+  return std::move(last.image);
+}
+
+// Mean triangles per frame that LoD selection gives over the times, from the CPU reference
+// (update_frame and the packs' triangle_count tables): cheap enough to search budgets with.
+double mean_selected_triangles(const runtime::Scene& scene, const std::vector<float>& times) {
+  runtime::FrameState state;
+  std::vector<runtime::ProgressiveView> views;
+  for (const runtime::CharacterType& t : scene.types)
+    views.push_back(runtime::progressive_view(t.pack.contents()));
+  double total = 0;
+  for (float t : times) {
+    const runtime::Status s = runtime::update_frame(scene, t, state);
+    if (!s.ok()) throw input_error("bench", s.message());
+    for (size_t i = 0; i < state.vertex_count.size(); ++i)
+      if (state.vertex_count[i] > 0)
+        total += runtime::lod_triangle_count(views[scene.instances.type[i]], state.vertex_count[i]);
+  }
+  return total / static_cast<double>(times.size());
+}
+
+// The discrete budget whose mean triangle count over `times` is closest to `target`
+// (bisection in log space; discrete snaps counts down, so it needs a larger N).
+// Leaves the scene's LoD settings as it found them.
+uint32_t discrete_budget_for(runtime::Scene& scene, const std::vector<float>& times, double target,
+                             uint32_t start) {
+  const runtime::LodSettings saved = scene.lod;
+  scene.lod.mode = runtime::LodMode::kDiscrete;
+  double lo = std::max(1.0, start / 2.0), hi = std::min(4294967295.0, start * 32.0);
+  uint32_t best = start;
+  double best_gap = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 24; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    scene.lod.budget = static_cast<uint32_t>(mid);
+    const double tris = mean_selected_triangles(scene, times);
+    if (std::abs(tris - target) < best_gap) {
+      best_gap = std::abs(tris - target);
+      best = scene.lod.budget;
+    }
+    if (best_gap <= 0.002 * target) break;
+    (tris < target ? lo : hi) = mid;
+  }
+  scene.lod = saved;
+  return best;
+}
+
+struct PopSequence {
+  std::vector<RgbaImage> frames;
+  std::vector<double> triangles;
+};
+
+PopSequence render_sequence(gpu::VulkanContext& context, gpu::Renderer& renderer,
+                            runtime::Scene& scene, runtime::LodMode mode, uint32_t budget,
+                            const std::vector<float>& times, const std::string& frames_dir) {
+  scene.lod.mode = mode;
+  if (budget) scene.lod.budget = budget;
+  PopSequence seq;
+  for (size_t i = 0; i < times.size(); ++i) {
+    Frame f = render_frame(context, renderer, scene, times[i]);
+    seq.triangles.push_back(static_cast<double>(f.profile.triangles));
+    if (!frames_dir.empty()) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s-%u-%04zu.png", mode_name(mode), budget, i);
+      write_png((fs::path(frames_dir) / name).string(), f.image);
+    }
+    seq.frames.push_back(std::move(f.image));
+  }
+  return seq;
+}
+
+PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode, uint32_t budget,
+               const std::string& why) {
+  PopRow row;
+  row.mode = mode;
+  row.budget = budget;
+  row.why = why;
+  double tris = 0, psnr_sum = 0;
+  for (size_t i = 0; i < seq.frames.size(); ++i) {
+    tris += seq.triangles[i];
+    const double p = psnr(seq.frames[i], full.frames[i]);
+    psnr_sum += std::isfinite(p) ? p : 99.0;
+    if (i + 1 < seq.frames.size())
+      row.per_pair.push_back(
+          change_difference(seq.frames[i], seq.frames[i + 1], full.frames[i], full.frames[i + 1]));
+  }
+  row.mean_triangles = tris / static_cast<double>(seq.frames.size());
+  row.mean_psnr = psnr_sum / static_cast<double>(seq.frames.size());
+  std::vector<double> sorted = row.per_pair;
+  std::sort(sorted.begin(), sorted.end());
+  double sum = 0;
+  for (double v : sorted) sum += v;
+  row.mean_change = sorted.empty() ? 0 : sum / static_cast<double>(sorted.size());
+  row.p95_change = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.95 * (sorted.size() - 1))];
+  row.max_change = sorted.empty() ? 0 : sorted.back();
+  return row;
+}
+
+void draw_plot(const BenchRenderSettings& s, const std::string& data,
+               const RenderBenchResult& result) {
+  if (s.plot.empty()) return;
+  if (!fs::exists(s.plot_script)) {
+    std::cerr << "note: " << s.plot_script << " not found; no plot written\n";
+    return;
+  }
+  std::string sizes;
+  for (uint32_t n : s.sizes) sizes += (sizes.empty() ? "" : " ") + std::to_string(n);
+  const std::string tmp = s.plot + ".tmp.png";
+  const std::string log =
+      (fs::temp_directory_path() / ("crowdbake-gnuplot-" + std::to_string(getpid()) + ".log"))
+          .string();
+  char title[160];
+  std::snprintf(title, sizeof title, "%ux%u, %s", result.width, result.height,
+                result.device.c_str());
+  const ChildResult run =
+      run_program({"gnuplot", "-e",
+                   "datafile='" + data + "'; outfile='" + tmp + "'; sizes='" + sizes + "'; pop='" +
+                       std::to_string(result.pop_instances) + "'; device='" + title + "'",
+                   s.plot_script},
+                  log);
+  std::error_code ignored;
+  fs::remove(log, ignored);
+  if (!run.ok || !fs::exists(tmp)) {
+    std::cerr << "note: gnuplot failed (" << run.error
+              << "); no plot written (install gnuplot-nox)\n";
+    fs::remove(tmp, ignored);
+    return;
+  }
+  fs::rename(tmp, s.plot);
+}
+
+void check_settings(const BenchRenderSettings& s) {
+  auto usage = [](const std::string& option, const std::string& message) {
+    return Error(Error::Kind::kUsage, option, message);
+  };
+  if (s.sizes.empty()) throw usage("--sizes", "needs at least one instance count");
+  for (uint32_t n : s.sizes)
+    if (n < 1 || n > 1000000) throw usage("--sizes", "instance counts must be in 1..1000000");
+  for (uint32_t b : s.budgets)
+    if (b < 1) throw usage("--budgets", "budgets must be at least 1");
+  if (s.frames < 1 || s.frames > 1000) throw usage("--frames", "must be in 1..1000");
+  if (s.pop_size > 0 && (s.pop_frames < 2 || s.pop_frames > 1000))
+    throw usage("--pop-frames", "must be in 2..1000");
+}
+
+}  // namespace
+
+int run_bench_render(const BenchRenderSettings& settings) {
+  BenchRenderSettings s = settings;
+  if (s.quick) {
+    s.sizes = {60};
+    s.budgets = {3000, 12000};
+    s.frames = 1;
+    s.resolution = "256x144";
+    s.pop_size = 60;
+    s.pop_frames = 4;
+  }
+  check_settings(s);
+  uint32_t width = 0, height = 0;
+  parse_resolution(s.resolution, width, height);
+  const auto start = std::chrono::steady_clock::now();
+
+  std::error_code ec;
+  fs::create_directories(s.out, ec);
+  if (ec)
+    throw Error(Error::Kind::kOutput, s.out, "cannot create the output folder: " + ec.message());
+  if (!s.plot.empty()) check_output_file(s.plot);
+  if (!s.frames_dir.empty()) {
+    fs::create_directories(s.frames_dir, ec);
+    if (ec)
+      throw Error(Error::Kind::kOutput, s.frames_dir, "cannot create the folder: " + ec.message());
+  }
+  const fs::path work =
+      fs::temp_directory_path() / ("crowdbake-bench-render-" + std::to_string(getpid()));
+  fs::create_directories(work);
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  } cleanup{work};
+  std::string pack = s.pack;
+  if (pack.empty()) {
+    pack = (work / "spectator.crowdpack").string();
+    bake_sample_pack(pack);
+  }
+  pack = fs::absolute(pack).string();
+
+  auto context = open_vulkan(false);
+  RenderBenchResult result;
+  result.device = context->device_name();
+  result.width = width;
+  result.height = height;
+  result.shadows = s.shadows;
+  result.quick = s.quick;
+  std::printf(
+      "bench render: %ux%u on %s, shadows %s; frame time = median of %u frame(s) after a "
+      "warm-up, PSNR and mean |d| (8-bit RGB) against full resolution\n",
+      width, height, result.device.c_str(), s.shadows ? "on" : "off", s.frames);
+
+  for (uint32_t n : s.sizes) {
+    runtime::Scene scene = load_stand_scene(pack, n, width, height);
+    const runtime::Pack& p = scene.types[0].pack;
+    result.pack_vertices = p.max_vertices();
+    result.pack_triangles = p.counts().triangles;
+    auto renderer = make_renderer(*context, scene, s.shadows, "bench stand");
+    std::vector<RenderBenchRow> rows;
+
+    // Full resolution: the reference. Huge frames are timed once (the warm-up of the
+    // shaders happened on the LoD frames of a smaller size, or does not matter next to it).
+    const uint64_t full_tris = uint64_t{n} * result.pack_triangles;
+    const bool single = full_tris > s.full_single_frame_triangles;
+    RenderBenchRow full;
+    const RgbaImage reference = measure(*context, *renderer, scene, runtime::LodMode::kFull, 0,
+                                        single ? 0 : 1, single ? 1 : s.frames, full);
+    if (single)
+      full.note = "timed on 1 frame, no warm-up (about " + std::to_string(full_tris / 1000000) +
+                  " M triangles)";
+    full.psnr = std::numeric_limits<double>::infinity();
+    full.mean_abs_diff = 0;
+    full.speedup = 1;
+    rows.push_back(full);
+    print_render_rows({full}, n == s.sizes.front());
+
+    for (runtime::LodMode mode : {runtime::LodMode::kContinuous, runtime::LodMode::kDiscrete})
+      for (uint32_t budget : s.budgets) {
+        if (uint64_t{budget} >= uint64_t{n} * result.pack_vertices) continue;  // = full
+        RenderBenchRow row;
+        const RgbaImage image = measure(*context, *renderer, scene, mode, budget, 1, s.frames, row);
+        row.psnr = psnr(image, reference);
+        row.mean_abs_diff = mean_abs_diff(image, reference);
+        row.speedup = full.frame_ms / row.frame_ms;
+        rows.push_back(row);
+        print_render_rows({row}, false);
+      }
+    result.rows.insert(result.rows.end(), rows.begin(), rows.end());
+  }
+
+  if (s.pop_size > 0) {
+    runtime::Scene scene = load_stand_scene(pack, s.pop_size, width, height);
+    const float seconds = static_cast<float>(s.pop_frames - 1) / kPopFps;
+    set_dolly(scene, s.pop_size, seconds);
+    std::vector<float> times;
+    for (uint32_t i = 0; i < s.pop_frames; ++i) times.push_back(static_cast<float>(i) / kPopFps);
+    const uint32_t budget =
+        s.pop_budget
+            ? s.pop_budget
+            : std::max<uint32_t>(
+                  1, static_cast<uint32_t>(0.1 * s.pop_size * scene.types[0].pack.max_vertices()));
+    scene.lod.mode = runtime::LodMode::kContinuous;
+    scene.lod.budget = budget;
+    const double target = mean_selected_triangles(scene, times);
+    const uint32_t equal = discrete_budget_for(scene, times, target, budget);
+    auto renderer = make_renderer(*context, scene, s.shadows, "bench dolly");
+    result.pop_instances = s.pop_size;
+    result.pop_frames = s.pop_frames;
+    const PopSequence full = render_sequence(*context, *renderer, scene, runtime::LodMode::kFull, 0,
+                                             times, s.frames_dir);
+    const PopSequence cont = render_sequence(
+        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, times, s.frames_dir);
+    const PopSequence disc_eq = render_sequence(
+        *context, *renderer, scene, runtime::LodMode::kDiscrete, equal, times, s.frames_dir);
+    const PopSequence disc_same =
+        render_sequence(*context, *renderer, scene, runtime::LodMode::kDiscrete, budget, times, "");
+    result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
+    result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
+    result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
+    result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
+    std::printf("\n");
+    print_pop_rows(result);
+  }
+
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("\ntotal %.1f s\n", result.seconds);
+  const std::string csv = (fs::path(s.out) / "render-bench.csv").string();
+  const std::string pops = (fs::path(s.out) / "render-popping.csv").string();
+  const std::string data = (fs::path(s.out) / "render-bench.dat").string();
+  write_render_csv(result, csv);
+  write_pop_csv(result, pops);
+  write_render_plot_data(result, data);
+  draw_plot(s, data, result);
+  return 0;
+}
+
+}  // namespace crowdbake::cli

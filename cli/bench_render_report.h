@@ -1,0 +1,53 @@
+// Results of `crowdbake bench render` and how they are printed and saved: the table on stdout,
+// docs/data/render-bench.csv, render-popping.csv and the gnuplot data file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace crowdbake::cli {
+
+struct RenderBenchRow {
+  uint32_t instances = 0, visible = 0, drawn = 0, overflow = 0;
+  std::string mode;                 // continuous, discrete, full
+  uint32_t budget = 0;              // N (0 for full)
+  uint32_t frames = 0;              // timed frames (0 = not measured)
+  double frame_ms = 0, gpu_ms = 0;  // medians: Renderer::render wall time, GPU passes' sum
+  uint64_t vertices = 0, triangles = 0;
+  double psnr = 0, mean_abs_diff = 0;  // against the full-resolution image (NaN: no reference)
+  double speedup = 0;                  // full's frame time / this one's (NaN: no reference)
+  std::string note;
+};
+
+struct PopRow {
+  std::string mode;
+  uint32_t budget = 0;
+  std::string why;            // "budget N", "equal triangles", "reference"
+  double mean_triangles = 0;  // per frame, from the GPU's counts
+  double mean_change = 0, p95_change = 0, max_change = 0;  // change_difference per frame pair
+  double mean_psnr = 0;                                    // per frame, against full resolution
+  std::vector<double> per_pair;
+};
+
+struct RenderBenchResult {
+  std::string device;
+  uint32_t width = 0, height = 0;
+  uint32_t pack_vertices = 0, pack_triangles = 0;
+  bool shadows = true, quick = false;
+  std::vector<RenderBenchRow> rows;
+  uint32_t pop_instances = 0, pop_frames = 0;
+  std::vector<PopRow> pops;
+  double seconds = 0;
+};
+
+void print_render_rows(const std::vector<RenderBenchRow>& rows, bool header = true);
+void print_pop_rows(const RenderBenchResult& result);
+// CSV with a header line; writes through a temporary file (nothing half-written).
+void write_render_csv(const RenderBenchResult& result, const std::string& path);
+void write_pop_csv(const RenderBenchResult& result, const std::string& path);
+// gnuplot data: one block per instance count (mode, budget, frame ms, psnr, triangles), then one
+// block with the popping pairs (pair, one column per PopRow).
+void write_render_plot_data(const RenderBenchResult& result, const std::string& path);
+
+}  // namespace crowdbake::cli

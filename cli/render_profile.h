@@ -1,0 +1,19 @@
+// `crowdbake render --profile`: the renderer's FrameProfile as a table (per pass CPU and GPU
+// milliseconds, then the counts), and the mean over a sequence's frames.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "crowdbake/runtime/gpu/renderer.h"
+
+namespace crowdbake::cli {
+
+// Passes in the order of the first frame, each pass's times averaged over the frames it
+// appears in; counts averaged too (rounded to the nearest whole).
+runtime::gpu::FrameProfile mean_profile(const std::vector<runtime::gpu::FrameProfile>& frames);
+
+// The table, one line per pass, a total line, then the counts. `title` heads it.
+std::string format_profile(const runtime::gpu::FrameProfile& profile, const std::string& title);
+
+}  // namespace crowdbake::cli
