@@ -9,7 +9,7 @@
 #include "instance.glsl"
 
 const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
-const uint kChunk = 64u;             // corners per reconstruction chunk (one instance each)
+const uint kChunk = 256u;            // corners per reconstruction chunk (one instance, 64 threads)
 const uint kChunksPerGroup = 4u;     // chunks per reconstruction workgroup
 const uint kMaxTypes = 1024u;        // scan keys (lod_assign's shared running sums)
 const uint kMaxLevels = 8u;          // static levels per type (kMaxDiscreteLevels)

@@ -1,7 +1,7 @@
 #version 450
 // Pass 4b: each drawn instance's place.
 //   Corner buffer: its first corner (type base + workgroup prefix + local prefix), its entry in
-//   the draw list and its reconstruction chunks in the chunk table (a loop of corners / 64
+//   the draw list and its reconstruction chunks in the chunk table (a loop of corners / 256
 //   iterations: at most a few hundred, and it spares reconstruction any search). Instances
 //   whose corners do not fit are not drawn and counted (stats.overflow); they are the last
 //   ones in (type, instance) order.

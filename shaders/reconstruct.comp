@@ -1,32 +1,36 @@
 #version 450
-// Pass 5: one thread per corner. A chunk is kChunk consecutive corners of one instance; the
-// chunk table names its draw-list entry, which holds everything the thread needs — no search,
-// no shared memory, no barrier (a barrier makes llvmpipe run a workgroup as coroutines).
+// Pass 5: reconstruction. A chunk is kChunk = 256 consecutive corners of one instance, done by
+// 64 threads (4 corners each, so the chunk's lookups are shared by 4 corners); the chunk table
+// names its draw-list entry, which holds everything a thread needs — no search, no shared
+// memory, no barrier (a barrier makes llvmpipe run a workgroup as coroutines).
 // Corner c's vertex is the pack's triangle corner walked down the collapse chain
 // (`while v >= n'`, ReconstructJob); the thread writes uvec2(instance, vertex) at the
 // instance's first corner + c.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
-layout(local_size_x = 256) in;  // kChunk · kChunksPerGroup
+layout(local_size_x = 256) in;  // kChunksPerGroup chunks of 64 threads, 4 corners each
 
 void main() {
   const uint lid = gl_LocalInvocationID.x;
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  const uint chunk = group * kChunksPerGroup + lid / kChunk;
+  const uint chunk = group * kChunksPerGroup + lid / 64u;
   if (chunk >= stats.chunks) return;
   const uint entry = chunk_entry[chunk];
   const uvec4 where = draw_list[2u * entry];      // instance, first corner, first chunk, corners
   const uvec4 mesh = draw_list[2u * entry + 1u];  // tri_offset, collapse_offset, n', progressive
-  const uint corner = (chunk - where.z) * kChunk + lid % kChunk;
-  if (corner >= where.w) return;
-  uint v = mesh_data[mesh.x + corner];
-  if (mesh.w != 0u) {
-    while (v >= mesh.z) {
-      const uint next = mesh_data[mesh.y + v];
-      if (next >= v) break;  // note: a validated pack never has this; it keeps the loop finite
-      v = next;
+  const uint base = (chunk - where.z) * kChunk + lid % 64u;
+  for (uint step = 0u; step < kChunk; step += 64u) {
+    const uint corner = base + step;
+    if (corner >= where.w) return;
+    uint v = mesh_data[mesh.x + corner];
+    if (mesh.w != 0u) {
+      while (v >= mesh.z) {
+        const uint next = mesh_data[mesh.y + v];
+        if (next >= v) break;
+        v = next;
+      }
     }
+    corners[where.y + corner] = uvec2(where.x, v);
   }
-  corners[where.y + corner] = uvec2(where.x, v);
 }

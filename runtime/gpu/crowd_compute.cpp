@@ -58,7 +58,7 @@ constexpr const char* kShaders[7] = {"lod_weights.comp", "lod_sum.comp",        
                                      "scan_types.comp",  "place_instances.comp", "draw_args.comp",
                                      "reconstruct.comp"};
 constexpr uint32_t kBindings = 18;
-constexpr uint32_t kChunk = 64;  // crowd_compute.glsl: kChunk
+constexpr uint32_t kChunk = 256;  // crowd_compute.glsl: kChunk
 
 uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
 

@@ -11,16 +11,16 @@
 //                         per-type prefix of (corners, drawn) within each workgroup.
 //   4. scan_types.comp    one workgroup: per type, the prefix over workgroups, type totals and
 //                         bases (types in index order).
-//      place_instances    per instance: first corner, draw-list entry and its 64-corner
+//      place_instances    per instance: first corner, draw-list entry and its 256-corner
 //                         chunks in the chunk table; what does not fit the corner buffer is
 //                         not drawn and counted (overflow_instances).
 //      draw_args.comp     one VkDrawIndirectCommand per type and the reconstruction's
 //                         dispatch size (vkCmdDispatchIndirect).
-//   5. reconstruct.comp   one thread per corner (dispatched indirectly; 64-corner chunks of
-//                         one instance each, so no thread searches for its instance and no
-//                         barrier is needed): corner k of instance i is the pack's triangle
-//                         corner walked down the collapse chain (`while v >= n'`), written as
-//                         uvec2(i, v).
+//   5. reconstruct.comp   the per-corner pass (dispatched indirectly; 256-corner chunks of
+//                         one instance, 4 corners per thread, so no thread searches for its
+//                         instance and no barrier is needed): corner k of instance i is the
+//                         pack's triangle corner walked down the collapse chain
+//                         (`while v >= n'`), written as uvec2(i, v).
 //
 // The reductions and scans use short sequential runs and few barriers rather than log-depth
 // trees: on lavapipe (llvmpipe runs a workgroup's invocations in turn) barriers dominate.
