@@ -1,7 +1,8 @@
 #!/bin/sh
 # The README's main command: installs dependencies, builds, and runs the main job on the
 # bundled sample: generate the spectator character, inspect it, bake it into a pack,
-# write a 25% level of detail, and print the accuracy/time table of the simplifier.
+# write a 25% level of detail, print the accuracy/time table of the simplifier, and render a
+# crowd of the baked pack (samples/scenes/crowd.json) with Vulkan (lavapipe without a GPU).
 # Outputs go to out/.
 set -eu
 cd "$(dirname "$0")/.."
@@ -19,3 +20,6 @@ echo "baked out/spectator.crowdpack ($(wc -c < out/spectator.crowdpack) bytes); 
 # note: --quick measures every 6th frame with fewer settings; the full table over every
 # shared asset is `crowdbake bench simplify` (docs/accuracy.md).
 "$crowdbake" bench simplify --quick --spectator-only --out out/bench --plot out/accuracy-vs-time.png
+# note: the scene reads out/spectator.crowdpack, baked above.
+"$crowdbake" render samples/scenes/crowd.json -o out/crowd.png --time 1.5
+echo "the crowd picture is out/crowd.png"
