@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
+#define CROWD_VERTEX_STAGE
 #include "instance.glsl"
 #include "skin_common.glsl"
 #include "crowd_frame.glsl"
@@ -31,9 +32,20 @@ void main() {
     gl_Position = frame.view_proj * vec4(p, 1.0);
     return;
   }
-  const uvec2 corner = corners[draw_push.corner_base + uint(gl_VertexIndex)];
+  const uvec2 corner = drawn_corner();
   const uint base = skin_base[corner.x];
-  if (base == kSkinNotDrawn) {
+  const GpuInstance inst = instances[corner.x];
+  const GpuVertex v = vertices[corner.y];
+  if (base != kSkinNotDrawn) {
+    const vec4 skinned_vertex = skinned[base + corner.y];
+    out_world = skinned_vertex.xyz;
+    out_normal = unpack_normal(floatBitsToUint(skinned_vertex.w));
+  } else if (kDrawMode == kDrawInstanced) {
+    // note: instanced full-resolution crowds may outgrow the slots: skin the rest here.
+    const SkinnedVertex s = skin_vertex(inst, v);
+    out_world = s.position;
+    out_normal = s.normal;
+  } else {
     // note: no skinned slots (buffer full): every corner of the instance at one point, so its
     // triangles have no area and draw nothing.
     out_world = out_normal = vec3(0.0);
@@ -45,11 +57,6 @@ void main() {
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
     return;
   }
-  const GpuInstance inst = instances[corner.x];
-  const GpuVertex v = vertices[corner.y];
-  const vec4 skinned_vertex = skinned[base + corner.y];
-  out_world = skinned_vertex.xyz;
-  out_normal = unpack_normal(floatBitsToUint(skinned_vertex.w));
   out_uv = vec2(v.normal_u.w, uintBitsToFloat(v.joints_v.z));
   out_height = v.position_height.w;
   out_textures = inst.textures;

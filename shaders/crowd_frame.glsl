@@ -27,6 +27,9 @@ frame;
 // The skinning pass's output (skin_common.glsl): each instance's first slot, the vertices.
 layout(std430, set = 0, binding = 5) readonly buffer BaseBlock { uint skin_base[]; };
 layout(std430, set = 0, binding = 6) readonly buffer SkinnedBlock { vec4 skinned[]; };
+// Instanced static levels: the instance of gl_InstanceIndex (CrowdCompute's instance list).
+layout(std430, set = 0, binding = 7) readonly buffer InstanceListBlock { uint instance_list[]; };
+
 
 // Push constants of every crowd draw: where the type's corners start. (Nothing pushed steers
 // a branch: lavapipe may recompile shaders whose branches depend on pushed values.)
@@ -36,9 +39,10 @@ layout(push_constant) uniform DrawPush {
 }
 draw_push;
 
-const uint kDrawCrowd = 0u;
-const uint kDrawGround = 1u;
-// What the pipeline draws (a specialization constant: the ground is its own pipeline).
+const uint kDrawCrowd = 0u;      // corners pulled from the corner buffer
+const uint kDrawGround = 1u;     // the ground quad
+const uint kDrawInstanced = 2u;  // CrowdCompute's instanced static levels (indexed, instanced)
+// What the pipeline draws (a specialization constant: each kind is its own pipeline).
 layout(constant_id = 1) const uint kDrawMode = kDrawCrowd;
 
 // Corner i of the ground quad (two triangles, counter-clockwise seen from above).
@@ -48,5 +52,14 @@ vec3 ground_corner(uint i) {
   const float z = (k >= 2u) ? frame.ground_max.z : frame.ground_min.z;
   return vec3(x, frame.ground_min.y, z);
 }
+
+#ifdef CROWD_VERTEX_STAGE
+// The (instance, vertex of its type) a vertex shader invocation draws.
+uvec2 drawn_corner() {
+  if (kDrawMode == kDrawInstanced)
+    return uvec2(instance_list[gl_InstanceIndex], uint(gl_VertexIndex));
+  return corners[draw_push.corner_base + uint(gl_VertexIndex)];
+}
+#endif
 
 #endif  // CROWDBAKE_CROWD_FRAME_GLSL

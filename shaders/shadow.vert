@@ -4,16 +4,23 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
+#define CROWD_VERTEX_STAGE
 #include "instance.glsl"
 #include "skin_common.glsl"
 #include "crowd_frame.glsl"
 #include "skin.glsl"
 
 void main() {
-  const uvec2 corner = corners[draw_push.corner_base + uint(gl_VertexIndex)];
+  const uvec2 corner = drawn_corner();
   const uint base = skin_base[corner.x];
-  // note: an instance without slots collapses to a point (see crowd.vert).
-  gl_Position = base == kSkinNotDrawn
-                    ? vec4(0.0, 0.0, 2.0, 1.0)
-                    : frame.light_view_proj * vec4(skinned[base + corner.y].xyz, 1.0);
+  vec3 p;
+  if (base != kSkinNotDrawn) {
+    p = skinned[base + corner.y].xyz;
+  } else if (kDrawMode == kDrawInstanced) {
+    p = skin_vertex(instances[corner.x], vertices[corner.y]).position;
+  } else {
+    gl_Position = vec4(0.0, 0.0, 2.0, 1.0);  // no slots: collapse (see crowd.vert)
+    return;
+  }
+  gl_Position = frame.light_view_proj * vec4(p, 1.0);
 }

@@ -4,7 +4,8 @@
 // every branch, and a corner-pulling draw would skin each vertex about six times (once per
 // corner); the pass skins each vertex of each drawn instance's LoD once, in parallel: instance
 // i gets n'_i = InstanceLod::usable slots from skin_base[i] on (kSkinNotDrawn: culled, or no
-// room left, then its triangles collapse to nothing), vertex v at skin_base[i] + v.
+// room left: its triangles collapse to nothing, or with instanced static levels the vertex
+// shader skins it), vertex v at skin_base[i] + v.
 #ifndef CROWDBAKE_SKIN_COMMON_GLSL
 #define CROWDBAKE_SKIN_COMMON_GLSL
 

@@ -18,6 +18,8 @@ layout(std430, set = 0, binding = 3) buffer ListBlock { uint list[]; };
 layout(std430, set = 0, binding = 4) writeonly buffer BaseBlock { uint skin_base[]; };
 layout(std430, set = 0, binding = 5) readonly buffer ParamsBlock {
   uint instance_count, type_count, list_stride, skin_capacity;
+  uint instanced;  // 1: CrowdCompute drew instanced static levels (no corner offsets)
+  uint pad0, pad1, pad2;
 } params;
 
 void main() {
@@ -27,7 +29,9 @@ void main() {
     const SkinLod lod = lods[i];
     uint base = kSkinNotDrawn;
     const uint n = lod.usable;
-    if (lod.corner_offset != kSkinNotDrawn && lod.corners > 0u && n > 0u) {
+    const bool drawn = params.instanced != 0u ? lod.selected > 0u
+                                              : lod.corner_offset != kSkinNotDrawn && lod.corners > 0u;
+    if (drawn && n > 0u) {
       // note: no adding once full, so the running total cannot wrap around.
       uint first = atomicAdd(type_args[totals].x, 0u);
       if (first <= params.skin_capacity) first = atomicAdd(type_args[totals].x, n);

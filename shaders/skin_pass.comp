@@ -20,6 +20,7 @@ layout(std430, set = 0, binding = 4) readonly buffer BaseBlock { uint skin_base[
 layout(std430, set = 0, binding = 6) writeonly buffer SkinnedBlock { vec4 skinned[]; };
 layout(std430, set = 0, binding = 5) readonly buffer ParamsBlock {
   uint instance_count, type_count, list_stride, skin_capacity;
+  uint instanced, pad0, pad1, pad2;
 } params;
 
 // The type this dispatch skins (addressing only).

@@ -200,8 +200,12 @@ constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline ea
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline pipelines[kEncodings] = {};  // only the encodings the scene's types use
+  VkPipeline instanced[kEncodings] = {};  // made when a frame first draws instanced levels
   VkPipeline ground = VK_NULL_HANDLE;
 };
+
+// Pipeline kinds (crowd_frame.glsl kDrawMode).
+constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2;
 
 }  // namespace
 
@@ -224,12 +228,13 @@ struct CrowdDraw::Impl {
   VkRenderPass shadow_pass = VK_NULL_HANDLE;
   VkFramebuffer shadow_framebuffer = VK_NULL_HANDLE;
   VkPipeline shadow_pipelines[kEncodings] = {};
+  VkPipeline shadow_instanced[kEncodings] = {};
   uint32_t shadow_size = 1;
   uint32_t swatches_per_region = 1;
 
   std::vector<TypeResources> types;
   VkBuffer bound_instances = VK_NULL_HANDLE, bound_corners = VK_NULL_HANDLE,
-           bound_lods = VK_NULL_HANDLE;
+           bound_lods = VK_NULL_HANDLE, bound_instance_list = VK_NULL_HANDLE;
 
   // The skinning pass (skin_list.comp, skin_pass.comp; see shaders/skin_common.glsl).
   VkDescriptorSetLayout skin_layout = VK_NULL_HANDLE;
@@ -251,10 +256,12 @@ struct CrowdDraw::Impl {
     for (auto& [key, fb] : framebuffers) vkDestroyFramebuffer(d, fb, nullptr);
     for (auto& [key, p] : color_pipelines) {
       for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+      for (VkPipeline pipeline : p.instanced) vkDestroyPipeline(d, pipeline, nullptr);
       vkDestroyPipeline(d, p.ground, nullptr);
       vkDestroyRenderPass(d, p.render_pass, nullptr);
     }
     for (VkPipeline pipeline : shadow_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+    for (VkPipeline pipeline : shadow_instanced) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
     vkDestroyPipeline(d, skin_list_pipeline, nullptr);
     for (VkPipeline pipeline : skin_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
@@ -281,11 +288,33 @@ struct CrowdDraw::Impl {
   Status create_type(const CharacterType& type, TypeResources& out);
   Status create_shadow();
   Status create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
-                                  VkPipeline& out, bool ground = false);
+                                  VkPipeline& out, uint32_t mode = kModeCrowd);
   // Creates `pipelines[e]` for every encoding e a type uses.
-  Status create_pipelines(VkRenderPass pass, bool shadow, VkPipeline (&pipelines)[kEncodings]);
+  Status create_pipelines(VkRenderPass pass, bool shadow, VkPipeline (&pipelines)[kEncodings],
+                          uint32_t mode = kModeCrowd);
   Status color_pipeline(const HostTarget& target, ColorPipeline*& out);
   void write_frame_set();
+  // One type's draw (pipeline and sets bound): the corner path or the instanced levels.
+  void record_type_draw(VkCommandBuffer cmd, const TypeDraw& draw) const {
+    const DrawPush push{draw.corner_base, 0};
+    vkCmdPushConstants(cmd, pipeline_layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    if (!draw.instanced) {
+      vkCmdDrawIndirect(cmd, draw.args, draw.args_offset, 1, sizeof(VkDrawIndirectCommand));
+      return;
+    }
+    vkCmdBindIndexBuffer(cmd, draw.index_buffer, 0, VK_INDEX_TYPE_UINT32);
+    const uint32_t stride = sizeof(VkDrawIndexedIndirectCommand);
+    if (context->features().multi_draw_indirect) {
+      vkCmdDrawIndexedIndirect(cmd, draw.indexed_args, draw.indexed_offset, draw.indexed_count,
+                               stride);
+      return;
+    }
+    for (uint32_t k = 0; k < draw.indexed_count; ++k)
+      vkCmdDrawIndexedIndirect(cmd, draw.indexed_args,
+                               draw.indexed_offset + VkDeviceSize{k} * stride, 1, stride);
+  }
   Status create_skin_pass();
   Status create_compute_pipeline(VkShaderModule module, const uint32_t* encoding, VkPipeline& out);
   void write_skin_set();
@@ -303,6 +332,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   const VkDescriptorSetLayoutBinding type_bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
@@ -313,7 +343,7 @@ Status CrowdDraw::Impl::create_layouts() {
   };
   VkDescriptorSetLayoutCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  info.bindingCount = 7;
+  info.bindingCount = 8;
   info.pBindings = frame_bindings;
   if (Status s = check(vkCreateDescriptorSetLayout(d, &info, nullptr, &frame_layout),
                        "vkCreateDescriptorSetLayout");
@@ -341,7 +371,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 + 4 * type_count + 7},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 4 * type_count + 7},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
   };
   VkDescriptorPoolCreateInfo pool_info{};
@@ -497,18 +527,20 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
 }
 
 Status CrowdDraw::Impl::create_pipelines(VkRenderPass pass, bool shadow,
-                                         VkPipeline (&pipelines)[kEncodings]) {
+                                         VkPipeline (&pipelines)[kEncodings], uint32_t mode) {
   for (const TypeResources& t : types)
     if (pipelines[t.encoding] == VK_NULL_HANDLE)
-      if (Status s = create_graphics_pipeline(pass, shadow, t.encoding, pipelines[t.encoding]); !s)
+      if (Status s =
+              create_graphics_pipeline(pass, shadow, t.encoding, pipelines[t.encoding], mode);
+          !s)
         return s;
   return {};
 }
 
 Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
-                                                 VkPipeline& out, bool ground) {
-  // Specialization constants: 0 = the animation encoding, 1 = crowd (0) or ground (1).
-  const uint32_t spec[2] = {encoding, ground ? 1u : 0u};
+                                                 VkPipeline& out, uint32_t mode) {
+  // Specialization constants: 0 = the animation encoding, 1 = what is drawn (kMode*).
+  const uint32_t spec[2] = {encoding, mode};
   const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
                                                {1, sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
@@ -720,7 +752,7 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
     return s;
   Status s = create_pipelines(p.render_pass, false, p.pipelines);
   if (s.ok() && settings.ground && !types.empty())
-    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, true);
+    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, kModeGround);
   if (!s) {
     for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(context->device(), pipeline, nullptr);
     vkDestroyPipeline(context->device(), p.ground, nullptr);
@@ -741,8 +773,9 @@ void CrowdDraw::Impl::write_frame_set() {
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo base_info = skin_base.descriptor();
   const VkDescriptorBufferInfo skinned_info = skinned.descriptor();
-  VkWriteDescriptorSet writes[7] = {};
-  for (uint32_t b = 0; b < 7; ++b) {
+  const VkDescriptorBufferInfo list_info{bound_instance_list, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet writes[8] = {};
+  for (uint32_t b = 0; b < 8; ++b) {
     writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[b].dstSet = frame_set;
     writes[b].dstBinding = b;
@@ -759,7 +792,9 @@ void CrowdDraw::Impl::write_frame_set() {
   writes[5].descriptorType = writes[6].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[5].pBufferInfo = &base_info;
   writes[6].pBufferInfo = &skinned_info;
-  vkUpdateDescriptorSets(context->device(), 7, writes, 0, nullptr);
+  writes[7].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  writes[7].pBufferInfo = &list_info;
+  vkUpdateDescriptorSets(context->device(), 8, writes, 0, nullptr);
 }
 
 void CrowdDraw::Impl::write_skin_set() {
@@ -848,7 +883,7 @@ Status CrowdDraw::Impl::create_skin_pass() {
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   // note: one entry per type plus the totals (skin_list.comp).
   const VkDeviceSize type_bytes = 16 * (types.size() + 1);
-  if (Status s = GpuBuffer::create(*context, 16, storage, MemoryKind::kHostVisible, skin_params);
+  if (Status s = GpuBuffer::create(*context, 32, storage, MemoryKind::kHostVisible, skin_params);
       !s)
     return s;
   return GpuBuffer::create(*context, type_bytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -962,8 +997,17 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
     m.list_stride = stride;
     sets_dirty = true;
   }
-  const uint32_t params[4] = {m.instance_count, static_cast<uint32_t>(m.types.size()),
-                              m.list_stride, m.skin_capacity};
+  const uint32_t params[8] = {m.instance_count,
+                              static_cast<uint32_t>(m.types.size()),
+                              m.list_stride,
+                              m.skin_capacity,
+                              compute.instanced() ? 1u : 0u,
+                              0,
+                              0,
+                              0};
+  if (compute.instanced() && m.shadow_pass != VK_NULL_HANDLE)
+    if (Status s = m.create_pipelines(m.shadow_pass, true, m.shadow_instanced, kModeInstanced); !s)
+      return s;
   if (Status s = m.skin_params.upload(params, sizeof(params)); !s) return s;
   FrameConstants& k = m.constants;
   const View& view = state.view;
@@ -1053,11 +1097,14 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   }
   if (Status s = upload_poses(effects); !s) return s;
 
+  const GpuBuffer& instance_list = compute.instance_list_buffer();
   if (sets_dirty || instances.buffer() != m.bound_instances ||
-      corners.buffer() != m.bound_corners || lods.buffer() != m.bound_lods) {
+      corners.buffer() != m.bound_corners || lods.buffer() != m.bound_lods ||
+      instance_list.buffer() != m.bound_instance_list) {
     m.bound_instances = instances.buffer();
     m.bound_corners = corners.buffer();
     m.bound_lods = lods.buffer();
+    m.bound_instance_list = instance_list.valid() ? instance_list.buffer() : lods.buffer();
     m.write_frame_set();
     m.write_skin_set();
   }
@@ -1160,17 +1207,16 @@ void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
                           &m.frame_set, 0, nullptr);
   VkPipeline bound = VK_NULL_HANDLE;
   for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
-    if (m.shadow_pipelines[m.types[t].encoding] != bound) {
-      bound = m.shadow_pipelines[m.types[t].encoding];
+    const uint32_t e = m.types[t].encoding;
+    const VkPipeline pipeline = draws[t].instanced ? m.shadow_instanced[e] : m.shadow_pipelines[e];
+    if (pipeline == VK_NULL_HANDLE) continue;  // note: update() makes them before such frames
+    if (pipeline != bound) {
+      bound = pipeline;
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,
                             &m.types[t].set, 0, nullptr);
-    const DrawPush push{draws[t].corner_base, 0};
-    vkCmdPushConstants(cmd, m.pipeline_layout,
-                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
-                       &push);
-    vkCmdDrawIndirect(cmd, draws[t].args, draws[t].args_offset, 1, sizeof(VkDrawIndirectCommand));
+    m.record_type_draw(cmd, draws[t]);
   }
   vkCmdEndRenderPass(cmd);
 }
@@ -1226,15 +1272,20 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     VkPipeline bound = VK_NULL_HANDLE;
     for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
-      if (pipeline->pipelines[m.types[t].encoding] != bound) {
-        bound = pipeline->pipelines[m.types[t].encoding];
+      const uint32_t e = m.types[t].encoding;
+      VkPipeline& chosen = draws[t].instanced ? pipeline->instanced[e] : pipeline->pipelines[e];
+      if (chosen == VK_NULL_HANDLE)
+        if (Status s =
+                m.create_graphics_pipeline(pipeline->render_pass, false, e, chosen, kModeInstanced);
+            !s)
+          return s;
+      if (chosen != bound) {
+        bound = chosen;
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
       }
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,
                               &m.types[t].set, 0, nullptr);
-      const DrawPush push{draws[t].corner_base, 0};
-      vkCmdPushConstants(cmd, m.pipeline_layout, stages, 0, sizeof(push), &push);
-      vkCmdDrawIndirect(cmd, draws[t].args, draws[t].args_offset, 1, sizeof(VkDrawIndirectCommand));
+      m.record_type_draw(cmd, draws[t]);
     }
     if (m.constants.ground_min[3] != 0.0f && pipeline->ground != VK_NULL_HANDLE) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->ground);

@@ -46,6 +46,14 @@ struct Renderer::Impl {
       draws[t].args = compute->draw_args_buffer().buffer();
       draws[t].args_offset = VkDeviceSize{t} * sizeof(VkDrawIndirectCommand);
       draws[t].corner_base = 0;  // note: CrowdCompute writes the type's base as firstVertex
+      if (compute->instanced()) {
+        draws[t].instanced = true;
+        draws[t].index_buffer = compute->level_index_buffer().buffer();
+        draws[t].indexed_args = compute->indexed_args_buffer().buffer();
+        draws[t].indexed_offset =
+            VkDeviceSize{t} * CrowdCompute::kSlotsPerType * sizeof(VkDrawIndexedIndirectCommand);
+        draws[t].indexed_count = CrowdCompute::kSlotsPerType;
+      }
     }
     return draws;
   }
@@ -191,10 +199,20 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   profile->visible = stats.visible;
   uint32_t slots = 0, no_room = 0;
   if (Status s = m.draw->read_skin_stats(slots, no_room); !s) return s;
+  // note: without skinning slots an instance is not drawn, except on the instanced path whose
+  // vertex shader skins it itself.
+  if (m.compute->instanced()) no_room = 0;
   profile->overflow = stats.overflow_instances + no_room;
   profile->drawn = stats.drawn_instances - std::min(no_room, stats.drawn_instances);
   profile->vertices = stats.selected_vertices;
   profile->triangles = stats.drawn_corners / 3;
+  if (m.compute->instanced()) {
+    std::vector<VkDrawIndexedIndirectCommand> args;
+    if (Status s = m.compute->read_indexed_args(args); !s) return s;
+    profile->triangles = 0;
+    for (const VkDrawIndexedIndirectCommand& a : args)
+      profile->triangles += uint64_t{a.indexCount} / 3 * a.instanceCount;
+  }
   return {};
 }
 

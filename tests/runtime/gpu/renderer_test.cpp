@@ -245,6 +245,33 @@ TEST_F(RendererTest, CrossfadeChangesThePictureOnlyBetweenTheEnds) {
   EXPECT_FALSE(render(scene, 1.3f, nullptr, &fade).rgba == plain.rgba);
 }
 
+TEST_F(RendererTest, InstancedStaticLevelsDrawWhatTheCornerPathDraws) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  for (runtime::LodMode mode : {runtime::LodMode::kFull, runtime::LodMode::kDiscrete}) {
+    scene.lod.mode = mode;
+    scene.lod.budget = 20000;
+    make_renderer(scene);
+    if (HasFatalFailure()) return;
+    FrameProfile corner_profile, instanced_profile;
+    const Image corners = render(scene, 1.1f, &corner_profile);
+    RenderOptions options;
+    options.compute.instanced_static_levels = true;
+    // note: few skinning slots, so some instances are skinned by the vertex shader instead.
+    options.compute.corner_capacity = 20000;
+    make_renderer(scene, options);
+    if (HasFatalFailure()) return;
+    const Image instanced = render(scene, 1.1f, &instanced_profile);
+    EXPECT_TRUE(renderer_->compute().instanced());
+    EXPECT_EQ(instanced_profile.drawn, corner_profile.drawn);
+    EXPECT_EQ(instanced_profile.triangles, corner_profile.triangles);
+    const ImageDiff diff = compare(instanced, corners);
+    EXPECT_LT(diff.mean_abs, 0.2);
+    EXPECT_LT(diff.differing, 0.002);
+  }
+}
+
 TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;

@@ -54,11 +54,18 @@ struct HostTarget {
   VkImageLayout color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
 };
 
-// Where one character type's corners are and its indirect draw command (CrowdCompute's).
+// How one character type is drawn (CrowdCompute's outputs): through the corner buffer with one
+// VkDrawIndirectCommand, or, with instanced static levels, from a static index buffer with
+// `indexed_count` VkDrawIndexedIndirectCommands (instances from the instance list).
 struct TypeDraw {
   VkBuffer args = VK_NULL_HANDLE;  // holds a VkDrawIndirectCommand at args_offset
   VkDeviceSize args_offset = 0;
   uint32_t corner_base = 0;  // added to gl_VertexIndex (0 when firstVertex carries it)
+  bool instanced = false;
+  VkBuffer index_buffer = VK_NULL_HANDLE;  // uint32 indices
+  VkBuffer indexed_args = VK_NULL_HANDLE;  // VkDrawIndexedIndirectCommand[indexed_count]
+  VkDeviceSize indexed_offset = 0;
+  uint32_t indexed_count = 0;
 };
 
 // std140 blocks and the vertex record the shaders read (layouts asserted in crowd_draw.cpp).
