@@ -14,7 +14,8 @@ if (!exists("sizes")) sizes = ''
 if (!exists("pop")) pop = ''
 if (!exists("device")) device = ''
 n = words(sizes)
-panels = n + 1
+has_pop = (pop ne '' && pop ne '0')
+panels = n + (has_pop ? 1 : 0)
 cols = (panels <= 2) ? panels : 2
 rows = int(ceil(panels / real(cols)))
 
@@ -38,6 +39,7 @@ do for [i = 0:n - 1] {
        '' index i using 3:4:(is('continuous') ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
        35 with lines dt 2 lc rgb "#2ca02c" title "35 dB target"
 }
+if (has_pop) {
 unset logscale x
 set title "popping over the camera dolly (" . pop . " instances)" noenhanced
 set xlabel "frame pair"
@@ -46,4 +48,5 @@ set yrange [0:*]
 plot datafile index n using 1:2 with lines lw 2 lc rgb "#1f77b4" title "continuous", \
      '' index n using 1:3 with lines lw 2 lc rgb "#d62728" title "discrete, equal triangles", \
      '' index n using 1:4 with lines lw 1 dt 2 lc rgb "#ff7f0e" title "discrete, same budget"
+}
 unset multiplot
