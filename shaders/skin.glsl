@@ -294,13 +294,18 @@ struct SkinnedVertex {
   vec3 normal;    // world, unit (zero when the skinned normal vanishes)
 };
 
-// SkinJob::Run for one vertex: M = Σ w_k S_{j_k} over non-zero weights, then world · M.
-SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) {
+// The four joints of a vertex.
+uvec4 vertex_joints(GpuVertex v) {
+  return uvec4(v.joints_v.x & 0xFFFFu, v.joints_v.x >> 16, v.joints_v.y & 0xFFFFu, v.joints_v.y >> 16);
+}
+
+// SkinJob's M = Σ w_k S_{j_k}, over the non-zero weights in order, S from instance_joint.
+Affine blend_joints(GpuInstance inst, GpuVertex v) {
   Affine m;
   m.r0 = vec4(0.0);
   m.r1 = vec4(0.0);
   m.r2 = vec4(0.0);
-  const uint joints[4] = uint[4](v.joints_v.x & 0xFFFFu, v.joints_v.x >> 16, v.joints_v.y & 0xFFFFu, v.joints_v.y >> 16);
+  const uvec4 joints = vertex_joints(v);
   [[dont_unroll]] for (uint k = 0u; k < 4u; ++k) {
     const float weight = v.weights[k];
     if (weight == 0.0) continue;
@@ -309,6 +314,11 @@ SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) {
     m.r1 += weight * s.r1;
     m.r2 += weight * s.r2;
   }
+  return m;
+}
+
+// The rest of SkinJob::Run for one vertex: world · (M · v), and the normal.
+SkinnedVertex place_vertex(GpuInstance inst, GpuVertex v, Affine m) {
   if (v.joints_v.w != 0u) {  // a mesh without joints is only placed (SkinJob's identity)
     m.r0 = vec4(1.0, 0.0, 0.0, 0.0);
     m.r1 = vec4(0.0, 1.0, 0.0, 0.0);
@@ -326,5 +336,8 @@ SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) {
   out_vertex.normal = len > 0.0 ? wn * (1.0 / len) : vec3(0.0);
   return out_vertex;
 }
+
+// SkinJob::Run for one vertex.
+SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) { return place_vertex(inst, v, blend_joints(inst, v)); }
 
 #endif  // CROWDBAKE_SKIN_GLSL

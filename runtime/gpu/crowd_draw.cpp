@@ -195,7 +195,10 @@ struct TypeResources {
   uint32_t encoding = 0;  // AnimationEncoding
 };
 
-constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline each (skin.glsl)
+constexpr uint32_t kEncodings = 3;
+constexpr uint32_t kMaxPaletteJoints =
+    512;  // skin_pass.comp's shared palette  // AnimationEncoding values: one pipeline each
+          // (skin.glsl)
 
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
@@ -242,7 +245,9 @@ struct CrowdDraw::Impl {
   VkDescriptorSet skin_set = VK_NULL_HANDLE;
   VkShaderModule skin_list_module = VK_NULL_HANDLE, skin_pass_module = VK_NULL_HANDLE;
   VkPipeline skin_list_pipeline = VK_NULL_HANDLE;
-  VkPipeline skin_pipelines[kEncodings] = {};
+  // Per encoding; [1]: joints decoded once per instance into shared memory (at most
+  // kMaxPaletteJoints joints, skin_pass.comp), [0]: per influence.
+  VkPipeline skin_pipelines[kEncodings][2] = {};
   GpuBuffer skin_params, type_args, skin_list, skin_base, skinned;
   uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
@@ -264,7 +269,8 @@ struct CrowdDraw::Impl {
     for (VkPipeline pipeline : shadow_instanced) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
     vkDestroyPipeline(d, skin_list_pipeline, nullptr);
-    for (VkPipeline pipeline : skin_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+    for (auto& pair : skin_pipelines)
+      for (VkPipeline pipeline : pair) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyShaderModule(d, skin_list_module, nullptr);
     vkDestroyShaderModule(d, skin_pass_module, nullptr);
     vkDestroyPipelineLayout(d, skin_pipeline_layout, nullptr);
@@ -316,7 +322,9 @@ struct CrowdDraw::Impl {
                                draw.indexed_offset + VkDeviceSize{k} * stride, 1, stride);
   }
   Status create_skin_pass();
-  Status create_compute_pipeline(VkShaderModule module, const uint32_t* encoding, VkPipeline& out);
+  // encoding: null for a shader without specialization constants.
+  Status create_compute_pipeline(VkShaderModule module, const uint32_t* encoding, VkPipeline& out,
+                                 uint32_t palette = 0);
   void write_skin_set();
   void write_type_set(const TypeResources& t);
 };
@@ -818,13 +826,16 @@ void CrowdDraw::Impl::write_skin_set() {
 }
 
 Status CrowdDraw::Impl::create_compute_pipeline(VkShaderModule module, const uint32_t* encoding,
-                                                VkPipeline& out) {
-  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+                                                VkPipeline& out, uint32_t palette) {
+  // Specialization constants 0 (encoding) and 2 (palette) of skin.glsl / skin_pass.comp.
+  const uint32_t spec[2] = {encoding ? *encoding : 0u, palette};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
+                                               {2, sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
-  specialization.mapEntryCount = 1;
-  specialization.pMapEntries = &entry;
-  specialization.dataSize = sizeof(uint32_t);
-  specialization.pData = encoding;
+  specialization.mapEntryCount = 2;
+  specialization.pMapEntries = entries;
+  specialization.dataSize = sizeof(spec);
+  specialization.pData = spec;
   VkComputePipelineCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -874,12 +885,14 @@ Status CrowdDraw::Impl::create_skin_pass() {
   if (Status s = context->create_shader_module("skin_pass.comp", skin_pass_module); !s) return s;
   if (Status s = create_compute_pipeline(skin_list_module, nullptr, skin_list_pipeline); !s)
     return s;
-  for (const TypeResources& t : types)
-    if (skin_pipelines[t.encoding] == VK_NULL_HANDLE)
-      if (Status s =
-              create_compute_pipeline(skin_pass_module, &t.encoding, skin_pipelines[t.encoding]);
+  for (const TypeResources& t : types) {
+    const uint32_t palette = t.joints <= kMaxPaletteJoints ? 1u : 0u;
+    if (skin_pipelines[t.encoding][palette] == VK_NULL_HANDLE)
+      if (Status s = create_compute_pipeline(skin_pass_module, &t.encoding,
+                                             skin_pipelines[t.encoding][palette], palette);
           !s)
         return s;
+  }
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   // note: one entry per type plus the totals (skin_list.comp).
   const VkDeviceSize type_bytes = 16 * (types.size() + 1);
@@ -1173,8 +1186,11 @@ void CrowdDraw::record_skinning(VkCommandBuffer cmd) {
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
   VkPipeline bound = VK_NULL_HANDLE;
   for (uint32_t t = 0; t < types; ++t) {
-    if (m.skin_pipelines[m.types[t].encoding] != bound) {
-      bound = m.skin_pipelines[m.types[t].encoding];
+    const TypeResources& type = m.types[t];
+    const VkPipeline pipeline =
+        m.skin_pipelines[type.encoding][type.joints <= kMaxPaletteJoints ? 1 : 0];
+    if (pipeline != bound) {
+      bound = pipeline;
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bound);
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_pipeline_layout, 1, 1,
