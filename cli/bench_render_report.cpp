@@ -27,17 +27,17 @@ std::string csv_field(const std::string& s) {
 
 void print_render_rows(const std::vector<RenderBenchRow>& rows, bool header) {
   if (header)
-    std::printf("%9s %-10s %9s %9s %9s %12s %8s %8s %8s %8s  %s\n", "instances", "mode", "budget",
-                "frame ms", "gpu ms", "triangles", "drawn", "PSNR dB", "mean|d|", "speed-up",
-                "note");
+    std::printf("%9s %-10s %9s %9s %9s %12s %8s %8s %8s %8s %8s  %s\n", "instances", "mode",
+                "budget", "frame ms", "gpu ms", "triangles", "drawn", "PSNR dB", "PSNR/4",
+                "mean|d|", "speed-up", "note");
   for (const RenderBenchRow& r : rows)
-    std::printf("%9u %-10s %9s %9s %9s %12llu %8u %8s %8s %8s  %s\n", r.instances, r.mode.c_str(),
-                r.budget ? std::to_string(r.budget).c_str() : "-",
+    std::printf("%9u %-10s %9s %9s %9s %12llu %8u %8s %8s %8s %8s  %s\n", r.instances,
+                r.mode.c_str(), r.budget ? std::to_string(r.budget).c_str() : "-",
                 r.frames ? num(r.frame_ms, "%.1f").c_str() : "-",
                 r.frames ? num(r.gpu_ms, "%.1f").c_str() : "-",
                 static_cast<unsigned long long>(r.triangles), r.drawn, num(r.psnr).c_str(),
-                num(r.mean_abs_diff, "%.3f").c_str(), num(r.speedup, "%.1fx").c_str(),
-                r.note.c_str());
+                num(r.psnr_4x).c_str(), num(r.mean_abs_diff, "%.3f").c_str(),
+                num(r.speedup, "%.1fx").c_str(), r.note.c_str());
   std::fflush(stdout);
 }
 
@@ -59,7 +59,8 @@ void print_pop_rows(const RenderBenchResult& result) {
 void write_render_csv(const RenderBenchResult& result, const std::string& path) {
   std::ostringstream out;
   out << "device,width,height,shadows,instances,visible,mode,budget,frames,frame_ms,gpu_ms,"
-         "vertices,triangles,drawn,overflow,psnr_db,mean_abs_diff,speedup_vs_full,note\n";
+         "vertices,triangles,drawn,overflow,psnr_db,psnr_4x_db,mean_abs_diff,speedup_vs_full,"
+         "note\n";
   for (const RenderBenchRow& r : result.rows)
     out << csv_field(result.device) << ',' << result.width << ',' << result.height << ','
         << (result.shadows ? 1 : 0) << ',' << r.instances << ',' << r.visible << ',' << r.mode
@@ -97,7 +98,7 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
     // ceiling so the reference still shows.
     out << r.mode << ' ' << r.budget << ' ' << num(r.frame_ms, "%.3f") << ' '
         << (std::isfinite(r.psnr) ? num(r.psnr, "%.3f") : std::string("60")) << ' ' << r.triangles
-        << '\n';
+        << ' ' << (std::isfinite(r.psnr_4x) ? num(r.psnr_4x, "%.3f") : std::string("60")) << '\n';
   }
   out << "\n\n# block " << block << ": popping; pair";
   for (const PopRow& p : result.pops) out << ' ' << p.mode << '/' << p.why;

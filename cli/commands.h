@@ -99,12 +99,13 @@ int run_render(const RenderSettings& settings);
 // the generated spectator; and popping over a camera dolly (docs/performance.md).
 struct BenchRenderSettings {
   std::string pack;  // "" = bake the generated spectator into a temporary file
-  std::vector<uint32_t> sizes = {1000, 10000, 50000};                  // instances
-  std::vector<uint32_t> budgets = {100000, 300000, 1000000, 3000000};  // continuous/discrete N
+  std::vector<uint32_t> sizes = {1000, 10000, 50000};  // instances
+  std::vector<uint32_t> budgets = {100000, 300000, 1000000, 3000000,
+                                   6000000};  // continuous/discrete N
   uint32_t frames = 3;  // timed frames per configuration, after one warm-up frame
   std::string resolution = "1280x720";
   // Full resolution above this many triangles per frame is timed on one frame, no warm-up.
-  uint64_t full_single_frame_triangles = 50000000;
+  uint64_t full_single_frame_triangles = 20000000;
   uint32_t pop_size = 1000;       // instances of the popping measure (0 = none)
   uint32_t pop_frames = 60;       // frames of the dolly (>= 2), at 30 frames/s
   uint32_t pop_budget = 0;        // continuous budget of the dolly; 0 = 10 % of all full vertices

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   bench_render_cmd
       ->add_option("--budgets", bench_render.budgets,
-                   "LoD budgets N in vertices (default 100000,300000,1000000,3000000)")
+                   "LoD budgets N in vertices (default 100000,300000,1000000,3000000,6000000)")
       ->delimiter(',');
   bench_render_cmd->add_option("--frames", bench_render.frames,
                                "Timed frames per configuration after one warm-up (default 3)");
@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
                                "Image size WIDTHxHEIGHT (default 1280x720)");
   bench_render_cmd->add_option(
       "--full-single-frame", bench_render.full_single_frame_triangles,
-      "Full resolution above this many triangles is timed on one frame (default 50000000)");
+      "Full resolution above this many triangles is timed on one frame (default 20000000)");
   bench_render_cmd->add_option("--pop-size", bench_render.pop_size,
                                "Instances of the popping dolly (default 1000; 0 = skip)");
   bench_render_cmd->add_option("--pop-frames", bench_render.pop_frames,

@@ -4,10 +4,10 @@
 #                scripts/plot-render.gp
 # One panel per crowd size: x = frame time (ms, log), y = PSNR against full resolution (dB;
 # full resolution itself sits on the 60 dB line); continuous points are labelled with their
-# budget N in thousands of vertices. The last panel: the popping measure per frame pair of the
+# budget N in thousands of vertices; dashed: the PSNR of both images shrunk 4x (area average). The last panel: the popping measure per frame pair of the
 # camera dolly (mean |dLoD - dFull|, 8-bit units; lower = less popping).
 # The data file (written by the bench) has one block per size (columns: mode, budget,
-# frame_ms, psnr, triangles) and a last block (columns: pair, then one per sequence).
+# frame_ms, psnr, triangles, psnr_4x) and a last block (columns: pair, then one per sequence).
 if (!exists("datafile")) datafile = 'docs/data/render-bench.dat'
 if (!exists("outfile")) outfile = 'docs/render-bench.png'
 if (!exists("sizes")) sizes = ''
@@ -34,6 +34,8 @@ do for [i = 0:n - 1] {
   set ylabel "PSNR vs. full resolution (dB)"
   set yrange [*:62]
   plot datafile index i using 3:(is('continuous') ? $4 : NaN) with linespoints pt 7 ps 1.1 lc rgb "#1f77b4" title "continuous LoD", \
+       '' index i using 3:(is('continuous') ? $6 : NaN) with linespoints pt 6 ps 1.0 dt 2 lc rgb "#1f77b4" title "continuous, PSNR of 4x-shrunk images", \
+       '' index i using 3:(is('discrete') ? $6 : NaN) with linespoints pt 4 ps 0.9 dt 2 lc rgb "#d62728" title "discrete, PSNR of 4x-shrunk images", \
        '' index i using 3:(is('discrete') ? $4 : NaN) with linespoints pt 5 ps 1.0 lc rgb "#d62728" title "discrete LoD (4 levels)", \
        '' index i using 3:(is('full') ? $4 : NaN) with points pt 9 ps 1.6 lc rgb "#555555" title "full resolution (reference)", \
        '' index i using 3:4:(is('continuous') ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
