@@ -195,10 +195,8 @@ struct TypeResources {
   uint32_t encoding = 0;  // AnimationEncoding
 };
 
-constexpr uint32_t kEncodings = 3;
-constexpr uint32_t kMaxPaletteJoints =
-    512;  // skin_pass.comp's shared palette  // AnimationEncoding values: one pipeline each
-          // (skin.glsl)
+constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline each
+                                    // (skin.glsl)
 
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
@@ -243,12 +241,17 @@ struct CrowdDraw::Impl {
   VkDescriptorSetLayout skin_layout = VK_NULL_HANDLE;
   VkPipelineLayout skin_pipeline_layout = VK_NULL_HANDLE;
   VkDescriptorSet skin_set = VK_NULL_HANDLE;
-  VkShaderModule skin_list_module = VK_NULL_HANDLE, skin_pass_module = VK_NULL_HANDLE;
+  VkShaderModule skin_list_module = VK_NULL_HANDLE, skin_pass_module = VK_NULL_HANDLE,
+                 skin_palette_module = VK_NULL_HANDLE;
+  VkPipeline palette_pipelines[kEncodings] = {};
   VkPipeline skin_list_pipeline = VK_NULL_HANDLE;
-  // Per encoding; [1]: joints decoded once per instance into shared memory (at most
-  // kMaxPaletteJoints joints, skin_pass.comp), [0]: per influence.
+  // Per encoding; [1]: joint matrices from the palette pass (skin_palette.comp), [0]: decoded
+  // per influence (when the palette buffer would exceed the storage buffer range).
   VkPipeline skin_pipelines[kEncodings][2] = {};
-  GpuBuffer skin_params, type_args, skin_list, skin_base, skinned;
+  GpuBuffer skin_params, type_args, skin_list, skin_base, skinned, palette;
+  bool palette_on = true;
+  uint32_t palette_stride = 1;               // joints per instance in the palette (max over types)
+  std::vector<uint32_t> instances_per_type;  // this frame's, to size the palette dispatches
   uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
   std::map<std::tuple<VkFormat, VkFormat, VkImageLayout>, ColorPipeline> color_pipelines;
@@ -273,6 +276,8 @@ struct CrowdDraw::Impl {
       for (VkPipeline pipeline : pair) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyShaderModule(d, skin_list_module, nullptr);
     vkDestroyShaderModule(d, skin_pass_module, nullptr);
+    vkDestroyShaderModule(d, skin_palette_module, nullptr);
+    for (VkPipeline pipeline : palette_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyPipelineLayout(d, skin_pipeline_layout, nullptr);
     vkDestroyDescriptorSetLayout(d, skin_layout, nullptr);
     vkDestroyRenderPass(d, shadow_pass, nullptr);
@@ -324,7 +329,7 @@ struct CrowdDraw::Impl {
   Status create_skin_pass();
   // encoding: null for a shader without specialization constants.
   Status create_compute_pipeline(VkShaderModule module, const uint32_t* encoding, VkPipeline& out,
-                                 uint32_t palette = 0);
+                                 uint32_t use_palette = 0);
   void write_skin_set();
   void write_type_set(const TypeResources& t);
 };
@@ -379,7 +384,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 4 * type_count + 7},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 4 * type_count + 8},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
   };
   VkDescriptorPoolCreateInfo pool_info{};
@@ -806,15 +811,16 @@ void CrowdDraw::Impl::write_frame_set() {
 }
 
 void CrowdDraw::Impl::write_skin_set() {
-  const VkDescriptorBufferInfo buffers[7] = {{bound_instances, 0, VK_WHOLE_SIZE},
+  const VkDescriptorBufferInfo buffers[8] = {{bound_instances, 0, VK_WHOLE_SIZE},
                                              {bound_lods, 0, VK_WHOLE_SIZE},
                                              type_args.descriptor(),
                                              skin_list.descriptor(),
                                              skin_base.descriptor(),
                                              skin_params.descriptor(),
-                                             skinned.descriptor()};
-  VkWriteDescriptorSet writes[7] = {};
-  for (uint32_t b = 0; b < 7; ++b) {
+                                             skinned.descriptor(),
+                                             palette.descriptor()};
+  VkWriteDescriptorSet writes[8] = {};
+  for (uint32_t b = 0; b < 8; ++b) {
     writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[b].dstSet = skin_set;
     writes[b].dstBinding = b;
@@ -822,13 +828,13 @@ void CrowdDraw::Impl::write_skin_set() {
     writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[b].pBufferInfo = &buffers[b];
   }
-  vkUpdateDescriptorSets(context->device(), 7, writes, 0, nullptr);
+  vkUpdateDescriptorSets(context->device(), 8, writes, 0, nullptr);
 }
 
 Status CrowdDraw::Impl::create_compute_pipeline(VkShaderModule module, const uint32_t* encoding,
-                                                VkPipeline& out, uint32_t palette) {
+                                                VkPipeline& out, uint32_t use_palette) {
   // Specialization constants 0 (encoding) and 2 (palette) of skin.glsl / skin_pass.comp.
-  const uint32_t spec[2] = {encoding ? *encoding : 0u, palette};
+  const uint32_t spec[2] = {encoding ? *encoding : 0u, use_palette};
   const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
                                                {2, sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
@@ -850,12 +856,12 @@ Status CrowdDraw::Impl::create_compute_pipeline(VkShaderModule module, const uin
 
 Status CrowdDraw::Impl::create_skin_pass() {
   VkDevice d = context->device();
-  VkDescriptorSetLayoutBinding bindings[7] = {};
-  for (uint32_t b = 0; b < 7; ++b)
+  VkDescriptorSetLayoutBinding bindings[8] = {};
+  for (uint32_t b = 0; b < 8; ++b)
     bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  info.bindingCount = 7;
+  info.bindingCount = 8;
   info.pBindings = bindings;
   if (Status s = check(vkCreateDescriptorSetLayout(d, &info, nullptr, &skin_layout),
                        "vkCreateDescriptorSetLayout");
@@ -883,13 +889,20 @@ Status CrowdDraw::Impl::create_skin_pass() {
     return s;
   if (Status s = context->create_shader_module("skin_list.comp", skin_list_module); !s) return s;
   if (Status s = context->create_shader_module("skin_pass.comp", skin_pass_module); !s) return s;
+  if (Status s = context->create_shader_module("skin_palette.comp", skin_palette_module); !s)
+    return s;
   if (Status s = create_compute_pipeline(skin_list_module, nullptr, skin_list_pipeline); !s)
     return s;
   for (const TypeResources& t : types) {
-    const uint32_t palette = t.joints <= kMaxPaletteJoints ? 1u : 0u;
-    if (skin_pipelines[t.encoding][palette] == VK_NULL_HANDLE)
+    palette_stride = std::max(palette_stride, t.joints);
+    if (skin_pipelines[t.encoding][1] == VK_NULL_HANDLE)
       if (Status s = create_compute_pipeline(skin_pass_module, &t.encoding,
-                                             skin_pipelines[t.encoding][palette], palette);
+                                             skin_pipelines[t.encoding][1], 1);
+          !s)
+        return s;
+    if (palette_pipelines[t.encoding] == VK_NULL_HANDLE)
+      if (Status s = create_compute_pipeline(skin_palette_module, &t.encoding,
+                                             palette_pipelines[t.encoding]);
           !s)
         return s;
   }
@@ -1010,12 +1023,38 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
     m.list_stride = stride;
     sets_dirty = true;
   }
+  // The palette: every listed instance's joint matrices (48 bytes each), or, beyond the
+  // storage buffer range, none (the skinning pass then decodes per influence).
+  const uint64_t palette_bytes =
+      uint64_t{m.list_stride} * std::max<size_t>(m.types.size(), 1) * m.palette_stride * 48;
+  const bool palette_on = palette_bytes <= m.context->limits().maxStorageBufferRange;
+  const VkDeviceSize wanted = palette_on ? palette_bytes : 48;
+  if (!m.palette.valid() || m.palette.size() < wanted || palette_on != m.palette_on) {
+    GpuBuffer buffer;
+    if (Status s = GpuBuffer::create(*m.context, wanted, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryKind::kDeviceLocal, buffer);
+        !s)
+      return s;
+    m.palette = std::move(buffer);
+    m.palette_on = palette_on;
+    sets_dirty = true;
+  }
+  if (!palette_on)
+    for (const TypeResources& t : m.types)
+      if (m.skin_pipelines[t.encoding][0] == VK_NULL_HANDLE)
+        if (Status s = m.create_compute_pipeline(m.skin_pass_module, &t.encoding,
+                                                 m.skin_pipelines[t.encoding][0], 0);
+            !s)
+          return s;
+  m.instances_per_type.assign(m.types.size(), 0);
+  for (uint32_t type : scene.instances.type)
+    if (type < m.types.size()) ++m.instances_per_type[type];
   const uint32_t params[8] = {m.instance_count,
                               static_cast<uint32_t>(m.types.size()),
                               m.list_stride,
                               m.skin_capacity,
                               compute.instanced() ? 1u : 0u,
-                              0,
+                              m.palette_stride,
                               0,
                               0};
   if (compute.instanced() && m.shadow_pass != VK_NULL_HANDLE)
@@ -1184,11 +1223,26 @@ void CrowdDraw::record_skinning(VkCommandBuffer cmd) {
   }
   full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
+  if (m.palette_on) {
+    // One thread per (listed instance, joint): at most this frame's instances of the type.
+    for (uint32_t t = 0; t < types; ++t) {
+      const uint64_t threads = uint64_t{m.instances_per_type[t]} * m.types[t].joints;
+      if (threads == 0) continue;
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                        m.palette_pipelines[m.types[t].encoding]);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_pipeline_layout, 1, 1,
+                              &m.types[t].set, 0, nullptr);
+      vkCmdPushConstants(cmd, m.skin_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(t),
+                         &t);
+      vkCmdDispatch(cmd, static_cast<uint32_t>(std::min<uint64_t>((threads + 63) / 64, 65535)), 1,
+                    1);
+    }
+    full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  }
   VkPipeline bound = VK_NULL_HANDLE;
   for (uint32_t t = 0; t < types; ++t) {
     const TypeResources& type = m.types[t];
-    const VkPipeline pipeline =
-        m.skin_pipelines[type.encoding][type.joints <= kMaxPaletteJoints ? 1 : 0];
+    const VkPipeline pipeline = m.skin_pipelines[type.encoding][m.palette_on ? 1 : 0];
     if (pipeline != bound) {
       bound = pipeline;
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bound);
