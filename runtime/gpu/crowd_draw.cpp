@@ -1027,7 +1027,8 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   // storage buffer range, none (the skinning pass then decodes per influence).
   const uint64_t palette_bytes =
       uint64_t{m.list_stride} * std::max<size_t>(m.types.size(), 1) * m.palette_stride * 48;
-  const bool palette_on = palette_bytes <= m.context->limits().maxStorageBufferRange;
+  const bool palette_on =
+      m.settings.joint_palette && palette_bytes <= m.context->limits().maxStorageBufferRange;
   const VkDeviceSize wanted = palette_on ? palette_bytes : 48;
   if (!m.palette.valid() || m.palette.size() < wanted || palette_on != m.palette_on) {
     GpuBuffer buffer;

@@ -116,6 +116,7 @@ Status Renderer::create(VulkanContext& context, const Scene& scene, const Render
   settings.shadows = options.shadows;
   settings.shadow_map_size = options.shadow_map_size;
   settings.ground = options.ground;
+  settings.joint_palette = options.joint_palette;
   if (Status s = CrowdDraw::create(context, scene, settings, impl->draw); !s) return s;
   // note: without timestamp support (timestampValidBits 0) profiles carry CPU times only.
   if (context.limits().timestampComputeAndGraphics)

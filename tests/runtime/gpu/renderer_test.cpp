@@ -272,6 +272,23 @@ TEST_F(RendererTest, InstancedStaticLevelsDrawWhatTheCornerPathDraws) {
   }
 }
 
+TEST_F(RendererTest, JointPaletteDrawsWhatPerInfluenceDecodingDraws) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image palette = render(scene, 1.7f);
+  RenderOptions options;
+  options.joint_palette = false;
+  make_renderer(scene, options);
+  if (HasFatalFailure()) return;
+  const Image per_influence = render(scene, 1.7f);
+  const ImageDiff diff = compare(palette, per_influence);
+  EXPECT_LT(diff.mean_abs, 0.05);
+  EXPECT_LT(diff.differing, 0.0005);
+}
+
 TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;

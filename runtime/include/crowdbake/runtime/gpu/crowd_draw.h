@@ -39,6 +39,9 @@ struct DrawSettings {
   std::array<float, 3> ambient{0.32f, 0.34f, 0.38f};
   std::array<float, 3> ground_color{0.42f, 0.45f, 0.40f};
   std::array<float, 4> clear_color{0.62f, 0.72f, 0.84f, 1.0f};  // RGBA in [0, 1]
+  // Decode each drawn instance's joint matrices once (palette pass) rather than per vertex
+  // influence; off only to compare the two (they draw the same).
+  bool joint_palette = true;
 };
 
 // A colour + depth target the colour pass renders into: the Renderer's own offscreen image or

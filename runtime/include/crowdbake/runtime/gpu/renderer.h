@@ -54,6 +54,7 @@ struct RenderOptions {
   uint32_t shadow_map_size = 2048;  // square
   bool ground = true;               // a ground quad under the crowd, receiving shadows
   CrowdComputeOptions compute;      // corner buffer capacity, instance capacity
+  bool joint_palette = true;        // DrawSettings::joint_palette
 };
 
 class Renderer {
