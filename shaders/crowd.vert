@@ -40,7 +40,9 @@ void main() {
     const vec4 skinned_vertex = skinned[base + corner.y];
     out_world = skinned_vertex.xyz;
     out_normal = unpack_normal(floatBitsToUint(skinned_vertex.w));
-  } else if (kDrawMode == kDrawInstanced) {
+  } else if (kDrawMode == kDrawInstanced) {  // note: lavapipe runs this side for every vertex
+    // (both sides of a branch execute), so frames where every instance has slots use
+    // kDrawInstancedSlots, which has no such side.
     // note: instanced full-resolution crowds may outgrow the slots: skin the rest here.
     const SkinnedVertex s = skin_vertex(inst, v);
     out_world = s.position;

@@ -42,6 +42,7 @@ draw_push;
 const uint kDrawCrowd = 0u;      // corners pulled from the corner buffer
 const uint kDrawGround = 1u;     // the ground quad
 const uint kDrawInstanced = 2u;  // CrowdCompute's instanced static levels (indexed, instanced)
+const uint kDrawInstancedSlots = 3u;  // the same when every instance has skinned slots
 // What the pipeline draws (a specialization constant: each kind is its own pipeline).
 layout(constant_id = 1) const uint kDrawMode = kDrawCrowd;
 
@@ -56,7 +57,7 @@ vec3 ground_corner(uint i) {
 #ifdef CROWD_VERTEX_STAGE
 // The (instance, vertex of its type) a vertex shader invocation draws.
 uvec2 drawn_corner() {
-  if (kDrawMode == kDrawInstanced)
+  if (kDrawMode == kDrawInstanced || kDrawMode == kDrawInstancedSlots)
     return uvec2(instance_list[gl_InstanceIndex], uint(gl_VertexIndex));
   return corners[draw_push.corner_base + uint(gl_VertexIndex)];
 }

@@ -16,7 +16,7 @@ void main() {
   vec3 p;
   if (base != kSkinNotDrawn) {
     p = skinned[base + corner.y].xyz;
-  } else if (kDrawMode == kDrawInstanced) {
+  } else if (kDrawMode == kDrawInstanced) {  // see crowd.vert
     p = skin_vertex(instances[corner.x], vertices[corner.y]).position;
   } else {
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);  // no slots: collapse (see crowd.vert)

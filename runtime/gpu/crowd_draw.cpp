@@ -201,12 +201,14 @@ constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline ea
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline pipelines[kEncodings] = {};  // only the encodings the scene's types use
-  VkPipeline instanced[kEncodings] = {};  // made when a frame first draws instanced levels
+  // Instanced static levels, made when a frame first draws them: [0] every instance has
+  // skinned slots, [1] the vertex shader skins instances without (slower on lavapipe).
+  VkPipeline instanced[2][kEncodings] = {};
   VkPipeline ground = VK_NULL_HANDLE;
 };
 
 // Pipeline kinds (crowd_frame.glsl kDrawMode).
-constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2;
+constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2, kModeInstancedSlots = 3;
 
 }  // namespace
 
@@ -229,7 +231,8 @@ struct CrowdDraw::Impl {
   VkRenderPass shadow_pass = VK_NULL_HANDLE;
   VkFramebuffer shadow_framebuffer = VK_NULL_HANDLE;
   VkPipeline shadow_pipelines[kEncodings] = {};
-  VkPipeline shadow_instanced[kEncodings] = {};
+  VkPipeline shadow_instanced[2][kEncodings] = {};
+  bool skin_fallback = false;  // this frame: some instance may find no skinned slots
   uint32_t shadow_size = 1;
   uint32_t swatches_per_region = 1;
 
@@ -264,12 +267,14 @@ struct CrowdDraw::Impl {
     for (auto& [key, fb] : framebuffers) vkDestroyFramebuffer(d, fb, nullptr);
     for (auto& [key, p] : color_pipelines) {
       for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(d, pipeline, nullptr);
-      for (VkPipeline pipeline : p.instanced) vkDestroyPipeline(d, pipeline, nullptr);
+      for (auto& kind : p.instanced)
+        for (VkPipeline pipeline : kind) vkDestroyPipeline(d, pipeline, nullptr);
       vkDestroyPipeline(d, p.ground, nullptr);
       vkDestroyRenderPass(d, p.render_pass, nullptr);
     }
     for (VkPipeline pipeline : shadow_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
-    for (VkPipeline pipeline : shadow_instanced) vkDestroyPipeline(d, pipeline, nullptr);
+    for (auto& kind : shadow_instanced)
+      for (VkPipeline pipeline : kind) vkDestroyPipeline(d, pipeline, nullptr);
     vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
     vkDestroyPipeline(d, skin_list_pipeline, nullptr);
     for (auto& pair : skin_pipelines)
@@ -1058,9 +1063,17 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
                               m.palette_stride,
                               0,
                               0};
-  if (compute.instanced() && m.shadow_pass != VK_NULL_HANDLE)
-    if (Status s = m.create_pipelines(m.shadow_pass, true, m.shadow_instanced, kModeInstanced); !s)
-      return s;
+  {
+    // note: Σ n_i (selected) bounds Σ n'_i (slots taken); the GPU selection equals the CPU's.
+    uint64_t selected = 0;
+    for (uint32_t v : state.vertex_count) selected += v;
+    m.skin_fallback = selected > m.skin_capacity;
+    if (compute.instanced() && m.shadow_pass != VK_NULL_HANDLE)
+      if (Status s = m.create_pipelines(m.shadow_pass, true, m.shadow_instanced[m.skin_fallback],
+                                        m.skin_fallback ? kModeInstanced : kModeInstancedSlots);
+          !s)
+        return s;
+  }
   if (Status s = m.skin_params.upload(params, sizeof(params)); !s) return s;
   FrameConstants& k = m.constants;
   const View& view = state.view;
@@ -1279,7 +1292,8 @@ void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
   VkPipeline bound = VK_NULL_HANDLE;
   for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
     const uint32_t e = m.types[t].encoding;
-    const VkPipeline pipeline = draws[t].instanced ? m.shadow_instanced[e] : m.shadow_pipelines[e];
+    const VkPipeline pipeline =
+        draws[t].instanced ? m.shadow_instanced[m.skin_fallback][e] : m.shadow_pipelines[e];
     if (pipeline == VK_NULL_HANDLE) continue;  // note: update() makes them before such frames
     if (pipeline != bound) {
       bound = pipeline;
@@ -1344,10 +1358,12 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
     VkPipeline bound = VK_NULL_HANDLE;
     for (size_t t = 0; t < draws.size() && t < m.types.size(); ++t) {
       const uint32_t e = m.types[t].encoding;
-      VkPipeline& chosen = draws[t].instanced ? pipeline->instanced[e] : pipeline->pipelines[e];
+      VkPipeline& chosen =
+          draws[t].instanced ? pipeline->instanced[m.skin_fallback][e] : pipeline->pipelines[e];
       if (chosen == VK_NULL_HANDLE)
         if (Status s =
-                m.create_graphics_pipeline(pipeline->render_pass, false, e, chosen, kModeInstanced);
+                m.create_graphics_pipeline(pipeline->render_pass, false, e, chosen,
+                                           m.skin_fallback ? kModeInstanced : kModeInstancedSlots);
             !s)
           return s;
       if (chosen != bound) {
