@@ -988,6 +988,10 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
 Status CrowdDraw::update(const Scene& scene, const FrameState& state, const EffectFrame* effects,
                          const CrowdCompute& compute) {
   Impl& m = *impl_;
+  if (scene.types.size() != m.types.size())
+    return {StatusCode::kInvalidArgument,
+            "CrowdDraw::update: the scene has " + std::to_string(scene.types.size()) +
+                " character types, the renderer was created for " + std::to_string(m.types.size())};
   const GpuBuffer& instances = compute.instance_buffer();
   const GpuBuffer& corners = compute.corner_buffer();
   const GpuBuffer& lods = compute.instance_lod_buffer();

@@ -180,6 +180,23 @@ TEST_F(RendererTest, SceneWithoutInstancesIsTheClearColour) {
   EXPECT_EQ(profile.triangles, 0u);
 }
 
+TEST_F(RendererTest, RefusesAnotherSceneOrABadCamera) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  Image image;
+  Scene bigger;
+  crowd_scene(bigger);
+  ASSERT_TRUE(test::add_pack_bytes(bigger, "small",
+                                   test::small_pack_bytes_encoded(AnimationEncoding::kFloat32))
+                  .ok());
+  EXPECT_FALSE(renderer_->render(bigger, 0.0f, image).ok()) << "types differ from create";
+  scene.camera.target = scene.camera.position;
+  EXPECT_FALSE(renderer_->render(scene, 0.0f, image).ok()) << "unusable camera";
+}
+
 TEST_F(RendererTest, ProfileNamesEveryPassAndCounts) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
