@@ -960,6 +960,40 @@ void parse_spectators(const json& v, size_t generator_count, SceneEffects& e) {
   if (!trapped.empty())
     fail(path + ".transitions",
          "cyclic FSM without exit: no path from " + trapped + " to a rest state");
+  // A reaction's states loop while the reaction lasts and must be reachable from every rest
+  // state (where reactions start).
+  for (size_t r = 0; r < e.reactions.size(); ++r) {
+    const std::string rp = item_path(path + ".reactions", r);
+    const std::string* roles[2] = {&e.reactions[r].supporters, &e.reactions[r].opponents};
+    const char* keys[2] = {"supporters", "opponents"};
+    for (int k = 0; k < 2; ++k) {
+      if (roles[k]->empty()) continue;
+      const size_t target = static_cast<size_t>(find_state(e.states, *roles[k]));
+      const EffectState& st = e.states[target];
+      if (st.pose_in != st.pose_out)
+        fail(rp + "." + keys[k], "state " + in_quotes(st.name) +
+                                     " repeats while the reaction lasts, so it must end in the "
+                                     "pose it starts in (pose_in " +
+                                     in_quotes(st.pose_in) + ", pose_out " +
+                                     in_quotes(st.pose_out) + ")");
+      for (size_t from = 0; from < n; ++from) {
+        if (!e.states[from].rest) continue;
+        std::vector<uint8_t> seen(n, 0);
+        std::vector<size_t> queue{from};
+        seen[from] = 1;
+        for (size_t q = 0; q < queue.size(); ++q)
+          for (const EffectTransition& t : e.fsm_transitions)
+            if (static_cast<size_t>(find_state(e.states, t.from)) == queue[q]) {
+              const size_t to = static_cast<size_t>(find_state(e.states, t.to));
+              if (!seen[to]) seen[to] = 1, queue.push_back(to);
+            }
+        if (!seen[target])
+          fail(rp + "." + keys[k], "state " + in_quotes(st.name) +
+                                       " cannot be reached from the rest state " +
+                                       in_quotes(e.states[from].name));
+      }
+    }
+  }
 }
 
 void parse_effects(const json& v, RawScene& s) {

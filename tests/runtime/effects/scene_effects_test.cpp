@@ -150,6 +150,17 @@ TEST(SceneEffectsErrors, UnknownState) {
       {"effects.spectators.reactions[0].supporters: unknown state \"sing\""});
 }
 
+TEST(SceneEffectsErrors, UnreachableReactionState) {
+  // "hold" is only left, never entered: the goal could not start it from "idle".
+  std::string unreachable = small_spectators(
+      R"([{"from": "idle", "to": "wave"}, {"from": "wave", "to": "idle"}, {"from": "hold", "to": "idle"}])",
+      kGoal);
+  unreachable.replace(unreachable.find("\"supporters\": \"wave\""), 20, "\"supporters\": \"hold\"");
+  expect_error(small_scene(unreachable),
+               {"effects.spectators.reactions[0].supporters: state \"hold\" cannot be reached "
+                "from the rest state \"idle\""});
+}
+
 TEST(SceneEffectsErrors, EventForMissingTeam) {
   expect_error(small_scene(small_spectators(kGoodTransitions,
                                             R"([{"kind": "goal", "time": 1, "team": "C"}])")),
