@@ -12,7 +12,8 @@ layout(local_size_x = 256) in;
 layout(std430, set = 0, binding = 0) readonly buffer InstanceBlock { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 1) readonly buffer LodBlock { SkinLod lods[]; };
 // Per type: (dispatch x, y, z, listed instances), cleared to (0, 1, 1, 0) before this pass;
-// then one more entry: (slots taken, instances without room, 0, 0), cleared to zero.
+// then one more entry: (slots taken, instances without room, 0, 0), cleared to zero; then per
+// type the palette pass's dispatch (x, 1, 1, 0): one thread per listed instance and joint.
 layout(std430, set = 0, binding = 2) buffer ArgsBlock { uvec4 type_args[]; };
 layout(std430, set = 0, binding = 3) buffer ListBlock { uint list[]; };
 layout(std430, set = 0, binding = 4) writeonly buffer BaseBlock { uint skin_base[]; };
@@ -20,6 +21,7 @@ layout(std430, set = 0, binding = 5) readonly buffer ParamsBlock {
   uint instance_count, type_count, list_stride, skin_capacity;
   uint instanced;  // 1: CrowdCompute drew instanced static levels (no corner offsets)
   uint palette_stride, pad0, pad1;
+  uint type_joints[];  // per type
 } params;
 
 void main() {
@@ -41,6 +43,8 @@ void main() {
         const uint slot = atomicAdd(type_args[t].w, 1u);
         list[t * params.list_stride + slot] = i;
         if (slot < kMaxDispatch) atomicMax(type_args[t].x, slot + 1u);
+        const uint threads = (slot + 1u) * params.type_joints[t];
+        atomicMax(type_args[totals + 1u + t].x, min((threads + 63u) / 64u, kMaxDispatch));
       } else {
         atomicAdd(type_args[totals].y, 1u);
       }

@@ -1,6 +1,7 @@
-// Skinning pass, step 2 (one dispatch per character type, before skin_pass.comp): the joint
-// matrices of every listed instance of the type, one thread per (instance, joint), decoded by
-// skin.glsl's instance_joint (texture rows, crossfade or pose buffer) — PaletteJob on the GPU.
+// Skinning pass, step 2 (one indirect dispatch per character type, sized by skin_list.comp,
+// before skin_pass.comp): the joint matrices of every listed instance of the type, one thread
+// per (instance, joint), decoded by skin.glsl's instance_joint (texture rows, crossfade or pose
+// buffer) — PaletteJob on the GPU.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -29,8 +30,7 @@ void main() {
   // note: at most 65535 workgroups are dispatched; they loop over the rest.
   for (uint id = gl_GlobalInvocationID.x; id < total; id += kMaxDispatch * 64u) {
     const uint g = id / joints, j = id - g * joints;
-    const uint instance = list[t * params.list_stride + g];
-    const Affine s = instance_joint(instances[instance], j);
+    const Affine s = instance_joint(instances[list[t * params.list_stride + g]], j);
     const uint first = ((t * params.list_stride + g) * params.palette_stride + j) * 3u;
     palette[first] = s.r0;
     palette[first + 1u] = s.r1;

@@ -253,8 +253,7 @@ struct CrowdDraw::Impl {
   VkPipeline skin_pipelines[kEncodings][2] = {};
   GpuBuffer skin_params, type_args, skin_list, skin_base, skinned, palette;
   bool palette_on = true;
-  uint32_t palette_stride = 1;               // joints per instance in the palette (max over types)
-  std::vector<uint32_t> instances_per_type;  // this frame's, to size the palette dispatches
+  uint32_t palette_stride = 1;  // joints per instance in the palette (max over types)
   uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
   std::map<std::tuple<VkFormat, VkFormat, VkImageLayout>, ColorPipeline> color_pipelines;
@@ -913,8 +912,10 @@ Status CrowdDraw::Impl::create_skin_pass() {
   }
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   // note: one entry per type plus the totals (skin_list.comp).
-  const VkDeviceSize type_bytes = 16 * (types.size() + 1);
-  if (Status s = GpuBuffer::create(*context, 32, storage, MemoryKind::kHostVisible, skin_params);
+  // note: per type, then the totals, then per type the palette pass's dispatch (skin_list.comp).
+  const VkDeviceSize type_bytes = 16 * (2 * types.size() + 1);
+  if (Status s = GpuBuffer::create(*context, 32 + 4 * types.size(), storage,
+                                   MemoryKind::kHostVisible, skin_params);
       !s)
     return s;
   return GpuBuffer::create(*context, type_bytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -1056,17 +1057,15 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
                                                  m.skin_pipelines[t.encoding][0], 0);
             !s)
           return s;
-  m.instances_per_type.assign(m.types.size(), 0);
-  for (uint32_t type : scene.instances.type)
-    if (type < m.types.size()) ++m.instances_per_type[type];
-  const uint32_t params[8] = {m.instance_count,
-                              static_cast<uint32_t>(m.types.size()),
-                              m.list_stride,
-                              m.skin_capacity,
-                              compute.instanced() ? 1u : 0u,
-                              m.palette_stride,
-                              0,
-                              0};
+  std::vector<uint32_t> params = {m.instance_count,
+                                  static_cast<uint32_t>(m.types.size()),
+                                  m.list_stride,
+                                  m.skin_capacity,
+                                  compute.instanced() ? 1u : 0u,
+                                  m.palette_stride,
+                                  0,
+                                  0};
+  for (const TypeResources& t : m.types) params.push_back(t.joints);
   {
     // note: Σ n_i (selected) bounds Σ n'_i (slots taken); the GPU selection equals the CPU's.
     uint64_t selected = 0;
@@ -1078,7 +1077,7 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
           !s)
         return s;
   }
-  if (Status s = m.skin_params.upload(params, sizeof(params)); !s) return s;
+  if (Status s = m.skin_params.upload(params.data(), params.size() * 4); !s) return s;
   FrameConstants& k = m.constants;
   const View& view = state.view;
   float view_m[16], proj[16];
@@ -1222,10 +1221,10 @@ void CrowdDraw::record_skinning(VkCommandBuffer cmd) {
   // note: the compute passes' outputs (LoD, corner offsets) feed the list pass.
   full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT);
-  std::vector<uint32_t> cleared(4 * (static_cast<size_t>(types) + 1));
+  std::vector<uint32_t> cleared(4 * (2 * static_cast<size_t>(types) + 1));
   for (uint32_t t = 0; t < types; ++t) {
-    cleared[4 * t + 1] = 1;
-    cleared[4 * t + 2] = 1;
+    cleared[4 * t + 1] = cleared[4 * t + 2] = 1;
+    cleared[4 * (types + 1 + t) + 1] = cleared[4 * (types + 1 + t) + 2] = 1;
   }
   // note: vkCmdUpdateBuffer takes at most 65536 bytes at a time.
   for (size_t first = 0; first < cleared.size(); first += 16384) {
@@ -1242,18 +1241,15 @@ void CrowdDraw::record_skinning(VkCommandBuffer cmd) {
   full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
   if (m.palette_on) {
-    // One thread per (listed instance, joint): at most this frame's instances of the type.
+    // One thread per (listed instance, joint), sized by the list pass.
     for (uint32_t t = 0; t < types; ++t) {
-      const uint64_t threads = uint64_t{m.instances_per_type[t]} * m.types[t].joints;
-      if (threads == 0) continue;
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                         m.palette_pipelines[m.types[t].encoding]);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.skin_pipeline_layout, 1, 1,
                               &m.types[t].set, 0, nullptr);
       vkCmdPushConstants(cmd, m.skin_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(t),
                          &t);
-      vkCmdDispatch(cmd, static_cast<uint32_t>(std::min<uint64_t>((threads + 63) / 64, 65535)), 1,
-                    1);
+      vkCmdDispatchIndirect(cmd, m.type_args.buffer(), VkDeviceSize{types + 1 + t} * 16);
     }
     full_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   }
