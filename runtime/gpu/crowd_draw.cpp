@@ -1306,6 +1306,11 @@ void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
   vkCmdEndRenderPass(cmd);
 }
 
+Status CrowdDraw::prepare_target(const HostTarget& target) {
+  ColorPipeline* pipeline = nullptr;
+  return impl_->color_pipeline(target, pipeline);
+}
+
 Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
                                Span<const TypeDraw> draws) {
   Impl& m = *impl_;

@@ -118,6 +118,10 @@ Status Renderer::create(VulkanContext& context, const Scene& scene, const Render
   settings.ground = options.ground;
   settings.joint_palette = options.joint_palette;
   if (Status s = CrowdDraw::create(context, scene, settings, impl->draw); !s) return s;
+  // note: render()'s own target formats; a host target of other formats builds its own later.
+  HostTarget own;
+  own.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  if (Status s = impl->draw->prepare_target(own); !s) return s;
   // note: without timestamp support (timestampValidBits 0) profiles carry CPU times only.
   if (context.limits().timestampComputeAndGraphics)
     if (Status s = TimestampQueries::create(context, kQueryCount, impl->queries); !s) return s;

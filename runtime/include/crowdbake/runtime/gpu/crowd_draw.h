@@ -147,6 +147,9 @@ class CrowdDraw {
   // The shadow-map pass (outside any render pass); records nothing when shadows are off.
   // draws: one per character type, in type order
   void record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws);
+  // Builds the colour pipelines for targets of these formats ahead of the first record_color
+  // (which otherwise builds them, a compile that lands in the first frame).
+  Status prepare_target(const HostTarget& target);
   // The colour pass into `target`: clear, ground, one indirect draw per type.
   // Returns kInvalidArgument when the target is incomplete or a Vulkan object cannot be made.
   Status record_color(VkCommandBuffer cmd, const HostTarget& target, Span<const TypeDraw> draws);
