@@ -256,7 +256,7 @@ struct CrowdDraw::Impl {
   uint32_t palette_stride = 1;  // joints per instance in the palette (max over types)
   uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
-  std::map<std::tuple<VkFormat, VkFormat, VkImageLayout>, ColorPipeline> color_pipelines;
+  std::map<std::tuple<VkFormat, VkFormat, VkImageLayout, bool>, ColorPipeline> color_pipelines;
   std::map<std::tuple<VkRenderPass, VkImageView, VkImageView, uint32_t, uint32_t>, VkFramebuffer>
       framebuffers;
 
@@ -707,8 +707,8 @@ Status CrowdDraw::Impl::create_shadow() {
 }
 
 Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*& out) {
-  const auto key =
-      std::make_tuple(target.color_format, target.depth_format, target.color_final_layout);
+  const auto key = std::make_tuple(target.color_format, target.depth_format,
+                                   target.color_final_layout, target.clear);
   auto found = color_pipelines.find(key);
   if (found != color_pipelines.end()) {
     out = &found->second;
@@ -717,15 +717,20 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   VkAttachmentDescription attachments[2] = {};
   attachments[0].format = target.color_format;
   attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  attachments[0].loadOp = target.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  attachments[0].initialLayout =
+      target.clear ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   attachments[0].finalLayout = target.color_final_layout;
   attachments[1] = attachments[0];
   attachments[1].format = target.depth_format;
-  attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  // note: a host drawing over its own scene may want the crowd's depth afterwards.
+  attachments[1].storeOp =
+      target.clear ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+  attachments[1].initialLayout =
+      target.clear ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   const VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   const VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};

@@ -365,5 +365,93 @@ TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
   EXPECT_TRUE(mine.rgba == reference.rgba);
 }
 
+TEST_F(RendererTest, RecordDrawOverTheHostsPictureKeepsItsBackground) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  crowd_scene(scene);
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image reference = render(scene, 0.9f);
+
+  using namespace runtime::gpu;
+  ImageDesc color_desc;
+  color_desc.width = 256;
+  color_desc.height = 144;
+  color_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  ImageDesc depth_desc = color_desc;
+  depth_desc.format = VK_FORMAT_D32_SFLOAT;
+  depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  depth_desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  GpuImage color, depth;
+  ASSERT_TRUE(GpuImage::create(context(), color_desc, color).ok());
+  ASSERT_TRUE(GpuImage::create(context(), depth_desc, depth).ok());
+  GpuBuffer readback;
+  ASSERT_TRUE(GpuBuffer::create(context(), 256 * 144 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                MemoryKind::kHostVisible, readback)
+                  .ok());
+  HostTarget target;
+  target.color_view = color.view();
+  target.depth_view = depth.view();
+  target.width = 256;
+  target.height = 144;
+  target.clear = false;
+  runtime::Status recorded;
+  ASSERT_TRUE(
+      context()
+          .submit_and_wait([&](VkCommandBuffer cmd) {
+            // The host's own picture: black, depth at the far plane.
+            transition_image(cmd, color.image(), VK_IMAGE_ASPECT_COLOR_BIT,
+                             VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            transition_image(cmd, depth.image(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                             VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            const VkClearColorValue black{};
+            const VkClearDepthStencilValue far{1.0f, 0};
+            const VkImageSubresourceRange color_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            const VkImageSubresourceRange depth_range{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black,
+                                 1, &color_range);
+            vkCmdClearDepthStencilImage(cmd, depth.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                        &far, 1, &depth_range);
+            transition_image(cmd, color.image(), VK_IMAGE_ASPECT_COLOR_BIT,
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+            transition_image(cmd, depth.image(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+            recorded = renderer_->prepare(scene, 0.9f, cmd);
+            if (recorded.ok()) recorded = renderer_->record_draw(cmd, target);
+            VkBufferImageCopy copy{};
+            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            copy.imageExtent = {256, 144, 1};
+            vkCmdCopyImageToBuffer(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   readback.buffer(), 1, &copy);
+          })
+          .ok());
+  ASSERT_TRUE(recorded.ok()) << recorded.message();
+  std::vector<uint8_t> mine(256 * 144 * 4);
+  ASSERT_TRUE(readback.download(mine.data(), mine.size()).ok());
+  // Where render() shows its clear colour the host's black remains; elsewhere the same crowd.
+  const auto clear = DrawSettings{}.clear_color;
+  size_t background = 0, crowd = 0, wrong = 0;
+  for (size_t p = 0; p < mine.size(); p += 4) {
+    bool is_clear = true;
+    for (int c = 0; c < 3; ++c)
+      is_clear = is_clear &&
+                 std::abs(int(reference.rgba[p + c]) - int(std::lround(clear[c] * 255.0f))) <= 1;
+    if (is_clear) {
+      ++background;
+      wrong += mine[p] != 0 || mine[p + 1] != 0 || mine[p + 2] != 0;
+    } else {
+      ++crowd;
+      wrong += mine[p] != reference.rgba[p] || mine[p + 1] != reference.rgba[p + 1] ||
+               mine[p + 2] != reference.rgba[p + 2];
+    }
+  }
+  EXPECT_GT(background, 1000u);
+  EXPECT_GT(crowd, 1000u);
+  EXPECT_EQ(wrong, 0u);
+}
+
 }  // namespace
 }  // namespace crowdbake

@@ -45,16 +45,21 @@ struct DrawSettings {
 };
 
 // A colour + depth target the colour pass renders into: the Renderer's own offscreen image or
-// one the host application owns (Renderer::record_draw). The colour pass clears both.
+// one the host application owns (Renderer::record_draw).
 struct HostTarget {
   VkImageView color_view = VK_NULL_HANDLE;
   VkFormat color_format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageView depth_view = VK_NULL_HANDLE;
   VkFormat depth_format = VK_FORMAT_D32_SFLOAT;
   uint32_t width = 0, height = 0;
-  // The colour image's layout after the pass (the render pass transitions it from UNDEFINED:
-  // its old contents are cleared).
+  // The colour image's layout after the pass.
   VkImageLayout color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  // true: both images are cleared (colour to DrawSettings::clear_color, depth to 1) and their
+  // old contents dropped. false: the crowd is drawn over what the host drew, depth-tested
+  // against the host's depth (Vulkan depth 0 near, 1 far, the camera of scene.camera); the
+  // colour image must then be in COLOR_ATTACHMENT_OPTIMAL and the depth image in
+  // DEPTH_STENCIL_ATTACHMENT_OPTIMAL, and the depth is kept.
+  bool clear = true;
 };
 
 // How one character type is drawn (CrowdCompute's outputs): through the corner buffer with one
