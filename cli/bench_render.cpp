@@ -113,41 +113,51 @@ RgbaImage measure(gpu::VulkanContext& context, gpu::Renderer& renderer, runtime:
   return std::move(last.image);
 }
 
-// Mean triangles per frame that LoD selection gives over the times, from the CPU reference
+// The popping dolly: one camera per frame, rendered at one scene time (animation frozen), so
+// the only thing that changes between frames is the camera, and with it the LoD selection.
+struct Dolly {
+  std::vector<runtime::Camera> cameras;
+  float time = kTableTime;
+};
+
+// Mean triangles per frame that LoD selection gives over the dolly, from the CPU reference
 // (update_frame and the packs' triangle_count tables): cheap enough to search budgets with.
-double mean_selected_triangles(const runtime::Scene& scene, const std::vector<float>& times) {
+double mean_selected_triangles(runtime::Scene& scene, const Dolly& dolly) {
   runtime::FrameState state;
   std::vector<runtime::ProgressiveView> views;
   for (const runtime::CharacterType& t : scene.types)
     views.push_back(runtime::progressive_view(t.pack.contents()));
+  const runtime::Camera saved = scene.camera;
   double total = 0;
-  for (float t : times) {
-    const runtime::Status s = runtime::update_frame(scene, t, state);
+  for (const runtime::Camera& camera : dolly.cameras) {
+    scene.camera = camera;
+    const runtime::Status s = runtime::update_frame(scene, dolly.time, state);
     if (!s.ok()) throw input_error("bench", s.message());
     for (size_t i = 0; i < state.vertex_count.size(); ++i)
       if (state.vertex_count[i] > 0)
         total += runtime::lod_triangle_count(views[scene.instances.type[i]], state.vertex_count[i]);
   }
-  return total / static_cast<double>(times.size());
+  scene.camera = saved;
+  return total / static_cast<double>(dolly.cameras.size());
 }
 
-// The discrete budget whose mean triangle count over `times` is closest to `target`
-// (bisection in log space; discrete snaps counts down, so it needs a larger N).
-// Leaves the scene's LoD settings as it found them.
-uint32_t discrete_budget_for(runtime::Scene& scene, const std::vector<float>& times, double target,
-                             uint32_t start) {
+// The discrete budget whose mean triangle count over the dolly is closest to `target`
+// (bisection in log space). Leaves the scene's LoD settings as it found them.
+uint32_t discrete_budget_for(runtime::Scene& scene, const Dolly& dolly, double target,
+                             uint32_t start, double& achieved) {
   const runtime::LodSettings saved = scene.lod;
   scene.lod.mode = runtime::LodMode::kDiscrete;
-  double lo = std::max(1.0, start / 2.0), hi = std::min(4294967295.0, start * 32.0);
+  double lo = std::max(1.0, start / 8.0), hi = std::min(4294967295.0, start * 32.0);
   uint32_t best = start;
   double best_gap = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < 24; ++it) {
+  for (int it = 0; it < 28; ++it) {
     const double mid = std::sqrt(lo * hi);
     scene.lod.budget = static_cast<uint32_t>(mid);
-    const double tris = mean_selected_triangles(scene, times);
+    const double tris = mean_selected_triangles(scene, dolly);
     if (std::abs(tris - target) < best_gap) {
       best_gap = std::abs(tris - target);
       best = scene.lod.budget;
+      achieved = tris;
     }
     if (best_gap <= 0.002 * target) break;
     (tris < target ? lo : hi) = mid;
@@ -157,27 +167,42 @@ uint32_t discrete_budget_for(runtime::Scene& scene, const std::vector<float>& ti
 }
 
 struct PopSequence {
-  std::vector<RgbaImage> frames;
+  std::vector<RgbaImage> frames, small;  // small: shrunk 4x
   std::vector<double> triangles;
 };
 
 PopSequence render_sequence(gpu::VulkanContext& context, gpu::Renderer& renderer,
                             runtime::Scene& scene, runtime::LodMode mode, uint32_t budget,
-                            const std::vector<float>& times, const std::string& frames_dir) {
+                            const Dolly& dolly, const std::string& frames_dir) {
   scene.lod.mode = mode;
   if (budget) scene.lod.budget = budget;
+  const runtime::Camera saved = scene.camera;
   PopSequence seq;
-  for (size_t i = 0; i < times.size(); ++i) {
-    Frame f = render_frame(context, renderer, scene, times[i]);
+  for (size_t i = 0; i < dolly.cameras.size(); ++i) {
+    scene.camera = dolly.cameras[i];
+    Frame f = render_frame(context, renderer, scene, dolly.time);
     seq.triangles.push_back(static_cast<double>(f.profile.triangles));
     if (!frames_dir.empty()) {
       char name[64];
       std::snprintf(name, sizeof name, "%s-%u-%04zu.png", mode_name(mode), budget, i);
       write_png((fs::path(frames_dir) / name).string(), f.image);
     }
+    seq.small.push_back(shrink4(f.image));
     seq.frames.push_back(std::move(f.image));
   }
+  scene.camera = saved;
   return seq;
+}
+
+void summarise(const std::vector<double>& values, double& mean, double& p95, double& max) {
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  double sum = 0;
+  for (double v : sorted) sum += v;
+  mean = sorted.empty() ? 0 : sum / static_cast<double>(sorted.size());
+  p95 = sorted.empty() ? 0
+                       : sorted[static_cast<size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
+  max = sorted.empty() ? 0 : sorted.back();
 }
 
 PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode, uint32_t budget,
@@ -187,29 +212,36 @@ PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode
   row.budget = budget;
   row.why = why;
   double tris = 0, psnr_sum = 0;
+  std::vector<double> error;  // mean |LoD - full| per frame
   for (size_t i = 0; i < seq.frames.size(); ++i) {
     tris += seq.triangles[i];
     const double p = psnr(seq.frames[i], full.frames[i]);
     psnr_sum += std::isfinite(p) ? p : 99.0;
-    if (i + 1 < seq.frames.size())
-      row.per_pair.push_back(
-          change_difference(seq.frames[i], seq.frames[i + 1], full.frames[i], full.frames[i + 1]));
+    error.push_back(mean_abs_diff(seq.frames[i], full.frames[i]));
+  }
+  for (size_t i = 0; i + 1 < seq.frames.size(); ++i) {
+    row.per_pair.push_back(
+        change_difference(seq.frames[i], seq.frames[i + 1], full.frames[i], full.frames[i + 1]));
+    row.per_pair_4x.push_back(
+        change_difference(seq.small[i], seq.small[i + 1], full.small[i], full.small[i + 1]));
+    row.error_jumps.push_back(std::abs(error[i + 1] - error[i]));
   }
   row.mean_triangles = tris / static_cast<double>(seq.frames.size());
   row.mean_psnr = psnr_sum / static_cast<double>(seq.frames.size());
-  std::vector<double> sorted = row.per_pair;
-  std::sort(sorted.begin(), sorted.end());
-  double sum = 0;
-  for (double v : sorted) sum += v;
-  row.mean_change = sorted.empty() ? 0 : sum / static_cast<double>(sorted.size());
-  row.p95_change = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.95 * (sorted.size() - 1))];
-  row.max_change = sorted.empty() ? 0 : sorted.back();
+  summarise(row.per_pair, row.mean_change, row.p95_change, row.max_change);
+  summarise(row.per_pair_4x, row.mean_change_4x, row.p95_change_4x, row.max_change_4x);
+  double unused = 0;
+  summarise(row.error_jumps, row.mean_jump, unused, row.max_jump);
   return row;
 }
 
-void draw_plot(const BenchRenderSettings& s, const std::string& data,
+void draw_plot(const BenchRenderSettings& s, const std::string& data, const std::string& pop_data,
                const RenderBenchResult& result) {
   if (s.plot.empty()) return;
+  if (!fs::exists(data)) {
+    std::cerr << "note: " << data << " not found (run without --pop-only first); no plot written\n";
+    return;
+  }
   if (!fs::exists(s.plot_script)) {
     std::cerr << "note: " << s.plot_script << " not found; no plot written\n";
     return;
@@ -223,12 +255,12 @@ void draw_plot(const BenchRenderSettings& s, const std::string& data,
   char title[160];
   std::snprintf(title, sizeof title, "%ux%u, %s", result.width, result.height,
                 result.device.c_str());
-  const ChildResult run =
-      run_program({"gnuplot", "-e",
-                   "datafile='" + data + "'; outfile='" + tmp + "'; sizes='" + sizes + "'; pop='" +
-                       std::to_string(result.pop_instances) + "'; device='" + title + "'",
-                   s.plot_script},
-                  log);
+  const ChildResult run = run_program(
+      {"gnuplot", "-e",
+       "datafile='" + data + "'; popfile='" + (fs::exists(pop_data) ? pop_data : std::string()) +
+           "'; outfile='" + tmp + "'; sizes='" + sizes + "'; device='" + title + "'",
+       s.plot_script},
+      log);
   std::error_code ignored;
   fs::remove(log, ignored);
   if (!run.ok || !fs::exists(tmp)) {
@@ -265,6 +297,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
     s.resolution = "256x144";
     s.pop_size = 60;
     s.pop_frames = 4;
+    s.pop_only = false;
   }
   check_settings(s);
   uint32_t width = 0, height = 0;
@@ -310,7 +343,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
       "warm-up, PSNR and mean |d| (8-bit RGB) against full resolution\n",
       width, height, result.device.c_str(), s.shadows ? "on" : "off", s.frames);
 
-  for (uint32_t n : s.sizes) {
+  for (uint32_t n : s.pop_only ? std::vector<uint32_t>{} : s.sizes) {
     runtime::Scene scene = load_stand_scene(pack, n, width, height);
     const runtime::Pack& p = scene.types[0].pack;
     result.pack_vertices = p.max_vertices();
@@ -353,47 +386,54 @@ int run_bench_render(const BenchRenderSettings& settings) {
 
   if (s.pop_size > 0) {
     runtime::Scene scene = load_stand_scene(pack, s.pop_size, width, height);
-    const float seconds = static_cast<float>(s.pop_frames - 1) / kPopFps;
-    set_dolly(scene, s.pop_size, seconds);
-    std::vector<float> times;
-    for (uint32_t i = 0; i < s.pop_frames; ++i) times.push_back(static_cast<float>(i) / kPopFps);
+    Dolly dolly;
+    dolly.cameras = dolly_cameras(scene, s.pop_size, s.pop_frames);
     const uint32_t budget =
         s.pop_budget
             ? s.pop_budget
             : std::max<uint32_t>(
-                  1, static_cast<uint32_t>(0.1 * s.pop_size * scene.types[0].pack.max_vertices()));
+                  1, static_cast<uint32_t>(0.25 * s.pop_size * scene.types[0].pack.max_vertices()));
     scene.lod.mode = runtime::LodMode::kContinuous;
     scene.lod.budget = budget;
-    const double target = mean_selected_triangles(scene, times);
-    const uint32_t equal = discrete_budget_for(scene, times, target, budget);
+    const double target = mean_selected_triangles(scene, dolly);
+    double achieved = 0;
+    const uint32_t equal = discrete_budget_for(scene, dolly, target, budget, achieved);
+    std::printf(
+        "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
+        "reference); discrete N = %u selects %.0f\n",
+        budget, target, equal, achieved);
     auto renderer = make_renderer(*context, scene, s.shadows, "bench dolly");
     result.pop_instances = s.pop_size;
     result.pop_frames = s.pop_frames;
     const PopSequence full = render_sequence(*context, *renderer, scene, runtime::LodMode::kFull, 0,
-                                             times, s.frames_dir);
+                                             dolly, s.frames_dir);
     const PopSequence cont = render_sequence(
-        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, times, s.frames_dir);
+        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, s.frames_dir);
     const PopSequence disc_eq = render_sequence(
-        *context, *renderer, scene, runtime::LodMode::kDiscrete, equal, times, s.frames_dir);
+        *context, *renderer, scene, runtime::LodMode::kDiscrete, equal, dolly, s.frames_dir);
     const PopSequence disc_same =
-        render_sequence(*context, *renderer, scene, runtime::LodMode::kDiscrete, budget, times, "");
+        render_sequence(*context, *renderer, scene, runtime::LodMode::kDiscrete, budget, dolly, "");
     result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
     result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
     result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
     result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
-    std::printf("\n");
     print_pop_rows(result);
   }
 
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("\ntotal %.1f s\n", result.seconds);
-  const std::string csv = (fs::path(s.out) / "render-bench.csv").string();
-  const std::string pops = (fs::path(s.out) / "render-popping.csv").string();
-  const std::string data = (fs::path(s.out) / "render-bench.dat").string();
-  write_render_csv(result, csv);
-  write_pop_csv(result, pops);
-  write_render_plot_data(result, data);
-  draw_plot(s, data, result);
+  // note: each part writes its own files, so a --pop-only run keeps the table's and the plot
+  // combines whatever is there.
+  const fs::path out(s.out);
+  if (!s.pop_only) {
+    write_render_csv(result, (out / "render-bench.csv").string());
+    write_render_plot_data(result, (out / "render-bench.dat").string());
+  }
+  if (s.pop_size > 0) {
+    write_pop_csv(result, (out / "render-popping.csv").string());
+    write_pop_plot_data(result, (out / "render-popping.dat").string());
+  }
+  draw_plot(s, (out / "render-bench.dat").string(), (out / "render-popping.dat").string(), result);
   return 0;
 }
 

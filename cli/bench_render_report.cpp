@@ -43,16 +43,20 @@ void print_render_rows(const std::vector<RenderBenchRow>& rows, bool header) {
 
 void print_pop_rows(const RenderBenchResult& result) {
   std::printf(
-      "popping: %u instances, camera dolly over %u frames; change = mean |dLoD - dFull| "
-      "per frame pair (8-bit units)\n",
+      "popping: %u instances, camera dolly over %u frames (animation frozen); change = "
+      "mean |dLoD - dFull| per frame pair, /4 = on 4x-shrunk images; jump = |e(t+1) - "
+      "e(t)|, e = mean |LoD - full| (8-bit units)\n",
       result.pop_instances, result.pop_frames);
-  std::printf("  %-10s %9s %-16s %12s %9s %9s %9s %9s\n", "mode", "budget", "chosen for",
-              "triangles", "change", "p95", "max", "PSNR dB");
+  std::printf("  %-10s %9s %-16s %10s %8s %8s %8s %8s %8s %8s %8s %8s\n", "mode", "budget",
+              "chosen for", "triangles", "change", "max", "change/4", "p95/4", "max/4", "jump",
+              "max jump", "PSNR dB");
   for (const PopRow& p : result.pops)
-    std::printf("  %-10s %9s %-16s %12.0f %9s %9s %9s %9s\n", p.mode.c_str(),
+    std::printf("  %-10s %9s %-16s %10.0f %8s %8s %8s %8s %8s %8s %8s %8s\n", p.mode.c_str(),
                 p.budget ? std::to_string(p.budget).c_str() : "-", p.why.c_str(), p.mean_triangles,
-                num(p.mean_change, "%.4f").c_str(), num(p.p95_change, "%.4f").c_str(),
-                num(p.max_change, "%.4f").c_str(), num(p.mean_psnr).c_str());
+                num(p.mean_change, "%.3f").c_str(), num(p.max_change, "%.3f").c_str(),
+                num(p.mean_change_4x, "%.4f").c_str(), num(p.p95_change_4x, "%.4f").c_str(),
+                num(p.max_change_4x, "%.4f").c_str(), num(p.mean_jump, "%.4f").c_str(),
+                num(p.max_jump, "%.4f").c_str(), num(p.mean_psnr).c_str());
   std::fflush(stdout);
 }
 
@@ -73,13 +77,18 @@ void write_render_csv(const RenderBenchResult& result, const std::string& path) 
 
 void write_pop_csv(const RenderBenchResult& result, const std::string& path) {
   std::ostringstream out;
-  out << "instances,frames,mode,budget,chosen_for,mean_triangles,mean_change,p95_change,"
-         "max_change,mean_psnr_db\n";
+  out << "device,width,height,instances,frames,mode,budget,chosen_for,mean_triangles,mean_change,"
+         "p95_change,max_change,mean_change_4x,p95_change_4x,max_change_4x,mean_error_jump,"
+         "max_error_jump,mean_psnr_db\n";
   for (const PopRow& p : result.pops)
-    out << result.pop_instances << ',' << result.pop_frames << ',' << p.mode << ',' << p.budget
+    out << csv_field(result.device) << ',' << result.width << ',' << result.height << ','
+        << result.pop_instances << ',' << result.pop_frames << ',' << p.mode << ',' << p.budget
         << ',' << csv_field(p.why) << ',' << num(p.mean_triangles, "%.0f") << ','
         << num(p.mean_change, "%.5f") << ',' << num(p.p95_change, "%.5f") << ','
-        << num(p.max_change, "%.5f") << ',' << num(p.mean_psnr, "%.3f") << '\n';
+        << num(p.max_change, "%.5f") << ',' << num(p.mean_change_4x, "%.5f") << ','
+        << num(p.p95_change_4x, "%.5f") << ',' << num(p.max_change_4x, "%.5f") << ','
+        << num(p.mean_jump, "%.5f") << ',' << num(p.max_jump, "%.5f") << ','
+        << num(p.mean_psnr, "%.3f") << '\n';
   write_file_atomically(path, out.str());
 }
 
@@ -100,14 +109,19 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
         << (std::isfinite(r.psnr) ? num(r.psnr, "%.3f") : std::string("60")) << ' ' << r.triangles
         << ' ' << (std::isfinite(r.psnr_4x) ? num(r.psnr_4x, "%.3f") : std::string("60")) << '\n';
   }
-  out << "\n\n# block " << block << ": popping; pair";
-  for (const PopRow& p : result.pops) out << ' ' << p.mode << '/' << p.why;
+  write_file_atomically(path, out.str());
+}
+
+void write_pop_plot_data(const RenderBenchResult& result, const std::string& path) {
+  std::ostringstream out;
+  out << "# popping, " << result.pop_instances << " instances; pair";
+  for (const PopRow& p : result.pops) out << ' ' << p.mode << '/' << p.why << "(change_4x jump)";
   out << '\n';
-  const size_t pairs = result.pops.empty() ? 0 : result.pops[0].per_pair.size();
+  const size_t pairs = result.pops.empty() ? 0 : result.pops[0].per_pair_4x.size();
   for (size_t k = 0; k < pairs; ++k) {
     out << k;
     for (const PopRow& p : result.pops)
-      out << ' ' << (k < p.per_pair.size() ? num(p.per_pair[k], "%.5f") : std::string("NaN"));
+      out << ' ' << num(p.per_pair_4x[k], "%.5f") << ' ' << num(p.error_jumps[k], "%.5f");
     out << '\n';
   }
   write_file_atomically(path, out.str());

@@ -29,8 +29,14 @@ struct PopRow {
   std::string why;            // "budget N", "equal triangles", "reference"
   double mean_triangles = 0;  // per frame, from the GPU's counts
   double mean_change = 0, p95_change = 0, max_change = 0;  // change_difference per frame pair
-  double mean_psnr = 0;                                    // per frame, against full resolution
-  std::vector<double> per_pair;
+  // The same on both sequences shrunk 4x (area average): single-pixel aliasing flips, which
+  // decorrelate whenever the camera moves, mostly average out; shape changes stay.
+  double mean_change_4x = 0, p95_change_4x = 0, max_change_4x = 0;
+  // |e(t+1) - e(t)| with e the frame's mean |LoD - full|: how much the error jumps from one
+  // frame to the next. Level switches make it jump; error that only moves does not.
+  double mean_jump = 0, max_jump = 0;
+  double mean_psnr = 0;  // per frame, against full resolution
+  std::vector<double> per_pair, per_pair_4x, error_jumps;
 };
 
 struct RenderBenchResult {
@@ -49,8 +55,9 @@ void print_pop_rows(const RenderBenchResult& result);
 // CSV with a header line; writes through a temporary file (nothing half-written).
 void write_render_csv(const RenderBenchResult& result, const std::string& path);
 void write_pop_csv(const RenderBenchResult& result, const std::string& path);
-// gnuplot data: one block per instance count (mode, budget, frame ms, psnr, triangles), then one
-// block with the popping pairs (pair, one column per PopRow).
+// gnuplot data: one block per instance count (mode, budget, frame ms, psnr, triangles, psnr_4x).
 void write_render_plot_data(const RenderBenchResult& result, const std::string& path);
+// gnuplot data of the popping pairs: pair, then per PopRow its change_4x and its error jump.
+void write_pop_plot_data(const RenderBenchResult& result, const std::string& path);
 
 }  // namespace crowdbake::cli

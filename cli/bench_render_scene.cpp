@@ -98,19 +98,21 @@ runtime::Scene load_stand_scene(const std::string& pack_path, uint32_t instances
   return scene;
 }
 
-void set_dolly(runtime::Scene& scene, uint32_t instances, float seconds, float far_factor,
-               float near_factor) {
+std::vector<runtime::Camera> dolly_cameras(const runtime::Scene& scene, uint32_t instances,
+                                           uint32_t frames, float far_factor, float near_factor) {
   const StandLayout l = stand_layout(
       instances, static_cast<float>(scene.camera.width) / static_cast<float>(scene.camera.height));
   const auto centre = stand_centre(l);
-  auto key = [&](float time, float factor) {
-    runtime::CameraKey k;
-    k.time = time;
-    k.position = {centre[0], 1.6f + l.height * 0.25f * factor, l.distance * factor};
-    k.target = {centre[0], centre[1], centre[2]};
-    return k;
-  };
-  scene.camera_path = {key(0.0f, far_factor), key(seconds, near_factor)};
+  std::vector<runtime::Camera> cameras;
+  for (uint32_t i = 0; i < frames; ++i) {
+    const float u = frames > 1 ? static_cast<float>(i) / static_cast<float>(frames - 1) : 0.0f;
+    const float factor = far_factor + (near_factor - far_factor) * u;
+    runtime::Camera c = scene.camera;
+    c.position = {centre[0], 1.6f + l.height * 0.25f * factor, l.distance * factor};
+    c.target = {centre[0], centre[1], centre[2]};
+    cameras.push_back(c);
+  }
+  return cameras;
 }
 
 }  // namespace crowdbake::cli

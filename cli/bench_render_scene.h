@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "crowdbake/runtime/scene.h"
 
@@ -33,9 +34,10 @@ std::string stand_scene_json(const std::string& pack_path, uint32_t instances, u
 runtime::Scene load_stand_scene(const std::string& pack_path, uint32_t instances, uint32_t width,
                                 uint32_t height);
 
-// The camera path of the popping measure: from `far_factor` times the fitting distance to
-// `near_factor` times it, straight towards the stand's middle, over `seconds`.
-void set_dolly(runtime::Scene& scene, uint32_t instances, float seconds, float far_factor = 2.0f,
-               float near_factor = 0.35f);
+// The cameras of the popping measure, one per frame: from `far_factor` times the fitting
+// distance to `near_factor` times it, straight towards the stand's middle.
+std::vector<runtime::Camera> dolly_cameras(const runtime::Scene& scene, uint32_t instances,
+                                           uint32_t frames, float far_factor = 1.6f,
+                                           float near_factor = 0.6f);
 
 }  // namespace crowdbake::cli

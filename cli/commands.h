@@ -108,7 +108,8 @@ struct BenchRenderSettings {
   uint64_t full_single_frame_triangles = 20000000;
   uint32_t pop_size = 1000;       // instances of the popping measure (0 = none)
   uint32_t pop_frames = 60;       // frames of the dolly (>= 2), at 30 frames/s
-  uint32_t pop_budget = 0;        // continuous budget of the dolly; 0 = 10 % of all full vertices
+  uint32_t pop_budget = 0;        // continuous budget of the dolly; 0 = 25 % of all full vertices
+  bool pop_only = false;          // only the popping measure (keeps the table's files)
   std::string out = "docs/data";  // render-bench.csv, render-popping.csv, .dat
   std::string plot = "docs/render-bench.png";  // "" = none
   std::string plot_script = "scripts/plot-render.gp";

@@ -114,7 +114,9 @@ int main(int argc, char** argv) {
   bench_render_cmd->add_option("--pop-frames", bench_render.pop_frames,
                                "Frames of the dolly at 30 frames/s (default 60)");
   bench_render_cmd->add_option("--pop-budget", bench_render.pop_budget,
-                               "Continuous budget of the dolly (default 10% of full vertices)");
+                               "Continuous budget of the dolly (default 25% of full vertices)");
+  bench_render_cmd->add_flag("--pop-only", bench_render.pop_only,
+                             "Only the popping measure; keeps the table's files");
   bench_render_cmd->add_option(
       "--out", bench_render.out,
       "Folder for render-bench.csv, render-popping.csv (default docs/data)");
