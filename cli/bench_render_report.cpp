@@ -70,8 +70,9 @@ void write_render_csv(const RenderBenchResult& result, const std::string& path) 
         << (result.shadows ? 1 : 0) << ',' << r.instances << ',' << r.visible << ',' << r.mode
         << ',' << r.budget << ',' << r.frames << ',' << num(r.frame_ms, "%.3f") << ','
         << num(r.gpu_ms, "%.3f") << ',' << r.vertices << ',' << r.triangles << ',' << r.drawn << ','
-        << r.overflow << ',' << num(r.psnr, "%.3f") << ',' << num(r.mean_abs_diff, "%.4f") << ','
-        << num(r.speedup, "%.3f") << ',' << csv_field(r.note) << '\n';
+        << r.overflow << ',' << num(r.psnr, "%.3f") << ',' << num(r.psnr_4x, "%.3f") << ','
+        << num(r.mean_abs_diff, "%.4f") << ',' << num(r.speedup, "%.3f") << ',' << csv_field(r.note)
+        << '\n';
   write_file_atomically(path, out.str());
 }
 
