@@ -225,6 +225,8 @@ PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode
     row.per_pair_4x.push_back(
         change_difference(seq.small[i], seq.small[i + 1], full.small[i], full.small[i + 1]));
     row.error_jumps.push_back(std::abs(error[i + 1] - error[i]));
+    row.pop_pixels.push_back(100.0 * change_outliers(seq.small[i], seq.small[i + 1], full.small[i],
+                                                     full.small[i + 1], kPopThreshold));
   }
   row.mean_triangles = tris / static_cast<double>(seq.frames.size());
   row.mean_psnr = psnr_sum / static_cast<double>(seq.frames.size());
@@ -232,6 +234,7 @@ PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode
   summarise(row.per_pair_4x, row.mean_change_4x, row.p95_change_4x, row.max_change_4x);
   double unused = 0;
   summarise(row.error_jumps, row.mean_jump, unused, row.max_jump);
+  summarise(row.pop_pixels, row.mean_pop_pixels, unused, row.max_pop_pixels);
   return row;
 }
 

@@ -43,20 +43,22 @@ void print_render_rows(const std::vector<RenderBenchRow>& rows, bool header) {
 
 void print_pop_rows(const RenderBenchResult& result) {
   std::printf(
-      "popping: %u instances, camera dolly over %u frames (animation frozen); change = "
-      "mean |dLoD - dFull| per frame pair, /4 = on 4x-shrunk images; jump = |e(t+1) - "
-      "e(t)|, e = mean |LoD - full| (8-bit units)\n",
-      result.pop_instances, result.pop_frames);
-  std::printf("  %-10s %9s %-16s %10s %8s %8s %8s %8s %8s %8s %8s %8s\n", "mode", "budget",
-              "chosen for", "triangles", "change", "max", "change/4", "p95/4", "max/4", "jump",
-              "max jump", "PSNR dB");
+      "popping: %u instances, camera dolly over %u frames (animation frozen), per frame "
+      "pair: change = mean |dLoD - dFull|, /4 = on 4x-shrunk images; pops = %% of "
+      "4x-shrunk pixels with |dLoD - dFull| > %d; jump = |e(t+1) - e(t)|, e = mean "
+      "|LoD - full| (8-bit units)\n",
+      result.pop_instances, result.pop_frames, kPopThreshold);
+  std::printf("  %-10s %9s %-16s %10s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "mode", "budget",
+              "chosen for", "triangles", "change", "max", "change/4", "max/4", "pops %", "max %",
+              "jump", "max jump", "PSNR dB");
   for (const PopRow& p : result.pops)
-    std::printf("  %-10s %9s %-16s %10.0f %8s %8s %8s %8s %8s %8s %8s %8s\n", p.mode.c_str(),
+    std::printf("  %-10s %9s %-16s %10.0f %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", p.mode.c_str(),
                 p.budget ? std::to_string(p.budget).c_str() : "-", p.why.c_str(), p.mean_triangles,
                 num(p.mean_change, "%.3f").c_str(), num(p.max_change, "%.3f").c_str(),
-                num(p.mean_change_4x, "%.4f").c_str(), num(p.p95_change_4x, "%.4f").c_str(),
-                num(p.max_change_4x, "%.4f").c_str(), num(p.mean_jump, "%.4f").c_str(),
-                num(p.max_jump, "%.4f").c_str(), num(p.mean_psnr).c_str());
+                num(p.mean_change_4x, "%.4f").c_str(), num(p.max_change_4x, "%.4f").c_str(),
+                num(p.mean_pop_pixels, "%.4f").c_str(), num(p.max_pop_pixels, "%.4f").c_str(),
+                num(p.mean_jump, "%.4f").c_str(), num(p.max_jump, "%.4f").c_str(),
+                num(p.mean_psnr).c_str());
   std::fflush(stdout);
 }
 
@@ -80,7 +82,7 @@ void write_pop_csv(const RenderBenchResult& result, const std::string& path) {
   std::ostringstream out;
   out << "device,width,height,instances,frames,mode,budget,chosen_for,mean_triangles,mean_change,"
          "p95_change,max_change,mean_change_4x,p95_change_4x,max_change_4x,mean_error_jump,"
-         "max_error_jump,mean_psnr_db\n";
+         "max_error_jump,mean_pop_pixels_percent,max_pop_pixels_percent,mean_psnr_db\n";
   for (const PopRow& p : result.pops)
     out << csv_field(result.device) << ',' << result.width << ',' << result.height << ','
         << result.pop_instances << ',' << result.pop_frames << ',' << p.mode << ',' << p.budget
@@ -89,6 +91,7 @@ void write_pop_csv(const RenderBenchResult& result, const std::string& path) {
         << num(p.max_change, "%.5f") << ',' << num(p.mean_change_4x, "%.5f") << ','
         << num(p.p95_change_4x, "%.5f") << ',' << num(p.max_change_4x, "%.5f") << ','
         << num(p.mean_jump, "%.5f") << ',' << num(p.max_jump, "%.5f") << ','
+        << num(p.mean_pop_pixels, "%.5f") << ',' << num(p.max_pop_pixels, "%.5f") << ','
         << num(p.mean_psnr, "%.3f") << '\n';
   write_file_atomically(path, out.str());
 }
@@ -116,13 +119,15 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
 void write_pop_plot_data(const RenderBenchResult& result, const std::string& path) {
   std::ostringstream out;
   out << "# popping, " << result.pop_instances << " instances; pair";
-  for (const PopRow& p : result.pops) out << ' ' << p.mode << '/' << p.why << "(change_4x jump)";
+  for (const PopRow& p : result.pops)
+    out << ' ' << p.mode << '/' << p.why << "(change_4x jump pops%)";
   out << '\n';
   const size_t pairs = result.pops.empty() ? 0 : result.pops[0].per_pair_4x.size();
   for (size_t k = 0; k < pairs; ++k) {
     out << k;
     for (const PopRow& p : result.pops)
-      out << ' ' << num(p.per_pair_4x[k], "%.5f") << ' ' << num(p.error_jumps[k], "%.5f");
+      out << ' ' << num(p.per_pair_4x[k], "%.5f") << ' ' << num(p.error_jumps[k], "%.5f") << ' '
+          << num(p.pop_pixels[k], "%.5f");
     out << '\n';
   }
   write_file_atomically(path, out.str());

@@ -23,6 +23,9 @@ struct RenderBenchRow {
   std::string note;
 };
 
+// A shrunk pixel counts as popping when its change differs by more than this (8-bit units).
+constexpr int kPopThreshold = 24;
+
 struct PopRow {
   std::string mode;
   uint32_t budget = 0;
@@ -35,8 +38,11 @@ struct PopRow {
   // |e(t+1) - e(t)| with e the frame's mean |LoD - full|: how much the error jumps from one
   // frame to the next. Level switches make it jump; error that only moves does not.
   double mean_jump = 0, max_jump = 0;
+  // Visible pops: per frame pair, the fraction of 4x-shrunk pixels whose change differs from
+  // the reference's by more than kPopThreshold in a channel (change_outliers), in percent.
+  double mean_pop_pixels = 0, max_pop_pixels = 0;
   double mean_psnr = 0;  // per frame, against full resolution
-  std::vector<double> per_pair, per_pair_4x, error_jumps;
+  std::vector<double> per_pair, per_pair_4x, error_jumps, pop_pixels;
 };
 
 struct RenderBenchResult {

@@ -1,5 +1,6 @@
 #include "cli/image_compare.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -59,6 +60,24 @@ double change_difference(const RgbaImage& a0, const RgbaImage& a1, const RgbaIma
       sum += static_cast<uint64_t>(std::abs(da - db));
     }
   return static_cast<double>(sum) / static_cast<double>(channel_count(a0));
+}
+
+double change_outliers(const RgbaImage& a0, const RgbaImage& a1, const RgbaImage& b0,
+                       const RgbaImage& b1, int threshold) {
+  check_same_size(a0, a1);
+  check_same_size(a0, b0);
+  check_same_size(a0, b1);
+  size_t count = 0;
+  for (size_t i = 0; i < a0.rgba.size(); i += 4) {
+    int worst = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const int da = int{a1.rgba[i + c]} - int{a0.rgba[i + c]};
+      const int db = int{b1.rgba[i + c]} - int{b0.rgba[i + c]};
+      worst = std::max(worst, std::abs(da - db));
+    }
+    count += worst > threshold;
+  }
+  return static_cast<double>(count) / static_cast<double>(size_t{a0.width} * a0.height);
 }
 
 }  // namespace crowdbake::cli

@@ -21,4 +21,11 @@ double psnr(const RgbaImage& a, const RgbaImage& b);
 double change_difference(const RgbaImage& a0, const RgbaImage& a1, const RgbaImage& b0,
                          const RgbaImage& b1);
 
+// The fraction of pixels where the change from a0 to a1 differs from the change from b0 to b1
+// by more than `threshold` in some channel of R, G, B: max_c |(a1 − a0) − (b1 − b0)| > threshold.
+// Counts visible pops (a patch that changes) rather than their average over the image.
+// Throws like change_difference.
+double change_outliers(const RgbaImage& a0, const RgbaImage& a1, const RgbaImage& b0,
+                       const RgbaImage& b1, int threshold);
+
 }  // namespace crowdbake::cli

@@ -109,6 +109,18 @@ TEST(RenderImage, ChangeDifferenceSeesOnlyWhatTheReferenceDoesNot) {
   EXPECT_DOUBLE_EQ(change_difference(a0, a1, b0, b1), 3.0);
 }
 
+TEST(RenderImage, ChangeOutliersCountPixelsOverTheThreshold) {
+  RgbaImage a0 = filled(2, 2, 50, 50, 50), a1 = a0, b0 = a0, b1 = a0;
+  pixel(a1, 0, 0)[1] = 80;  // +30 only in the LoD sequence: over 24
+  pixel(a1, 1, 0)[0] = 70;  // +20: under
+  pixel(a1, 1, 1)[2] = 90;  // +40, and the reference changes the same way: no pop
+  pixel(b1, 1, 1)[2] = 90;
+  EXPECT_DOUBLE_EQ(change_outliers(a0, a1, b0, b1, 24), 0.25);
+  EXPECT_DOUBLE_EQ(change_outliers(a0, a1, b0, b1, 19), 0.5);
+  EXPECT_DOUBLE_EQ(change_outliers(a0, a1, b0, b1, 30), 0.0);
+  EXPECT_THROW(change_outliers(a0, a1, b0, filled(1, 1, 0, 0, 0), 24), Error);
+}
+
 TEST(RenderImage, DownscaleAveragesAreas) {
   RgbaImage image = filled(4, 2, 0, 0, 0);
   for (uint32_t x = 0; x < 4; ++x)
