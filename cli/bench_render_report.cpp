@@ -106,7 +106,8 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
       out << "# block " << block++ << ": " << r.instances
           << " instances; mode budget frame_ms psnr triangles\n";
     }
-    if (r.frames == 0) continue;
+    // note: a frame whose corner buffer overflowed misses instances; its point would mislead.
+    if (r.frames == 0 || r.overflow > 0) continue;
     // note: an identical image (full vs itself) has infinite PSNR; the plot puts it on a
     // ceiling so the reference still shows.
     out << r.mode << ' ' << r.budget << ' ' << num(r.frame_ms, "%.3f") << ' '
