@@ -228,5 +228,24 @@ TEST_F(RenderCommand, SequenceAndContactSheet) {
             cli::read_png(out("seq/frame_0002.png")).rgba);
 }
 
+// Issue 6: --profile shows which effects a scene built. The stadium sample declares the
+// behaviour FSM and animation sharing; the small scene declares none and builds nothing.
+TEST_F(RenderCommand, ProfileShowsOnlyTheDeclaredEffects) {
+  std::string stadium = test::slurp(fs::path(CROWDBAKE_SOURCE_DIR) / "samples/stadium/scene.json");
+  stadium =
+      std::regex_replace(stadium, std::regex("\\.\\./\\.\\./out/spectator\\.crowdpack"), pack_);
+  stadium = std::regex_replace(stadium, std::regex("\"resolution\": \\[\\d+, \\d+\\]"),
+                               "\"resolution\": [96, 54]");
+  const std::string scene = write_scene("stadium.json", stadium);
+  test::CommandResult fx, plain;
+  if (!render({scene, "-o", out("stadium.png"), "--profile", "--time", "4"}, fx)) return;
+  EXPECT_NE(fx.out.find("behaviour FSM yes"), std::string::npos) << fx.out;
+  EXPECT_NE(fx.out.find("animation sharing yes"), std::string::npos) << fx.out;
+  EXPECT_EQ(fx.out.find("0 systems constructed"), std::string::npos) << fx.out;
+  if (!render({scene_, "-o", out("plain.png"), "--profile"}, plain)) return;
+  EXPECT_NE(plain.out.find("0 systems constructed"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("0 poses evaluated"), std::string::npos) << plain.out;
+}
+
 }  // namespace
 }  // namespace crowdbake
