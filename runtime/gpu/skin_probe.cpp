@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "crowdbake/runtime/gpu/gpu_buffer.h"
+#include "vk_helpers.h"
 
 namespace crowdbake::runtime::gpu {
 
@@ -38,38 +39,14 @@ Status SkinProbe::create(VulkanContext& context, const CrowdDraw& draw,
   impl->context = &context;
   impl->draw = &draw;
   VkDevice d = context.device();
-  VkDescriptorSetLayoutBinding bindings[3] = {};
-  for (uint32_t b = 0; b < 3; ++b)
-    bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo set_info{};
-  set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  set_info.bindingCount = 3;
-  set_info.pBindings = bindings;
-  VkResult r = vkCreateDescriptorSetLayout(d, &set_info, nullptr, &impl->layout);
-  if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorSetLayout", r);
+  if (Status s = create_storage_set_layout(d, 3, VK_SHADER_STAGE_COMPUTE_BIT, impl->layout); !s)
+    return s;
   const VkDescriptorSetLayout layouts[2] = {impl->layout, draw.type_set_layout()};
-  VkPipelineLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  layout_info.setLayoutCount = 2;
-  layout_info.pSetLayouts = layouts;
-  r = vkCreatePipelineLayout(d, &layout_info, nullptr, &impl->pipeline_layout);
-  if (r != VK_SUCCESS) return vulkan_error("vkCreatePipelineLayout", r);
+  if (Status s = create_pipeline_layout(d, layouts, nullptr, impl->pipeline_layout); !s) return s;
   if (Status s = context.create_shader_module("skin_probe.comp", impl->module); !s) return s;
   const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &size;
-  r = vkCreateDescriptorPool(d, &pool_info, nullptr, &impl->pool);
-  if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorPool", r);
-  VkDescriptorSetAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  alloc.descriptorPool = impl->pool;
-  alloc.descriptorSetCount = 1;
-  alloc.pSetLayouts = &impl->layout;
-  r = vkAllocateDescriptorSets(d, &alloc, &impl->set);
-  if (r != VK_SUCCESS) return vulkan_error("vkAllocateDescriptorSets", r);
+  if (Status s = create_descriptor_pool(d, {&size, 1}, 1, impl->pool); !s) return s;
+  if (Status s = allocate_set(d, impl->pool, impl->layout, impl->set); !s) return s;
   out.reset(new SkinProbe(std::move(impl)));
   return {};
 }
@@ -99,59 +76,34 @@ Status SkinProbe::run(uint32_t type, const std::vector<GpuInstance>& instances,
   }
   GpuBuffer instance_buffer, query_buffer, result_buffer;
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  if (Status s = GpuBuffer::create(*m.context, instances.size() * sizeof(GpuInstance), storage,
-                                   MemoryKind::kHostVisible, instance_buffer);
+  if (Status s =
+          create_filled_buffer(*m.context, storage, MemoryKind::kHostVisible, instances.data(),
+                               instances.size() * sizeof(GpuInstance), instance_buffer);
       !s)
     return s;
-  if (Status s = instance_buffer.upload(instances.data(), instances.size() * sizeof(GpuInstance));
+  if (Status s = create_filled_buffer(*m.context, storage, MemoryKind::kHostVisible, words.data(),
+                                      words.size() * 4, query_buffer);
       !s)
     return s;
-  if (Status s = GpuBuffer::create(*m.context, words.size() * 4, storage, MemoryKind::kHostVisible,
-                                   query_buffer);
-      !s)
-    return s;
-  if (Status s = query_buffer.upload(words.data(), words.size() * 4); !s) return s;
   const VkDeviceSize result_bytes = padded * 12 * sizeof(float);
   if (Status s = GpuBuffer::create(*m.context, result_bytes, storage, MemoryKind::kHostVisible,
                                    result_buffer);
       !s)
     return s;
-
-  const VkDescriptorBufferInfo infos[3] = {instance_buffer.descriptor(), query_buffer.descriptor(),
-                                           result_buffer.descriptor()};
-  VkWriteDescriptorSet writes[3] = {};
-  for (uint32_t b = 0; b < 3; ++b) {
-    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    writes[b].dstSet = m.set;
-    writes[b].dstBinding = b;
-    writes[b].descriptorCount = 1;
-    writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[b].pBufferInfo = &infos[b];
-  }
-  vkUpdateDescriptorSets(m.context->device(), 3, writes, 0, nullptr);
+  write_storage_buffers(
+      m.context->device(), m.set,
+      {instance_buffer.descriptor(), query_buffer.descriptor(), result_buffer.descriptor()});
   const uint32_t groups = static_cast<uint32_t>(padded / 64);
   const uint32_t encoding = static_cast<uint32_t>(m.draw->type_encoding(type));
   if (encoding >= 3)
     return {StatusCode::kInvalidArgument, "skin probe: unknown animation encoding"};
   VkPipeline& pipeline = m.pipelines[encoding];
   if (pipeline == VK_NULL_HANDLE) {
-    const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
-    VkSpecializationInfo specialization{};
-    specialization.mapEntryCount = 1;
-    specialization.pMapEntries = &entry;
-    specialization.dataSize = sizeof(uint32_t);
-    specialization.pData = &encoding;
-    VkComputePipelineCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = m.module;
-    info.stage.pName = "main";
-    info.stage.pSpecializationInfo = &specialization;
-    info.layout = m.pipeline_layout;
-    const VkResult r =
-        vkCreateComputePipelines(m.context->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-    if (r != VK_SUCCESS) return vulkan_error("vkCreateComputePipelines", r);
+    const Specialization specialization({0}, {encoding});
+    if (Status s = create_compute_pipeline(m.context->device(), m.pipeline_layout, m.module,
+                                           specialization.info(), pipeline);
+        !s)
+      return s;
   }
   const VkDescriptorSet sets[2] = {m.set, m.draw->type_set(type)};
   if (Status s = m.context->submit_and_wait([&](VkCommandBuffer cmd) {

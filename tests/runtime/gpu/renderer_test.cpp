@@ -110,6 +110,13 @@ class RendererTest : public test::GpuTest {
     const runtime::Status s = Renderer::create(context(), scene, options, renderer_);
     ASSERT_TRUE(s.ok()) << s.message();
   }
+  // The baked spectators of crowd_scene and a renderer for them.
+  void make_crowd_renderer(Scene& scene, const RenderOptions& options = {}) {
+    CROWDBAKE_REQUIRE_BAKED_PACKS();
+    crowd_scene(scene);
+    if (HasFatalFailure()) return;
+    make_renderer(scene, options);
+  }
   Image render(const Scene& scene, float time, FrameProfile* profile = nullptr,
                const runtime::EffectFrame* effects = nullptr) {
     Image image;
@@ -117,14 +124,48 @@ class RendererTest : public test::GpuTest {
     EXPECT_TRUE(s.ok()) << s.message();
     return image;
   }
+  // A 256x144 colour + depth target the test owns (as an embedding host would) and a buffer
+  // its colour is copied to. extra_usage: added to both images' usage.
+  struct CallerTarget {
+    runtime::gpu::GpuImage color, depth;
+    runtime::gpu::GpuBuffer readback;
+    runtime::gpu::HostTarget target;
+    // Records the copy of the colour image (in TRANSFER_SRC_OPTIMAL) into `readback`.
+    void record_copy(VkCommandBuffer cmd) const {
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copy.imageExtent = {target.width, target.height, 1};
+      vkCmdCopyImageToBuffer(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             readback.buffer(), 1, &copy);
+    }
+  };
+  void make_caller_target(VkImageUsageFlags extra_usage, CallerTarget& out) {
+    using namespace runtime::gpu;
+    ImageDesc color_desc;
+    color_desc.width = 256;
+    color_desc.height = 144;
+    color_desc.usage =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra_usage;
+    ImageDesc depth_desc = color_desc;
+    depth_desc.format = VK_FORMAT_D32_SFLOAT;
+    depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | extra_usage;
+    depth_desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    ASSERT_TRUE(GpuImage::create(context(), color_desc, out.color).ok());
+    ASSERT_TRUE(GpuImage::create(context(), depth_desc, out.depth).ok());
+    ASSERT_TRUE(GpuBuffer::create(context(), 256 * 144 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  MemoryKind::kHostVisible, out.readback)
+                    .ok());
+    out.target.color_view = out.color.view();
+    out.target.depth_view = out.depth.view();
+    out.target.width = 256;
+    out.target.height = 144;
+  }
   std::unique_ptr<Renderer> renderer_;
 };
 
 TEST_F(RendererTest, CrowdMatchesGoldenImage) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   FrameProfile profile;
   const Image image = render(scene, 1.3f, &profile);
@@ -150,10 +191,8 @@ TEST_F(RendererTest, CrowdMatchesGoldenImage) {
 }
 
 TEST_F(RendererTest, RerenderingGivesIdenticalPixels) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   const Image first = render(scene, 0.7f);
   render(scene, 2.1f);  // something else in between
@@ -181,10 +220,8 @@ TEST_F(RendererTest, SceneWithoutInstancesIsTheClearColour) {
 }
 
 TEST_F(RendererTest, RefusesAnotherSceneOrABadCamera) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   Image image;
   Scene bigger;
@@ -221,10 +258,8 @@ TEST_F(RendererTest, ProfileNamesEveryPassAndCounts) {
 }
 
 TEST_F(RendererTest, ShadowsDarkenTheGround) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   const Image lit = render(scene, 1.3f);
   RenderOptions options;
@@ -244,10 +279,8 @@ TEST_F(RendererTest, ShadowsDarkenTheGround) {
 }
 
 TEST_F(RendererTest, CrossfadeChangesThePictureOnlyBetweenTheEnds) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   runtime::EffectFrame fade;
   const uint32_t clips = static_cast<uint32_t>(scene.types[0].pack.contents().clips.size());
@@ -294,10 +327,8 @@ TEST_F(RendererTest, InstancedStaticLevelsDrawWhatTheCornerPathDraws) {
 }
 
 TEST_F(RendererTest, JointPaletteDrawsWhatPerInfluenceDecodingDraws) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   const Image palette = render(scene, 1.7f);
   RenderOptions options;
@@ -311,10 +342,8 @@ TEST_F(RendererTest, JointPaletteDrawsWhatPerInfluenceDecodingDraws) {
 }
 
 TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   const Image reference = render(scene, 0.9f);
 
@@ -323,37 +352,17 @@ TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
   HostTarget empty;
   EXPECT_FALSE(renderer_->record_draw(none, empty).ok()) << "no frame prepared";
 
-  ImageDesc color_desc;
-  color_desc.width = 256;
-  color_desc.height = 144;
-  color_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  ImageDesc depth_desc = color_desc;
-  depth_desc.format = VK_FORMAT_D32_SFLOAT;
-  depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-  depth_desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-  GpuImage color, depth;
-  ASSERT_TRUE(GpuImage::create(context(), color_desc, color).ok());
-  ASSERT_TRUE(GpuImage::create(context(), depth_desc, depth).ok());
-  GpuBuffer readback;
-  ASSERT_TRUE(GpuBuffer::create(context(), 256 * 144 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                MemoryKind::kHostVisible, readback)
-                  .ok());
-  HostTarget target;
-  target.color_view = color.view();
-  target.depth_view = depth.view();
-  target.width = 256;
-  target.height = 144;
+  CallerTarget caller;
+  make_caller_target(0, caller);
+  if (HasFatalFailure()) return;
+  HostTarget& target = caller.target;
   target.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
   runtime::Status recorded;
   ASSERT_TRUE(context()
                   .submit_and_wait([&](VkCommandBuffer cmd) {
                     recorded = renderer_->prepare(scene, 0.9f, cmd);
                     if (recorded.ok()) recorded = renderer_->record_draw(cmd, target);
-                    VkBufferImageCopy copy{};
-                    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-                    copy.imageExtent = {256, 144, 1};
-                    vkCmdCopyImageToBuffer(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                           readback.buffer(), 1, &copy);
+                    caller.record_copy(cmd);
                   })
                   .ok());
   ASSERT_TRUE(recorded.ok()) << recorded.message();
@@ -361,40 +370,23 @@ TEST_F(RendererTest, RecordDrawIntoCallersTargetMatchesRender) {
   mine.width = 256;
   mine.height = 144;
   mine.rgba.resize(256 * 144 * 4);
-  ASSERT_TRUE(readback.download(mine.rgba.data(), mine.rgba.size()).ok());
+  ASSERT_TRUE(caller.readback.download(mine.rgba.data(), mine.rgba.size()).ok());
   EXPECT_TRUE(mine.rgba == reference.rgba);
 }
 
 TEST_F(RendererTest, RecordDrawOverTheHostsPictureKeepsItsBackground) {
-  CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  crowd_scene(scene);
-  make_renderer(scene);
+  make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
   const Image reference = render(scene, 0.9f);
 
   using namespace runtime::gpu;
-  ImageDesc color_desc;
-  color_desc.width = 256;
-  color_desc.height = 144;
-  color_desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  ImageDesc depth_desc = color_desc;
-  depth_desc.format = VK_FORMAT_D32_SFLOAT;
-  depth_desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  depth_desc.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-  GpuImage color, depth;
-  ASSERT_TRUE(GpuImage::create(context(), color_desc, color).ok());
-  ASSERT_TRUE(GpuImage::create(context(), depth_desc, depth).ok());
-  GpuBuffer readback;
-  ASSERT_TRUE(GpuBuffer::create(context(), 256 * 144 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                MemoryKind::kHostVisible, readback)
-                  .ok());
-  HostTarget target;
-  target.color_view = color.view();
-  target.depth_view = depth.view();
-  target.width = 256;
-  target.height = 144;
+  CallerTarget caller;
+  make_caller_target(VK_IMAGE_USAGE_TRANSFER_DST_BIT, caller);
+  if (HasFatalFailure()) return;
+  const GpuImage& color = caller.color;
+  const GpuImage& depth = caller.depth;
+  HostTarget& target = caller.target;
   target.clear = false;
   runtime::Status recorded;
   ASSERT_TRUE(
@@ -421,16 +413,12 @@ TEST_F(RendererTest, RecordDrawOverTheHostsPictureKeepsItsBackground) {
                              VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
             recorded = renderer_->prepare(scene, 0.9f, cmd);
             if (recorded.ok()) recorded = renderer_->record_draw(cmd, target);
-            VkBufferImageCopy copy{};
-            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            copy.imageExtent = {256, 144, 1};
-            vkCmdCopyImageToBuffer(cmd, color.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                   readback.buffer(), 1, &copy);
+            caller.record_copy(cmd);
           })
           .ok());
   ASSERT_TRUE(recorded.ok()) << recorded.message();
   std::vector<uint8_t> mine(256 * 144 * 4);
-  ASSERT_TRUE(readback.download(mine.data(), mine.size()).ok());
+  ASSERT_TRUE(caller.readback.download(mine.data(), mine.size()).ok());
   // Where render() shows its clear colour the host's black remains; elsewhere the same crowd.
   const auto clear = DrawSettings{}.clear_color;
   size_t background = 0, crowd = 0, wrong = 0;

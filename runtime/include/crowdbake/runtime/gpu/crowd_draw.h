@@ -76,7 +76,7 @@ struct TypeDraw {
   uint32_t indexed_count = 0;
 };
 
-// std140 blocks and the vertex record the shaders read (layouts asserted in crowd_draw.cpp).
+// std140 blocks and the vertex record the shaders read (layouts asserted in gpu_vertices.cpp).
 struct FrameConstants {
   float view_proj[16];        // column-major
   float light_view_proj[16];  // column-major
