@@ -154,7 +154,7 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   if (s.ok() && settings.ground && !types.empty())
     s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, kModeGround);
   if (!s) {
-    for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(context->device(), pipeline, nullptr);
+    destroy_pipelines(context->device(), p.pipelines);
     vkDestroyPipeline(context->device(), p.ground, nullptr);
     vkDestroyRenderPass(context->device(), p.render_pass, nullptr);
     return s;

@@ -14,23 +14,20 @@ CrowdDraw::Impl::~Impl() {
   VkDevice d = context->device();
   for (auto& [key, fb] : framebuffers) vkDestroyFramebuffer(d, fb, nullptr);
   for (auto& [key, p] : color_pipelines) {
-    for (VkPipeline pipeline : p.pipelines) vkDestroyPipeline(d, pipeline, nullptr);
-    for (auto& kind : p.instanced)
-      for (VkPipeline pipeline : kind) vkDestroyPipeline(d, pipeline, nullptr);
+    destroy_pipelines(d, p.pipelines);
+    destroy_pipelines(d, p.instanced);
     vkDestroyPipeline(d, p.ground, nullptr);
     vkDestroyRenderPass(d, p.render_pass, nullptr);
   }
-  for (VkPipeline pipeline : shadow_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
-  for (auto& kind : shadow_instanced)
-    for (VkPipeline pipeline : kind) vkDestroyPipeline(d, pipeline, nullptr);
+  destroy_pipelines(d, shadow_pipelines);
+  destroy_pipelines(d, shadow_instanced);
   vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
   vkDestroyPipeline(d, skin_list_pipeline, nullptr);
-  for (auto& pair : skin_pipelines)
-    for (VkPipeline pipeline : pair) vkDestroyPipeline(d, pipeline, nullptr);
+  destroy_pipelines(d, skin_pipelines);
   vkDestroyShaderModule(d, skin_list_module, nullptr);
   vkDestroyShaderModule(d, skin_pass_module, nullptr);
   vkDestroyShaderModule(d, skin_palette_module, nullptr);
-  for (VkPipeline pipeline : palette_pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+  destroy_pipelines(d, palette_pipelines);
   vkDestroyPipelineLayout(d, skin_pipeline_layout, nullptr);
   vkDestroyDescriptorSetLayout(d, skin_layout, nullptr);
   vkDestroyRenderPass(d, shadow_pass, nullptr);

@@ -14,6 +14,11 @@ Status invalid(const std::string& what) {
 
 bool sized(size_t size, size_t n) { return size == 0 || size == n; }
 
+// Scene clip `c` when it is a clip of character type `type`, else null.
+const PackClip* clip_of_type(const Scene& scene, uint32_t c, uint32_t type) {
+  return c < scene.clips.size() && scene.clips[c].type == type ? scene.clips[c].clip : nullptr;
+}
+
 }  // namespace
 
 Status fill_gpu_instances(const Scene& scene, const FrameState& state, const EffectFrame* effects,
@@ -46,11 +51,11 @@ Status fill_gpu_instances(const Scene& scene, const FrameState& state, const Eff
     g.blend = state.blend[i];
     for (int k = 0; k < 12; ++k) g.world[k] = state.world[12 * i + k];
     if (fx.has_clips()) {
-      const uint32_t c = fx.clip[i];
-      if (c >= scene.clips.size() || scene.clips[c].type != type)
+      const PackClip* found = clip_of_type(scene, fx.clip[i], type);
+      if (!found)
         return invalid("effect clip of instance " + std::to_string(i) +
                        " is not a clip of its character type");
-      const PackClip& clip = *scene.clips[c].clip;
+      const PackClip& clip = *found;
       FrameChoice frame;
       animate_instance(clip, state.time, in.speed[i], fx.time_offset[i], filter,
                        scene.animation.root_motion, &in.position[3 * i], &in.rotation[4 * i],
@@ -64,11 +69,11 @@ Status fill_gpu_instances(const Scene& scene, const FrameState& state, const Eff
     g.blend23 = g.blend;
     g.crossfade = 0.0f;
     if (fx.has_fades()) {
-      const uint32_t c = fx.fade_clip[i];
-      if (c >= scene.clips.size() || scene.clips[c].type != type)
+      const PackClip* found = clip_of_type(scene, fx.fade_clip[i], type);
+      if (!found)
         return invalid("fade clip of instance " + std::to_string(i) +
                        " is not a clip of its character type");
-      const PackClip& clip = *scene.clips[c].clip;
+      const PackClip& clip = *found;
       const FrameChoice frame =
           choose_frame(clip, state.time, in.speed[i], fx.fade_time_offset[i], filter);
       g.row2 = clip.first_row + frame.frame0;

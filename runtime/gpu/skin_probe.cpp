@@ -22,7 +22,7 @@ struct SkinProbe::Impl {
   ~Impl() {
     if (!context) return;
     VkDevice d = context->device();
-    for (VkPipeline pipeline : pipelines) vkDestroyPipeline(d, pipeline, nullptr);
+    destroy_pipelines(d, pipelines);
     vkDestroyShaderModule(d, module, nullptr);
     vkDestroyPipelineLayout(d, pipeline_layout, nullptr);
     vkDestroyDescriptorPool(d, pool, nullptr);

@@ -5,6 +5,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 
@@ -81,6 +82,15 @@ Status create_framebuffer(VkDevice device, VkRenderPass pass, Span<const VkImage
 // Begins `pass` over the whole width x height framebuffer and sets viewport and scissor to it.
 void begin_render_pass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer,
                        uint32_t width, uint32_t height, Span<const VkClearValue> clears);
+
+// Destroys every pipeline of an array (null handles are ignored, as vkDestroyPipeline does).
+inline void destroy_pipelines(VkDevice device, Span<const VkPipeline> pipelines) {
+  for (size_t i = 0; i < pipelines.size(); ++i) vkDestroyPipeline(device, pipelines[i], nullptr);
+}
+template <size_t M, size_t N>
+void destroy_pipelines(VkDevice device, const VkPipeline (&pipelines)[M][N]) {
+  destroy_pipelines(device, Span<const VkPipeline>(&pipelines[0][0], M * N));
+}
 
 // A new buffer of max(bytes, min_bytes) bytes holding `bytes` bytes of `data` (none when 0).
 Status create_filled_buffer(VulkanContext& context, VkBufferUsageFlags usage, MemoryKind memory,

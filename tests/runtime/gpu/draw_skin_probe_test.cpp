@@ -43,6 +43,12 @@ float relative_error(const float* a, const float* b, int n) {
   return worst;
 }
 
+Scene small_scene(AnimationEncoding encoding, FrameFilter filter) {
+  Scene scene;
+  EXPECT_TRUE(test::add_small_grid(scene, encoding, filter, 2, 3, 2.0f).ok());
+  return scene;
+}
+
 class DrawSkinProbeTest : public test::GpuTest {
  protected:
   // Builds the draw resources and the probe for `scene`.
@@ -122,24 +128,29 @@ class DrawSkinProbeTest : public test::GpuTest {
     EXPECT_LT(worst_joint, 1e-4f);
   }
 
+  // Runs check(scene) with a probe over small_scene(encoding, linear) for the float32 and
+  // quantized encodings (the crossfade tests); stops at the first fatal failure.
+  template <typename Check>
+  void for_crossfade_encodings(Check check) {
+    for (AnimationEncoding encoding :
+         {AnimationEncoding::kFloat32, AnimationEncoding::kQuantized}) {
+      SCOPED_TRACE(animation_encoding_name(encoding));
+      const Scene scene = small_scene(encoding, FrameFilter::kLinear);
+      make_probe(scene);
+      if (HasFatalFailure()) return;
+      check(scene);
+      if (HasFatalFailure()) return;
+    }
+  }
+
   std::unique_ptr<CrowdDraw> draw_;
   std::unique_ptr<SkinProbe> probe_;
 };
 
-Scene small_scene(AnimationEncoding encoding, FrameFilter filter) {
-  Scene scene;
-  scene.animation.filter = filter;
-  EXPECT_TRUE(test::add_pack_bytes(scene, "small", test::small_pack_bytes_encoded(encoding)).ok());
-  test::add_grid(scene, 0, 2, 3, 2.0f);
-  return scene;
-}
-
 TEST_F(DrawSkinProbeTest, MatchesCpuSkinningForEveryEncodingAndFilter) {
-  for (AnimationEncoding encoding :
-       {AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized})
-    for (FrameFilter filter : {FrameFilter::kNearest, FrameFilter::kLinear}) {
-      SCOPED_TRACE(std::string(animation_encoding_name(encoding)) +
-                   (filter == FrameFilter::kLinear ? " linear" : " nearest"));
+  for (AnimationEncoding encoding : test::kAllEncodings)
+    for (FrameFilter filter : test::kAllFilters) {
+      SCOPED_TRACE(test::encoding_and_filter(encoding, filter));
       const Scene scene = small_scene(encoding, filter);
       make_probe(scene);
       if (HasFatalFailure()) return;
@@ -182,11 +193,7 @@ bool same_bits(const std::vector<SkinResult>& a, const std::vector<SkinResult>& 
 }
 
 TEST_F(DrawSkinProbeTest, CrossfadeAtZeroAndOneIsTheSingleClipBitForBit) {
-  for (AnimationEncoding encoding : {AnimationEncoding::kFloat32, AnimationEncoding::kQuantized}) {
-    SCOPED_TRACE(animation_encoding_name(encoding));
-    const Scene scene = small_scene(encoding, FrameFilter::kLinear);
-    make_probe(scene);
-    if (HasFatalFailure()) return;
+  for_crossfade_encodings([&](const Scene& scene) {
     const float time = 0.77f;
     FrameState state;
     std::vector<GpuInstance> plain, at0, at1;
@@ -217,7 +224,7 @@ TEST_F(DrawSkinProbeTest, CrossfadeAtZeroAndOneIsTheSingleClipBitForBit) {
     frame(scene, time, &half, state, mid);
     EXPECT_FALSE(
         same_bits(probe_all(mid, SkinQuery::kVertex), probe_all(plain, SkinQuery::kVertex)));
-  }
+  });
 }
 
 // The CPU reference of one crossfaded joint: both clips decoded by the codec, turned into
@@ -236,11 +243,7 @@ effects::JointSample joint_sample(const float m[12]) {
 }
 
 TEST_F(DrawSkinProbeTest, CrossfadeBlendsJointsAsDualQuaternions) {
-  for (AnimationEncoding encoding : {AnimationEncoding::kFloat32, AnimationEncoding::kQuantized}) {
-    SCOPED_TRACE(animation_encoding_name(encoding));
-    const Scene scene = small_scene(encoding, FrameFilter::kLinear);
-    make_probe(scene);
-    if (HasFatalFailure()) return;
+  for_crossfade_encodings([&](const Scene& scene) {
     for (float w : {0.25f, 0.5f, 0.9f}) {
       const EffectFrame fade = fade_all(scene, w);
       FrameState state;
@@ -267,7 +270,7 @@ TEST_F(DrawSkinProbeTest, CrossfadeBlendsJointsAsDualQuaternions) {
       }
       EXPECT_LT(worst, 1e-4f) << "w = " << w;
     }
-  }
+  });
 }
 
 TEST_F(DrawSkinProbeTest, PoseBufferReplacesTheTexture) {

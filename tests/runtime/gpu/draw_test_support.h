@@ -86,4 +86,27 @@ inline void add_grid(runtime::Scene& scene, uint32_t type, uint32_t rows, uint32
     }
 }
 
+// Every animation encoding and both frame filters, for tests that run each combination.
+constexpr AnimationEncoding kAllEncodings[] = {
+    AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized};
+constexpr FrameFilter kAllFilters[] = {FrameFilter::kNearest, FrameFilter::kLinear};
+
+// "float16 linear": names one combination (for SCOPED_TRACE).
+inline std::string encoding_and_filter(AnimationEncoding encoding, FrameFilter filter) {
+  return std::string(animation_encoding_name(encoding)) +
+         (filter == FrameFilter::kLinear ? " linear" : " nearest");
+}
+
+// The small pack with its animation in `encoding`, `filter` between frames, and a rows x
+// columns grid of it (add_grid).
+inline runtime::Status add_small_grid(runtime::Scene& scene, AnimationEncoding encoding,
+                                      FrameFilter filter, uint32_t rows, uint32_t columns,
+                                      float spacing) {
+  scene.animation.filter = filter;
+  if (runtime::Status s = add_pack_bytes(scene, "small", small_pack_bytes_encoded(encoding)); !s)
+    return s;
+  add_grid(scene, 0, rows, columns, spacing);
+  return {};
+}
+
 }  // namespace crowdbake::test

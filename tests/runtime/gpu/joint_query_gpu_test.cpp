@@ -25,16 +25,11 @@ using runtime::gpu::SkinQuery;
 class JointQueryGpuTest : public test::GpuTest {};
 
 TEST_F(JointQueryGpuTest, AttachedPointsFollowTheGpuSkinnedVertices) {
-  for (AnimationEncoding encoding :
-       {AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized})
-    for (FrameFilter filter : {FrameFilter::kNearest, FrameFilter::kLinear}) {
-      SCOPED_TRACE(std::string(animation_encoding_name(encoding)) +
-                   (filter == FrameFilter::kLinear ? " linear" : " nearest"));
+  for (AnimationEncoding encoding : test::kAllEncodings)
+    for (FrameFilter filter : test::kAllFilters) {
+      SCOPED_TRACE(test::encoding_and_filter(encoding, filter));
       runtime::Scene scene;
-      scene.animation.filter = filter;
-      ASSERT_TRUE(
-          test::add_pack_bytes(scene, "small", test::small_pack_bytes_encoded(encoding)).ok());
-      test::add_grid(scene, 0, 2, 2, 3.0f);
+      ASSERT_TRUE(test::add_small_grid(scene, encoding, filter, 2, 2, 3.0f).ok());
       runtime::gpu::DrawSettings settings;
       settings.shadows = false;
       std::unique_ptr<runtime::gpu::CrowdDraw> draw;
