@@ -4,8 +4,6 @@
 #include "crowdbake/runtime/gpu/crowd_draw.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +11,35 @@
 #include "crowd_draw_impl.h"
 
 namespace crowdbake::runtime::gpu {
+
+namespace {
+
+// note: the shader indexes the pose buffer without bounds checks: refuse what would overrun.
+Status check_poses(const Scene& scene, const EffectFrame* effects,
+                   const std::vector<TypeResources>& types) {
+  const size_t n = scene.instances.size();
+  if (effects && effects->has_poses()) {
+    if (effects->pose.size() != n)
+      return {StatusCode::kInvalidArgument, "effects: pose array has " +
+                                                std::to_string(effects->pose.size()) +
+                                                " entries for " + std::to_string(n) + " instances"};
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t pose = effects->pose[i];
+      if (pose == kNoPose) continue;
+      const uint32_t t = scene.instances.type[i];
+      const size_t floats = t < effects->pose_buffers.size() ? effects->pose_buffers[t].size() : 0;
+      const size_t per_pose = 12 * static_cast<size_t>(t < types.size() ? types[t].joints : 0);
+      if (per_pose == 0 || pose >= floats / per_pose)
+        return {StatusCode::kInvalidArgument,
+                "effects: instance " + std::to_string(i) + " takes pose " + std::to_string(pose) +
+                    " but its type's pose buffer holds " +
+                    std::to_string(per_pose ? floats / per_pose : 0) + " poses"};
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 CrowdDraw::CrowdDraw(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 CrowdDraw::~CrowdDraw() = default;
@@ -63,92 +90,9 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   const GpuBuffer& lods = compute.instance_lod_buffer();
   bool sets_dirty = false;
   if (Status s = m.update_skin_pass(scene, state, compute, sets_dirty); !s) return s;
-  FrameConstants& k = m.constants;
-  const View& view = state.view;
-  float view_m[16], proj[16];
-  view_matrix(view, view_m);
-  projection_matrix(view, proj);
-  multiply4(proj, view_m, k.view_proj);
+  if (Status s = m.update_frame_constants(scene, state); !s) return s;
 
-  // The light box covers what the camera sees (the casters drawn are the visible instances).
-  const size_t n = scene.instances.size();
-  std::vector<float> spheres;
-  spheres.reserve(4 * static_cast<size_t>(state.visible_count) + 4);
-  for (size_t i = 0; i < n && 4 * i + 3 < state.spheres.size(); ++i)
-    if (i < state.visible.size() && state.visible[i])
-      spheres.insert(spheres.end(), &state.spheres[4 * i], &state.spheres[4 * i] + 4);
-  // Ground: under every instance, at the lowest one's feet.
-  float radius = 0.0f;
-  for (const CharacterType& t : scene.types) radius = std::max(radius, t.pack.bounds_radius());
-  float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (size_t i = 0; i < n; ++i) {
-    const float* p = &scene.instances.position[3 * i];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = i == 0 ? p[a] : std::min(lo[a], p[a]);
-      hi[a] = i == 0 ? p[a] : std::max(hi[a], p[a]);
-    }
-  }
-  const float margin = 2.0f * radius;
-  const bool ground = m.settings.ground && n > 0 && !m.types.empty();
-  const float ground_min[4] = {lo[0] - margin, lo[1], lo[2] - margin, ground ? 1.0f : 0.0f};
-  const float ground_max[4] = {hi[0] + margin, lo[1], hi[2] + margin, 0.0f};
-  std::memcpy(k.ground_min, ground_min, sizeof(ground_min));
-  std::memcpy(k.ground_max, ground_max, sizeof(ground_max));
-  if (ground && spheres.empty()) {
-    // note: with nothing visible the ground alone receives light; fit the box to it.
-    const float c[3] = {(ground_min[0] + ground_max[0]) / 2, lo[1],
-                        (ground_min[2] + ground_max[2]) / 2};
-    const float r = std::hypot(ground_max[0] - c[0], ground_max[2] - c[2]);
-    spheres = {c[0], c[1], c[2], r};
-  }
-  fit_light_view_proj(m.settings.light_direction, Span<const float>(spheres.data(), spheres.size()),
-                      k.light_view_proj);
-
-  float l[3] = {m.settings.light_direction[0], m.settings.light_direction[1],
-                m.settings.light_direction[2]};
-  normalize3(l);
-  const bool shadows = m.settings.shadows && !spheres.empty();
-  const float light_dir[4] = {l[0], l[1], l[2], shadows ? 1.0f : 0.0f};
-  std::memcpy(k.light_dir, light_dir, sizeof(light_dir));
-  // Depth bias of about two shadow texels of the box, in the map's 0..1 depth units.
-  float box_width = 2.0f / std::max(std::hypot(k.light_view_proj[0], k.light_view_proj[4]), 1e-12f);
-  float depth_range =
-      1.0f / std::max(std::hypot(k.light_view_proj[2], k.light_view_proj[6]), 1e-12f);
-  const float bias =
-      std::min(0.01f, 2.0f * box_width / static_cast<float>(m.shadow_size) / depth_range);
-  const float light_color[4] = {m.settings.light_color[0], m.settings.light_color[1],
-                                m.settings.light_color[2], bias};
-  std::memcpy(k.light_color, light_color, sizeof(light_color));
-  const float ambient[4] = {m.settings.ambient[0], m.settings.ambient[1], m.settings.ambient[2],
-                            1.0f};
-  std::memcpy(k.ambient, ambient, sizeof(ambient));
-  const float ground_color[4] = {m.settings.ground_color[0], m.settings.ground_color[1],
-                                 m.settings.ground_color[2], 1.0f};
-  std::memcpy(k.ground_color, ground_color, sizeof(ground_color));
-  const float eye[4] = {view.eye[0], view.eye[1], view.eye[2], 1.0f};
-  std::memcpy(k.eye, eye, sizeof(eye));
-  k.skin[0] = m.skin_capacity;
-  if (Status s = m.frame_buffer.upload(&k, sizeof(k)); !s) return s;
-
-  // note: the shader indexes the pose buffer without bounds checks: refuse what would overrun.
-  if (effects && effects->has_poses()) {
-    if (effects->pose.size() != n)
-      return {StatusCode::kInvalidArgument, "effects: pose array has " +
-                                                std::to_string(effects->pose.size()) +
-                                                " entries for " + std::to_string(n) + " instances"};
-    for (size_t i = 0; i < n; ++i) {
-      const uint32_t pose = effects->pose[i];
-      if (pose == kNoPose) continue;
-      const uint32_t t = scene.instances.type[i];
-      const size_t floats = t < effects->pose_buffers.size() ? effects->pose_buffers[t].size() : 0;
-      const size_t per_pose = 12 * static_cast<size_t>(t < m.types.size() ? m.types[t].joints : 0);
-      if (per_pose == 0 || pose >= floats / per_pose)
-        return {StatusCode::kInvalidArgument,
-                "effects: instance " + std::to_string(i) + " takes pose " + std::to_string(pose) +
-                    " but its type's pose buffer holds " +
-                    std::to_string(per_pose ? floats / per_pose : 0) + " poses"};
-    }
-  }
+  if (Status s = check_poses(scene, effects, m.types); !s) return s;
   if (Status s = upload_poses(effects); !s) return s;
 
   const GpuBuffer& instance_list = compute.instance_list_buffer();

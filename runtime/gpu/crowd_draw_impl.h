@@ -1,6 +1,7 @@
 // CrowdDraw's private state, shared by the files that make up its passes (private to
 // runtime/gpu/): draw_resources.cpp (layouts, samplers, per-type buffers, descriptor sets),
-// skin_pass.cpp, shadow_pass.cpp, color_pass.cpp and crowd_draw.cpp (create, per-frame update).
+// frame_constants.cpp, skin_pass.cpp, shadow_pass.cpp, color_pass.cpp and crowd_draw.cpp
+// (create, per-frame update).
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -29,7 +30,7 @@ constexpr uint32_t kSwatchRegions = 3;
 // kSwatchRegions * per_region layers of kSwatchSize² RGBA8 texels (swatches.cpp).
 std::vector<uint8_t> make_swatches(uint32_t per_region);
 
-// Small vector maths (light_box.cpp).
+// Small vector maths (frame_constants.cpp).
 void normalize3(float v[3]);
 // out = a · b, 4x4 column-major.
 void multiply4(const float a[16], const float b[16], float out[16]);
@@ -106,6 +107,9 @@ struct CrowdDraw::Impl {
       framebuffers;
 
   ~Impl();
+
+  // frame_constants.cpp: `constants` for this frame, uploaded to frame_buffer.
+  Status update_frame_constants(const Scene& scene, const FrameState& state);
 
   // draw_resources.cpp
   Status create_layouts();
