@@ -14,9 +14,15 @@ Status invalid(const std::string& what) {
 
 bool sized(size_t size, size_t n) { return size == 0 || size == n; }
 
-// Scene clip `c` when it is a clip of character type `type`, else null.
-const PackClip* clip_of_type(const Scene& scene, uint32_t c, uint32_t type) {
-  return c < scene.clips.size() && scene.clips[c].type == type ? scene.clips[c].clip : nullptr;
+// out = scene clip `c`, which instance i (of character type `type`) takes as its `what` clip;
+// an error when it is not a clip of that type.
+Status clip_of_type(const Scene& scene, uint32_t c, uint32_t type, const char* what, size_t i,
+                    const PackClip*& out) {
+  if (c >= scene.clips.size() || scene.clips[c].type != type)
+    return invalid(std::string(what) + " clip of instance " + std::to_string(i) +
+                   " is not a clip of its character type");
+  out = scene.clips[c].clip;
+  return {};
 }
 
 }  // namespace
@@ -51,10 +57,8 @@ Status fill_gpu_instances(const Scene& scene, const FrameState& state, const Eff
     g.blend = state.blend[i];
     for (int k = 0; k < 12; ++k) g.world[k] = state.world[12 * i + k];
     if (fx.has_clips()) {
-      const PackClip* found = clip_of_type(scene, fx.clip[i], type);
-      if (!found)
-        return invalid("effect clip of instance " + std::to_string(i) +
-                       " is not a clip of its character type");
+      const PackClip* found = nullptr;
+      if (Status s = clip_of_type(scene, fx.clip[i], type, "effect", i, found); !s) return s;
       const PackClip& clip = *found;
       FrameChoice frame;
       animate_instance(clip, state.time, in.speed[i], fx.time_offset[i], filter,
@@ -69,10 +73,8 @@ Status fill_gpu_instances(const Scene& scene, const FrameState& state, const Eff
     g.blend23 = g.blend;
     g.crossfade = 0.0f;
     if (fx.has_fades()) {
-      const PackClip* found = clip_of_type(scene, fx.fade_clip[i], type);
-      if (!found)
-        return invalid("fade clip of instance " + std::to_string(i) +
-                       " is not a clip of its character type");
+      const PackClip* found = nullptr;
+      if (Status s = clip_of_type(scene, fx.fade_clip[i], type, "fade", i, found); !s) return s;
       const PackClip& clip = *found;
       const FrameChoice frame =
           choose_frame(clip, state.time, in.speed[i], fx.fade_time_offset[i], filter);
