@@ -1,5 +1,5 @@
 // The frame's descriptor set (set 0) shared by crowd.vert, crowd.frag and shadow.vert
-// (crowd_draw.cpp binds it once per pass): instances, corners, the frame constants, the shadow
+// (color_pass.cpp and shadow_pass.cpp bind it once per pass): instances, corners, the frame constants, the shadow
 // map, the swatch texture array, and the skinning pass's output. The includer includes
 // instance.glsl and skin_common.glsl first.
 #ifndef CROWDBAKE_CROWD_FRAME_GLSL
@@ -9,7 +9,7 @@ layout(std430, set = 0, binding = 0) readonly buffer InstanceBlock { GpuInstance
 // One corner of a drawn triangle: (instance, vertex of its type), written by the compute passes.
 layout(std430, set = 0, binding = 1) readonly buffer CornerBlock { uvec2 corners[]; };
 
-// crowd_draw.cpp FrameConstants (a storage buffer for the reason given in skin.glsl).
+// crowd_draw.h FrameConstants (a storage buffer for the reason given in skin.glsl).
 layout(std430, set = 0, binding = 2) readonly buffer FrameBlock {
   mat4 view_proj;        // world → clip (runtime::view_matrix, projection_matrix)
   mat4 light_view_proj;  // world → shadow-map clip (orthographic, depth 0..1)

@@ -22,7 +22,7 @@ const uint kEncodingQuantized = 2u;
 // (lavapipe's compile time grows fast with shader size; a shader with all three took 80 s).
 layout(constant_id = 0) const uint kSkinEncoding = kEncodingQuantized;
 
-// Per character type (crowd_draw.cpp TypeConstants). A storage buffer, not a uniform block:
+// Per character type (crowd_draw.h TypeConstants). A storage buffer, not a uniform block:
 // lavapipe (Mesa 22.3) recompiles a shader each time a uniform block whose values steer
 // branches is rebound ("inline uniforms"), seconds per draw for this shader.
 layout(std430, set = SKIN_SET, binding = 0) readonly buffer TypeBlock {
@@ -35,7 +35,7 @@ layout(std430, set = SKIN_SET, binding = 0) readonly buffer TypeBlock {
 }
 type_block;
 
-// One bind-pose vertex (crowd_draw.cpp GpuVertex, std430, 64 bytes).
+// One bind-pose vertex (crowd_draw.h GpuVertex, std430, 64 bytes).
 struct GpuVertex {
   vec4 position_height;  // bind-pose position, its height along the up axis
   vec4 normal_u;         // normal, texture u

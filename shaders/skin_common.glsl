@@ -1,4 +1,4 @@
-// The skinning pass's buffers (set 0 of skin_list.comp and skin_pass.comp; crowd_draw.cpp
+// The skinning pass's buffers (set 0 of skin_list.comp and skin_pass.comp; skin_pass.cpp
 // record_skinning) and the skinned-vertex record the vertex shaders read back
 // (crowd_frame.glsl). Vertex shading on lavapipe runs on one thread, executes both sides of
 // every branch, and a corner-pulling draw would skin each vertex about six times (once per
