@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -157,6 +158,30 @@ ChildResult run_program(const std::vector<std::string>& argv, const std::string&
               (text.str().empty() ? "" : ": " + text.str().substr(0, 300));
   }
   return r;
+}
+
+void plot_gnuplot(const std::string& script, const std::string& variables,
+                  const std::string& plot) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(script)) {
+    std::fprintf(stderr, "note: %s not found; no plot written\n", script.c_str());
+    return;
+  }
+  const std::string tmp = plot + ".tmp.png";
+  const std::string log =
+      (fs::temp_directory_path() / ("crowdbake-gnuplot-" + std::to_string(getpid()) + ".log"))
+          .string();
+  const ChildResult run =
+      run_program({"gnuplot", "-e", variables + "; outfile='" + tmp + "'", script}, log);
+  std::error_code ignored;
+  fs::remove(log, ignored);
+  if (!run.ok || !fs::exists(tmp)) {
+    std::fprintf(stderr, "note: gnuplot failed (%s); no plot written (install gnuplot-nox)\n",
+                 run.error.c_str());
+    fs::remove(tmp, ignored);
+    return;
+  }
+  fs::rename(tmp, plot, ignored);
 }
 
 }  // namespace crowdbake::cli

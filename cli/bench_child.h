@@ -27,4 +27,12 @@ ChildResult run_in_child(const std::function<std::string()>& job);
 // (wait4 ru_maxrss). stdout/stderr of the program go to `log_path`.
 ChildResult run_program(const std::vector<std::string>& argv, const std::string& log_path);
 
+// Runs `gnuplot -e VARIABLES SCRIPT`, which must write the picture to the file named by its
+// `outfile` variable; plot_gnuplot passes a temporary name there and renames it to `plot`
+// only once gnuplot succeeded, so a failed plot leaves the previous picture. Failures
+// (script missing, gnuplot missing or failing) are notes on stderr, not errors: a benchmark's
+// numbers matter more than its picture.
+// variables: gnuplot assignments without `outfile`, e.g. "datafile='a.dat'; assets='x y'"
+void plot_gnuplot(const std::string& script, const std::string& variables, const std::string& plot);
+
 }  // namespace crowdbake::cli

@@ -236,29 +236,10 @@ BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
 
 void draw_plot(const BenchSettings& settings, const std::string& data, const BenchResult& result) {
   if (settings.plot.empty()) return;
-  if (!fs::exists(settings.plot_script)) {
-    std::cerr << "note: " << settings.plot_script << " not found; no plot written\n";
-    return;
-  }
-  const std::string tmp = settings.plot + ".tmp";
-  const std::string log =
-      (fs::temp_directory_path() / ("crowdbake-gnuplot-" + std::to_string(getpid()) + ".log"))
-          .string();
   std::string names;
   for (const BenchAsset& a : result.assets) names += (names.empty() ? "" : " ") + a.name;
-  const ChildResult run = run_program(
-      {"gnuplot", "-e", "datafile='" + data + "'; outfile='" + tmp + "'; assets='" + names + "'",
-       settings.plot_script},
-      log);
-  std::error_code ignored;
-  fs::remove(log, ignored);
-  if (!run.ok || !fs::exists(tmp)) {
-    std::cerr << "note: gnuplot failed (" << run.error
-              << "); no plot written (install gnuplot-nox)\n";
-    fs::remove(tmp, ignored);
-    return;
-  }
-  fs::rename(tmp, settings.plot);
+  plot_gnuplot(settings.plot_script, "datafile='" + data + "'; assets='" + names + "'",
+               settings.plot);
 }
 
 }  // namespace

@@ -245,34 +245,16 @@ void draw_plot(const BenchRenderSettings& s, const std::string& data, const std:
     std::cerr << "note: " << data << " not found (run without --pop-only first); no plot written\n";
     return;
   }
-  if (!fs::exists(s.plot_script)) {
-    std::cerr << "note: " << s.plot_script << " not found; no plot written\n";
-    return;
-  }
   std::string sizes;
   for (uint32_t n : s.sizes) sizes += (sizes.empty() ? "" : " ") + std::to_string(n);
-  const std::string tmp = s.plot + ".tmp.png";
-  const std::string log =
-      (fs::temp_directory_path() / ("crowdbake-gnuplot-" + std::to_string(getpid()) + ".log"))
-          .string();
   char title[160];
   std::snprintf(title, sizeof title, "%ux%u, %s", result.width, result.height,
                 result.device.c_str());
-  const ChildResult run = run_program(
-      {"gnuplot", "-e",
-       "datafile='" + data + "'; popfile='" + (fs::exists(pop_data) ? pop_data : std::string()) +
-           "'; outfile='" + tmp + "'; sizes='" + sizes + "'; device='" + title + "'",
-       s.plot_script},
-      log);
-  std::error_code ignored;
-  fs::remove(log, ignored);
-  if (!run.ok || !fs::exists(tmp)) {
-    std::cerr << "note: gnuplot failed (" << run.error
-              << "); no plot written (install gnuplot-nox)\n";
-    fs::remove(tmp, ignored);
-    return;
-  }
-  fs::rename(tmp, s.plot);
+  plot_gnuplot(s.plot_script,
+               "datafile='" + data + "'; popfile='" +
+                   (fs::exists(pop_data) ? pop_data : std::string()) + "'; sizes='" + sizes +
+                   "'; device='" + title + "'",
+               s.plot);
 }
 
 void check_settings(const BenchRenderSettings& s) {
