@@ -29,6 +29,7 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
   nlohmann::json j;
   j["file"] = asset.source;
   j["joints"] = asset.skeleton.joints.size();
+  j["animated_nodes_kept"] = asset.stats.animated_nodes_kept;
   j["skeleton_depth"] = asset.skeleton.depth();
   j["root"] = root_name(asset.skeleton);
   j["vertices"] = asset.vertex_count();
@@ -55,8 +56,11 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
 void print_text(const SkinnedAsset& asset) {
   const Skeleton& s = asset.skeleton;
   std::printf("%s\n", asset.source.c_str());
-  std::printf("  skeleton   %zu joints, depth %d, root %s\n", s.joints.size(), s.depth(),
+  std::printf("  skeleton   %zu joints, depth %d, root %s", s.joints.size(), s.depth(),
               root_name(s).c_str());
+  if (asset.stats.animated_nodes_kept > 0)
+    std::printf(" (%d animated non-bone node(s) kept as joints)", asset.stats.animated_nodes_kept);
+  std::printf("\n");
   std::printf(
       "  meshes     %zu primitives, %zu vertices, %zu triangles, max %d influences (source had "
       "%d)\n",

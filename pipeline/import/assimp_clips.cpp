@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "crowdbake/pipeline/error.h"
+#include "import/animated_nodes.h"
 #include "import/assimp_scene.h"
 #include "import/node_transform.h"
 
@@ -65,23 +66,16 @@ Track<T> convert_keys(const Key* keys, unsigned count, const std::string& node, 
   return track;
 }
 
-// Whether an animation channel on a node we keep static differs from the node's stored
-// transform (then ignoring it changes the result, and the user is told).
+// Whether an animation channel differs from the node's stored transform (then the node
+// moves, and is either kept as a joint or reported).
 bool moves(const aiNodeAnim& channel, const glm::dmat4& stored) {
   const Transform rest = decompose_transform(stored);
-  const double position_tolerance = 1e-4 * std::max(1.0, glm::length(rest.translation));
-  const double scale_tolerance = 1e-4 * std::max(1.0, glm::length(rest.scale));
   for (unsigned k = 0; k < channel.mNumPositionKeys; ++k)
-    if (glm::length(to_glm(channel.mPositionKeys[k].mValue) - rest.translation) >
-        position_tolerance)
-      return true;
-  for (unsigned k = 0; k < channel.mNumRotationKeys; ++k) {
-    const glm::dquat q = glm::normalize(to_glm(channel.mRotationKeys[k].mValue));
-    if (1.0 - std::fabs(glm::dot(q, rest.rotation)) > 1e-6) return true;
-  }
+    if (moves_translation(to_glm(channel.mPositionKeys[k].mValue), rest)) return true;
+  for (unsigned k = 0; k < channel.mNumRotationKeys; ++k)
+    if (moves_rotation(to_glm(channel.mRotationKeys[k].mValue), rest)) return true;
   for (unsigned k = 0; k < channel.mNumScalingKeys; ++k)
-    if (glm::length(to_glm(channel.mScalingKeys[k].mValue) - rest.scale) > scale_tolerance)
-      return true;
+    if (moves_scale(to_glm(channel.mScalingKeys[k].mValue), rest)) return true;
   return false;
 }
 
@@ -99,9 +93,25 @@ void shift(Track<T>& track, double by) {
 
 }  // namespace
 
+std::vector<bool> moving_nodes(const aiScene& scene, const NodeTable& table) {
+  std::vector<bool> moving(table.nodes.size(), false);
+  for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
+    const aiAnimation* anim = scene.mAnimations[a];
+    if (!anim) continue;
+    for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+      const aiNodeAnim* channel = anim->mChannels[c];
+      if (!channel) continue;
+      const auto it = table.by_name.find(channel->mNodeName.C_Str());
+      if (it != table.by_name.end() && !moving[it->second])
+        moving[it->second] = moves(*channel, table.local[it->second]);
+    }
+  }
+  return moving;
+}
+
 void convert_animations(const aiScene& scene, const NodeTable& table,
                         const std::vector<int>& joint_of_node,
-                        const std::vector<bool>& foreign_node, SkinnedAsset& asset) {
+                        const std::vector<bool>& reported_node, SkinnedAsset& asset) {
   const size_t joint_count = asset.skeleton.joints.size();
   for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
     const aiAnimation* anim = scene.mAnimations[a];
@@ -136,7 +146,7 @@ void convert_animations(const aiScene& scene, const NodeTable& table,
       const int node = it->second;
       const int joint = joint_of_node[node];
       if (joint < 0) {
-        if (!foreign_node[node] && moves(*channel, table.local[node]))
+        if (reported_node[node] && moves(*channel, table.local[node]))
           moving_non_joints.push_back(node_name);
         continue;
       }
@@ -161,9 +171,8 @@ void convert_animations(const aiScene& scene, const NodeTable& table,
     }
     if (!moving_non_joints.empty())
       asset.warnings.push_back(who + "animation of " + std::to_string(moving_non_joints.size()) +
-                               " node(s) that are not joints is ignored (" +
-                               name_list(moving_non_joints) +
-                               "); they stay at their stored transform");
+                               " node(s) that move no joint and no mesh is ignored (" +
+                               name_list(moving_non_joints) + ")");
     if (!unknown.empty())
       asset.warnings.push_back(who + "channels for nodes not in the scene are ignored (" +
                                name_list(unknown) + ")");

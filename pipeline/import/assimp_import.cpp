@@ -80,8 +80,8 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path,
   return scene;
 }
 
-size_t pick_character(const ai::SceneCharacters& found, const aiScene& scene,
-                      const NodeTable& table, const ImportOptions& options, const std::string& path,
+size_t pick_character(const ai::SceneCharacters& found, const NodeTable& table,
+                      const ImportOptions& options, const std::string& path,
                       std::vector<std::string>& warnings) {
   const size_t count = found.characters.size();
   size_t pick = 0;
@@ -112,17 +112,33 @@ size_t pick_character(const ai::SceneCharacters& found, const aiScene& scene,
                        describe(pick) + (options.character >= 0 ? " as asked" : ", the largest") +
                        "; skipped " + skipped + "; choose another with the character option");
   }
-  if (!found.unattached_meshes.empty()) {
-    std::vector<std::string> names;
-    for (int m : found.unattached_meshes) names.push_back(mesh_name(*scene.mMeshes[m]));
-    warnings.push_back(std::to_string(names.size()) +
-                       " mesh(es) without skin that hang under no joint were left out (" +
-                       name_list(names) + ")");
-  }
   return pick;
 }
 
-// sheared receives the joints whose stored matrix is not a TRS product.
+void report_adopted_nodes(const ai::AdoptedNodes& adopted, const aiScene& scene,
+                          const NodeTable& table, SkinnedAsset& asset) {
+  if (!adopted.kept.empty()) {
+    std::vector<std::string> names;
+    for (int n : adopted.kept) names.push_back(table.nodes[n]->mName.C_Str());
+    asset.stats.animated_nodes_kept = static_cast<int>(names.size());
+    asset.warnings.push_back(std::to_string(names.size()) +
+                             " animated node(s) that are not bones move the character; kept as "
+                             "joints without skin weights (" +
+                             name_list(names) + ")");
+  }
+  if (!adopted.unattached_meshes.empty()) {
+    std::vector<std::string> names;
+    for (int m : adopted.unattached_meshes) names.push_back(mesh_name(*scene.mMeshes[m]));
+    asset.warnings.push_back(std::to_string(names.size()) +
+                             " mesh(es) without skin that hang under no joint were left out (" +
+                             name_list(names) + ")");
+  }
+}
+
+// sheared receives the joints whose stored matrix is not a TRS product. Every joint's
+// inverse bind starts as the inverse of its stored global transform (a kept animated node
+// has no offset matrix: its skinning matrix is the identity at rest); bones get theirs from
+// the meshes' offsets in resolve_inverse_binds().
 Skeleton build_skeleton(const ai::Character& character, const NodeTable& table,
                         std::vector<int>& joint_of_node, std::vector<int>& sheared) {
   Skeleton skeleton;
@@ -142,6 +158,8 @@ Skeleton build_skeleton(const ai::Character& character, const NodeTable& table,
     }
     joint.parent = up >= 0 ? joint_of_node[up] : -1;
     joint.pre_transform = pre;
+    const glm::dmat4 rest_inverse = glm::inverse(table.global[node]);
+    if (ai::is_finite(rest_inverse)) joint.inverse_bind = rest_inverse;
     double residual = 0.0;
     joint.rest = decompose_transform(table.local[node], &residual);
     if (residual > 1e-5) sheared.push_back(static_cast<int>(skeleton.joints.size()));
@@ -428,8 +446,10 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
                       "no skin: crowdbake needs a skinned character; export with an "
                       "armature/skin");
   asset.warnings = std::move(found.warnings);
-  const size_t pick = pick_character(found, scene, table, options, path, asset.warnings);
-  const ai::Character& character = found.characters[pick];
+  const size_t pick = pick_character(found, table, options, path, asset.warnings);
+  ai::Character character = found.characters[pick];
+  const ai::AdoptedNodes adopted = ai::adopt_animated_nodes(scene, table, found, pick, character);
+  report_adopted_nodes(adopted, scene, table, asset);
 
   std::vector<int> joint_of_node, sheared;
   asset.skeleton = build_skeleton(character, table, joint_of_node, sheared);
@@ -509,11 +529,7 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
     asset.warnings.push_back(std::to_string(counts.dropped_faces) +
                              " point and line primitives were dropped (only triangles are kept)");
 
-  std::vector<bool> foreign_node(table.nodes.size(), false);
-  for (size_t n = 0; n < table.nodes.size(); ++n)
-    foreign_node[n] =
-        found.joint_of_node[n] >= 0 && found.joint_of_node[n] != static_cast<int>(pick);
-  ai::convert_animations(scene, table, joint_of_node, foreign_node, asset);
+  ai::convert_animations(scene, table, joint_of_node, adopted.reported, asset);
   settle_sheared_joints(sheared, character, table, asset);
 
   report_import_stats(asset.stats, asset.warnings);

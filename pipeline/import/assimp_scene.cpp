@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "crowdbake/pipeline/error.h"
+#include "import/animated_nodes.h"
 
 namespace crowdbake::ai {
 
@@ -167,6 +168,59 @@ SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
   }
   for (unsigned m = 0; m < scene.mNumMeshes; ++m)
     if (unattached[m]) out.unattached_meshes.push_back(static_cast<int>(m));
+  return out;
+}
+
+AdoptedNodes adopt_animated_nodes(const aiScene& scene, const NodeTable& table,
+                                  const SceneCharacters& found, size_t pick, Character& character) {
+  const int node_count = static_cast<int>(table.nodes.size());
+  const int ours = static_cast<int>(pick);
+  std::vector<bool> is_bone(node_count, false);
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+    for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b)
+      is_bone[table.by_name.at(scene.mMeshes[m]->mBones[b]->mName.C_Str())] = true;
+  SceneNodes nodes;
+  nodes.parent = table.parent;
+  nodes.moving = moving_nodes(scene, table);
+  nodes.role.assign(node_count, NodeRole::kPlain);
+  nodes.rigid_mesh.assign(node_count, false);
+  for (int n = 0; n < node_count; ++n) {
+    if (found.joint_of_node[n] >= 0)
+      nodes.role[n] = found.joint_of_node[n] == ours ? NodeRole::kJoint : NodeRole::kForeignJoint;
+    const aiNode* node = table.nodes[n];
+    for (unsigned i = 0; i < node->mNumMeshes; ++i)
+      if (scene.mMeshes[node->mMeshes[i]]->mNumBones == 0) nodes.rigid_mesh[n] = true;
+  }
+  const AnimatedNodes animated = find_animated_nodes(nodes);
+
+  AdoptedNodes out;
+  out.kept = animated.kept;
+  out.reported.assign(node_count, false);
+  for (int n : animated.reported) out.reported[n] = true;
+  std::vector<bool> joint(node_count, false);
+  for (int n : character.joint_nodes) joint[n] = true;
+  for (int n : animated.kept) joint[n] = true;
+  character.joint_nodes.clear();
+  for (int n = 0; n < node_count; ++n)
+    if (joint[n]) character.joint_nodes.push_back(n);
+
+  // Unskinned meshes, in node order: bound to the nearest joint or kept node above them when
+  // it is ours; a bone of another character claims the mesh for that character.
+  character.rigid_meshes.clear();
+  std::vector<bool> adopted(scene.mNumMeshes, false);
+  for (int n = 0; n < node_count; ++n) {
+    const aiNode* node = table.nodes[n];
+    const int up = nearest_joint(table, n, [&](int k) { return joint[k] || is_bone[k]; });
+    if (up < 0 || !joint[up]) continue;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const int m = static_cast<int>(node->mMeshes[i]);
+      if (scene.mMeshes[m]->mNumBones > 0) continue;
+      character.rigid_meshes.emplace_back(m, n);
+      adopted[m] = true;
+    }
+  }
+  for (int m : found.unattached_meshes)
+    if (!adopted[m]) out.unattached_meshes.push_back(m);
   return out;
 }
 

@@ -65,12 +65,27 @@ int nearest_joint(const NodeTable& table, int node, Pred is_joint_node) {
   return node;
 }
 
+// Per node: whether some animation channel moves it away from its stored transform.
+std::vector<bool> moving_nodes(const aiScene& scene, const NodeTable& table);
+
+struct AdoptedNodes {
+  std::vector<int> kept;               // non-bone nodes that became joints (node indices)
+  std::vector<bool> reported;          // per node: motion that moves nothing imported
+  std::vector<int> unattached_meshes;  // meshes still left out
+};
+
+// Keeps the moving non-bone nodes that move the picked character as joints (see
+// animated_nodes.h): adds them to character.joint_nodes (depth-first order kept) and
+// recomputes character.rigid_meshes, so meshes hanging under a kept node come along.
+AdoptedNodes adopt_animated_nodes(const aiScene& scene, const NodeTable& table,
+                                  const SceneCharacters& found, size_t pick, Character& character);
+
 // Appends one Clip per aiAnimation that animates the picked character. joint_of_node maps
-// node index to joint index (-1 when the node is not a joint of this character);
-// foreign_node marks joints of characters that were not picked (their channels are dropped
-// silently). Warnings go to asset.warnings, clips to asset.clips.
+// node index to joint index (-1 when the node is not a joint of this character); motion of
+// the other nodes is dropped, with a warning for those reported_node marks.
+// Warnings go to asset.warnings, clips to asset.clips.
 void convert_animations(const aiScene& scene, const NodeTable& table,
                         const std::vector<int>& joint_of_node,
-                        const std::vector<bool>& foreign_node, SkinnedAsset& asset);
+                        const std::vector<bool>& reported_node, SkinnedAsset& asset);
 
 }  // namespace crowdbake::ai

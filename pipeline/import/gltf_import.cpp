@@ -15,6 +15,7 @@
 
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
+#include "import/animated_nodes.h"
 #include "import/gltf_accessor.h"
 #include "import/influences.h"
 #include "import/node_transform.h"
@@ -234,6 +235,15 @@ class GltfImporter {
     std::set<int> joint_nodes;
     for (int s : skins_)
       joint_nodes.insert(model_.skins[s].joints.begin(), model_.skins[s].joints.end());
+    // note: the bind shape's frame is that of the skin's own joints (before animated
+    // ancestors join the skeleton), so stored positions do not depend on which nodes move.
+    for (int n : tree_.preorder)
+      if (joint_nodes.count(n)) {
+        scene_from_bind_ = tree_.parent[n] >= 0 ? tree_.global(tree_.parent[n]) : glm::dmat4(1.0);
+        break;
+      }
+    const std::vector<int> kept = keep_animated_nodes(joint_nodes);
+    joint_nodes.insert(kept.begin(), kept.end());
     joint_of_node_.assign(model_.nodes.size(), -1);
     for (int n : tree_.preorder)
       if (joint_nodes.count(n)) {
@@ -256,14 +266,17 @@ class GltfImporter {
                                   "transform, so animation of this joint is ignored");
         static_joints_.insert(node);
       }
-      for (int n = tree_.parent[node]; n != ancestor; n = tree_.parent[n]) folded_nodes_.insert(n);
+      // A kept animated node has no inverse bind of its own: identity skinning at rest.
+      const glm::dmat4 rest_inverse = glm::inverse(tree_.global(node));
+      bool finite = true;
+      for (int i = 0; i < 16; ++i) finite = finite && std::isfinite(rest_inverse[i / 4][i % 4]);
+      if (finite) joint.inverse_bind = rest_inverse;
     }
     // Inverse binds: the first skin listing a joint defines it; other skins are
     // reconciled per mesh in bind_correction(). The bind shape is taken to live in the
     // skeleton's frame (the nodes above its root, e.g. CesiumMan's Z-up -> Y-up root) and
     // is moved into the scene's frame, B' = B · M⁻¹ and v' = M · v: skinning is unchanged,
     // and stored positions share the rest pose's up axis, as the Assimp importer's do.
-    scene_from_bind_ = skeleton.joints.empty() ? glm::dmat4(1.0) : skeleton.joints[0].pre_transform;
     const glm::dmat4 to_scene = glm::inverse(scene_from_bind_);
     std::vector<char> set(joint_node_.size(), 0);
     for (int s : skins_) {
@@ -273,6 +286,72 @@ class GltfImporter {
         if (!set[j]) skeleton.joints[j].inverse_bind = ibm[k] * to_scene, set[j] = 1;
       }
     }
+  }
+
+  // Moving nodes that are not skin joints but move the character become joints
+  // (animated_nodes.h); returns them, and remembers the moving nodes that move nothing.
+  std::vector<int> keep_animated_nodes(const std::set<int>& joint_nodes) {
+    const int count = static_cast<int>(model_.nodes.size());
+    SceneNodes nodes;
+    nodes.parent = tree_.parent;
+    nodes.role.assign(count, NodeRole::kPlain);
+    for (const tg::Skin& skin : model_.skins)
+      for (int j : skin.joints) nodes.role[j] = NodeRole::kForeignJoint;
+    for (int j : joint_nodes) nodes.role[j] = NodeRole::kJoint;
+    nodes.rigid_mesh.assign(count, false);
+    for (int n = 0; n < count; ++n)
+      nodes.rigid_mesh[n] = model_.nodes[n].mesh >= 0 && model_.nodes[n].skin < 0;
+    nodes.moving = moving_nodes();
+    const AnimatedNodes animated = find_animated_nodes(nodes);
+    reported_nodes_.insert(animated.reported.begin(), animated.reported.end());
+    if (!animated.kept.empty()) {
+      std::string names;
+      for (size_t k = 0; k < animated.kept.size() && k < 5; ++k)
+        names += (k ? ", '" : "'") + node_name(model_, animated.kept[k]) + "'";
+      if (animated.kept.size() > 5)
+        names += " and " + std::to_string(animated.kept.size() - 5) + " more";
+      asset_.stats.animated_nodes_kept = static_cast<int>(animated.kept.size());
+      asset_.warnings.push_back(std::to_string(animated.kept.size()) +
+                                " animated node(s) that are not skin joints move the character; "
+                                "kept as joints without skin weights (" +
+                                names + ")");
+    }
+    return animated.kept;
+  }
+
+  // Per node: whether a translation, rotation or scale channel moves it off its stored TRS.
+  std::vector<bool> moving_nodes() {
+    const int count = static_cast<int>(model_.nodes.size());
+    std::vector<bool> moving(count, false);
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tg::Animation& anim = model_.animations[a];
+      const std::string clip = anim.name.empty() ? "animation_" + std::to_string(a) : anim.name;
+      for (const tg::AnimationChannel& ch : anim.channels) {
+        const int n = ch.target_node;
+        if (n < 0 || n >= count || moving[n]) continue;
+        if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size())) continue;
+        const bool translation = ch.target_path == "translation",
+                   rotation = ch.target_path == "rotation", scale = ch.target_path == "scale";
+        if (!translation && !rotation && !scale) continue;
+        const tg::AnimationSampler& sampler = anim.samplers[ch.sampler];
+        const AccessorData values = read_accessor(model_, sampler.output, {rotation ? 4 : 3}, path_,
+                                                  "animation '" + clip + "' output");
+        const bool cubic = sampler.interpolation == "CUBICSPLINE";
+        const Transform stored = decompose_transform(tree_.local[n]);
+        for (size_t k = 0; k < values.count && !moving[n]; ++k) {
+          const glm::dvec3 v(values.at(k, 0), values.at(k, 1), values.at(k, 2));
+          if (cubic && k % 3 != 1) {
+            // note: a tangent that is not zero moves the node between keys.
+            moving[n] = glm::length(v) > 0.0 || (rotation && values.at(k, 3) != 0.0);
+          } else if (rotation) {
+            moving[n] = moves_rotation(glm::dquat(values.at(k, 3), v.x, v.y, v.z), stored);
+          } else {
+            moving[n] = translation ? moves_translation(v, stored) : moves_scale(v, stored);
+          }
+        }
+      }
+    }
+    return moving;
   }
 
   int nearest_joint_ancestor(int node) const {
@@ -381,8 +460,6 @@ class GltfImporter {
         const glm::dmat4 place =
             glm::inverse(asset_.skeleton.joints[joint].inverse_bind) *
             (joint_node == n ? glm::dmat4(1.0) : tree_.relative(joint_node, n));
-        for (int m = tree_.parent[n]; m >= 0 && m != joint_node; m = tree_.parent[m])
-          folded_nodes_.insert(m);
         for (const tg::Primitive& p : mesh.primitives) read_primitive(p, name, -1, place, joint);
         ++asset_.stats.rigid_primitives;
         asset_.warnings.push_back("mesh '" + name + "' is not skinned; bound rigidly to joint '" +
@@ -559,11 +636,11 @@ class GltfImporter {
         if (joint < 0 || static_joints_.count(ch.target_node)) {
           if (ch.target_path == "weights")
             ++morph_animations_;
-          else if (folded_nodes_.count(ch.target_node) &&
+          else if (reported_nodes_.count(ch.target_node) &&
                    ignored.insert(node_name(model_, ch.target_node)).second)
-            asset_.warnings.push_back("animation '" + clip.name + "' moves node '" +
-                                      node_name(model_, ch.target_node) +
-                                      "', which is not a joint; that motion is ignored");
+            asset_.warnings.push_back(
+                "animation '" + clip.name + "' moves node '" + node_name(model_, ch.target_node) +
+                "', which moves no joint and no mesh; that motion is ignored");
           continue;
         }
         JointChannels& out = clip.channels[joint];
@@ -622,7 +699,7 @@ class GltfImporter {
   std::vector<int> skins_;
   std::vector<int> joint_of_node_;
   std::vector<int> joint_node_;
-  std::set<int> folded_nodes_;
+  std::set<int> reported_nodes_;
   std::set<int> static_joints_;
   glm::dmat4 scene_from_bind_{1.0};
   int morph_meshes_ = 0;

@@ -479,14 +479,17 @@ TEST(AssimpImport, DisjointSkeletonsPickTheLargestAndSaySo) {
 
 TEST(AssimpImport, AnimatedNonJointNodeIsReportedAsIgnored) {
   TempDir dir;
-  // The mesh node n0 is not a joint; moving it is ignored (and said).
+  // The skinned mesh's node n0 is not a joint and moves no joint or rigid mesh (a skinned
+  // mesh ignores its node): moving it is ignored, and said.
   const DaeAnimation slide{"n0", {0.0f, 1.0f}, {kIdentity, "1 0 0 4 0 1 0 0 0 0 1 0 0 0 0 1"}};
   const DaeAnimation still{
       "b1", {0.0f, 1.0f}, {"1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1", "1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1"}};
   const SkinnedAsset a =
       import_assimp(write(dir, "a.dae", collada(two_joints(), {body()}, {slide, still})), {});
   validate_asset(a);
-  EXPECT_TRUE(mentions(a, "not joints is ignored ('n0')"));
+  EXPECT_TRUE(mentions(a, "move no joint and no mesh is ignored ('n0')"));
+  EXPECT_EQ(a.stats.animated_nodes_kept, 0);
+  EXPECT_EQ(a.skeleton.joints.size(), 2u);
 }
 
 TEST(AssimpImport, MorphTargetsWarnAndUseBaseShape) {
@@ -714,7 +717,9 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
             << a.clips.size() << ", max influences " << a.stats.max_influences << all_warnings
             << "\n";
 
-  EXPECT_EQ(a.skeleton.joints.size(), m["bones"].get<size_t>());
+  // Bones, plus the animated non-bone nodes that move them (kept as unweighted joints).
+  EXPECT_EQ(a.skeleton.joints.size(),
+            m["bones"].get<size_t>() + static_cast<size_t>(a.stats.animated_nodes_kept));
   EXPECT_EQ(a.triangle_count(), m["triangles"].get<size_t>());
   EXPECT_EQ(a.stats.max_influences, m["max_influences"].get<int>());
   if (m["max_influences"].get<int>() > 4) {
@@ -809,6 +814,14 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
   for (unsigned i = 0; i < scene->mNumMeshes; ++i)
     if (scene->mMeshes[i]->mNumBones > 0) skinned.push_back(scene->mMeshes[i]);
   ASSERT_EQ(skinned.size(), a.primitives.size());
+  const std::map<std::string, glm::dmat4> rest_global = reference.globals(nullptr, 0.0);
+  std::map<const aiMesh*, std::string> mesh_node;
+  std::function<void(const aiNode*)> find_meshes = [&](const aiNode* node) {
+    for (unsigned i = 0; i < node->mNumMeshes; ++i)
+      mesh_node.emplace(scene->mMeshes[node->mMeshes[i]], node->mName.C_Str());
+    for (unsigned i = 0; i < node->mNumChildren; ++i) find_meshes(node->mChildren[i]);
+  };
+  find_meshes(scene->mRootNode);
   double overall = 0.0;
   for (size_t c = 0; c < a.clips.size(); ++c) {
     const aiAnimation* anim = scene->mAnimations[c];
@@ -827,6 +840,14 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
           ref_skin[mesh.mBones[b]->mName.C_Str()] =
               ref_global.at(mesh.mBones[b]->mName.C_Str()) *
               AssimpReference::convert(mesh.mBones[b]->mOffsetMatrix);
+        // Vertices without weights follow the node their mesh hangs from; when that is an
+        // animated node kept as a joint, its "offset" takes the mesh from its own space to
+        // the node's at rest.
+        for (const Joint& joint : a.skeleton.joints)
+          if (!ref_skin.count(joint.name))
+            ref_skin[joint.name] = ref_global.at(joint.name) *
+                                   glm::inverse(rest_global.at(joint.name)) *
+                                   rest_global.at(mesh_node.at(&mesh));
         const Primitive& prim = a.primitives[p];
         for (size_t v = 0; v < prim.positions.size(); ++v)
           for (int k = 0; k < 4; ++k) {

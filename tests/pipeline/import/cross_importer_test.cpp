@@ -8,6 +8,7 @@
 #include <map>
 
 #include "asset_paths.h"
+#include "cli/cli_runner.h"
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
@@ -49,6 +50,32 @@ TEST(CrossImporter, CesiumMan) {
 TEST(CrossImporter, Fox) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   expect_importers_agree((test::shared_assets() / "Fox/Fox.glb").string());
+}
+
+// The bird's clips animate its armature node (not a bone): after `crowdbake lod --ratio 1`
+// the exported glTF must play like the FBX it came from, and both importers must agree on it.
+TEST(CrossImporter, BirdAfterLodRoundTrip) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  test::TempDir dir;
+  const std::string fbx = (test::shared_assets() / "Quaternius_Bird/bird.fbx").string();
+  const std::string glb = (dir / "bird.glb").string();
+  const test::CommandResult r =
+      test::run_crowdbake({"lod", fbx, "--ratio", "1", "-o", glb, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_importers_agree(glb);
+
+  ImportOptions gltf_options;
+  gltf_options.importer = ImporterKind::kGltf;
+  const SkinnedAsset original = import_asset(fbx, {});
+  const SkinnedAsset exported = import_asset(glb, gltf_options);
+  EXPECT_GT(original.stats.animated_nodes_kept, 0);
+  const test::SurfaceDifference d = test::compare_skinned_surfaces(original, exported);
+  EXPECT_GT(d.samples, 0);
+  EXPECT_LE(d.max_relative, 1e-4) << "at clip " << d.worst_clip << ", t = " << d.worst_time;
+  std::printf(
+      "[ round trip ] bird.fbx -> lod --ratio 1 -> glb: %d poses, max deviation %.3g of "
+      "the bbox diagonal\n",
+      d.samples, d.max_relative);
 }
 
 }  // namespace

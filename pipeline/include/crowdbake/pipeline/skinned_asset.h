@@ -105,6 +105,9 @@ struct ImportStats {
   int vertices_without_weights = 0;
   int polygons_triangulated = 0;
   int rigid_primitives = 0;  // unskinned meshes bound to the joint they hang off
+  // Animated nodes that are not joints of a skin but move it (an armature node above the
+  // root, a helper between joints or above a rigid mesh): kept as joints without weights.
+  int animated_nodes_kept = 0;
 };
 
 struct SkinnedAsset {
