@@ -101,7 +101,7 @@ int run_bake(const BakeCommandSettings& s) {
       j["stages"].push_back({{"name", stage.name}, {"seconds", stage.seconds}});
     j["seconds"] = total;
     j["lod"] = {{"min_vertices", pack.progressive.min_vertices},
-                {"strict_min_vertices", report.simplify.strict_min_vertices},
+                {"seamless_min_vertices", report.simplify.seamless_min_vertices},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()}};
     j["chunks"] = nlohmann::json::array();

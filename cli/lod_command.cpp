@@ -47,11 +47,9 @@ int run_lod(const LodSettings& settings) {
                 report.seconds_poses + report.seconds_quadrics + report.seconds_collapse,
                 report.seconds_poses, report.seconds_quadrics, report.seconds_collapse);
     std::printf("  densities  %s\n", report.pose_estimator.c_str());
-    if (used < report.strict_min_vertices)
-      std::printf(
-          "  note       below %u vertices seams may be crossed and flips are checked in the bind "
-          "pose only\n",
-          report.strict_min_vertices);
+    if (used < report.seamless_min_vertices)
+      std::printf("  note       levels below %u vertices cross UV seams or material borders\n",
+                  report.seamless_min_vertices);
     if (wanted < pm.min_vertices)
       std::printf("  note       %u vertices is the coarsest level this mesh reaches\n",
                   pm.min_vertices);

@@ -107,7 +107,9 @@ class ConfigReader {
       else if (k == "check_flips_in_all_poses")
         s.check_flips_in_all_poses = boolean(key, v);
       else if (k == "relax_when_stuck")
-        s.relax_when_stuck = boolean(key, v);
+        fail(key,
+             "is no longer an option: the simplifier keeps one set of rules down to its minimum "
+             "(docs/simplification.md); remove the key");
       else if (k == "ranges") {
         if (!v.is_string()) fail(key, "must be a path");
         s.ranges_file =
@@ -186,7 +188,6 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["simplify"]["form"] = name_of(kForms, s.simplify.form);
   j["simplify"]["pose_source"] = name_of(kSources, s.simplify.pose_source);
   j["simplify"]["check_flips_in_all_poses"] = s.simplify.check_flips_in_all_poses;
-  j["simplify"]["relax_when_stuck"] = s.simplify.relax_when_stuck;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();
   j["animation"]["fps"] = s.animation.fps;
   j["animation"]["encoding"] = name_of(kEncodings, s.animation.encoding);

@@ -8,14 +8,14 @@ namespace crowdbake {
 namespace {
 
 // note: a collapse may turn a face by at most ~75° in the bind pose (cos = 0.25, the
-// fold guard meshoptimizer uses); in the other sampled poses it only may not flip.
+// fold guard meshoptimizer uses); that is the one geometric refusal.
 constexpr double kMinBindNormalDot = 0.25;
-constexpr double kMinPoseNormalDot = 0.0;
 
 struct Candidate {
   double cost;
   uint32_t from, to;
   uint32_t version_from, version_to;
+  bool priced = false;  // the penalties for posed flips and seam crossings are in `cost`
 };
 
 // Lowest cost first; ties broken by ids so the order never depends on the heap's history.
@@ -49,18 +49,13 @@ class Collapser {
     version_.assign(positions, 0);
   }
 
-  std::vector<CollapseRecord> run(bool relax) {
+  std::vector<CollapseRecord> run() {
     for (uint32_t p = 0; p < mesh_.position_count(); ++p)
       if (!incident_[p].empty() && kind(p) == Kind::kLocked) ++stats_.locked_positions;
     std::vector<CollapseRecord> records;
     push_all();
     drain(records);
-    stats_.strict_collapses = static_cast<uint32_t>(records.size());
-    if (relax) {
-      relaxed_ = true;
-      push_all();
-      drain(records);
-    }
+    if (stats_.seam_crossings == 0) stats_.collapses_before_crossing = collapses_;
     return records;
   }
 
@@ -80,7 +75,7 @@ class Collapser {
           version_[c.from] != c.version_from || version_[c.to] != c.version_to)
         continue;
       CollapseRecord record;
-      if (try_collapse(c.from, c.to, record)) records.push_back(std::move(record));
+      if (try_collapse(c, record)) records.push_back(std::move(record));
     }
   }
 
@@ -157,7 +152,10 @@ class Collapser {
     return false;
   }
 
-  bool try_collapse(uint32_t from, uint32_t to, CollapseRecord& record) {
+  // Performs the collapse when it is legal and its penalties are priced in; a legal
+  // candidate with a penalty still to pay goes back into the queue at its full cost.
+  bool try_collapse(const Candidate& candidate, CollapseRecord& record) {
+    const uint32_t from = candidate.from, to = candidate.to;
     compact(from);
     compact(to);
     std::vector<uint32_t> shared, moved;
@@ -188,22 +186,25 @@ class Collapser {
     }
 
     // Wedge map, on attribute classes: each class of `from` goes to the class of `to` it
-    // shares a removed face with. A used class with no such partner sits across a seam:
-    // collapsing would tear the seam, so refuse.
+    // shares a removed face with. A class with two such partners, or a used class with none
+    // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
+    // or material border: allowed, at a price. A class with no class at `to` in its own
+    // primitive cannot move (its faces would leave their primitive).
     std::vector<std::pair<uint32_t, uint32_t>> map;
+    double crossed_area = 0.0;  // bind-pose area of faces whose corner crosses a seam
     for (uint32_t t : shared) {
       const uint32_t v = klass(t, from), w = klass(t, to);
       auto it = std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == v; });
       if (it == map.end())
         map.push_back({v, w});
-      else if (it->second != w && !relaxed_)
-        return reject_topology();
+      else if (it->second != w)
+        crossed_area += bind_area(t);
     }
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
       if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; }))
         continue;
-      const int64_t w = relaxed_ ? nearest_class(to, v) : -1;
+      const int64_t w = nearest_class(to, v);
       if (w < 0) return reject_topology();
       map.push_back({v, static_cast<uint32_t>(w)});
     }
@@ -212,11 +213,33 @@ class Collapser {
         if (m.first == mesh_.class_of[v]) return m.second;
       return -1;
     };
+    for (uint32_t t : moved) {
+      const uint32_t v = klass(t, from);
+      // note: a substituted class is one no removed face pairs v with.
+      bool paired = false;
+      for (uint32_t u : shared) paired = paired || (klass(u, from) == v && klass(u, to) == target(v));
+      if (!paired) crossed_area += bind_area(t);
+    }
 
-    if (flips(from, to, moved)) {
+    if (folds_in_bind_pose(from, to, moved)) {
       ++stats_.rejected_flips;
       return false;
     }
+    if (!candidate.priced) {
+      const double length = glm::length(at(0, from) - at(0, to));
+      const double penalty =
+          kSeamWeight * crossed_area * length * length + flip_penalty(from, to, moved);
+      if (penalty > 0.0) {
+        Candidate again = candidate;
+        again.cost += penalty;
+        again.priced = true;
+        queue_.push(again);
+        return false;
+      }
+    }
+    if (crossed_area > 0.0 && stats_.seam_crossings++ == 0)
+      stats_.collapses_before_crossing = collapses_;
+    ++collapses_;
 
     // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
     for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
@@ -262,11 +285,41 @@ class Collapser {
     return best;
   }
 
-  // True when moving `from` onto `to` turns a surviving face too far in the bind pose or
-  // flips it in any sampled pose.
-  bool flips(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
-    const uint32_t poses = all_poses_ && !relaxed_ ? poses_ : 1;
-    for (uint32_t s = 0; s < poses; ++s)
+  double bind_area(uint32_t t) const {
+    const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)), c = at(0, position(t, 2));
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+
+  // True when moving `from` onto `to` turns a surviving face by more than ~75° in the
+  // bind pose.
+  bool folds_in_bind_pose(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
+    for (uint32_t t : moved) {
+      glm::dvec3 p[3], q[3];
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t x = position(t, c);
+        p[c] = at(0, x);
+        q[c] = x == from ? at(0, to) : p[c];
+      }
+      const glm::dvec3 before = glm::cross(p[1] - p[0], p[2] - p[0]);
+      const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
+      const double lb = glm::length(before), la = glm::length(after);
+      // note: a face with no area has no orientation to lose.
+      if (!(lb > 0.0)) continue;
+      if (!(la > 0.0) || glm::dot(before, after) <= kMinBindNormalDot * lb * la) return true;
+    }
+    return false;
+  }
+
+  // Expected cost of the faces the collapse flips in the sampled poses: per pose, each
+  // flipped face's area times the squared length of the move, averaged over all poses
+  // (a flip in one pose of S costs 1/S of it), so more poses refine the estimate instead
+  // of adding refusals.
+  double flip_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) {
+    if (!all_poses_ || poses_ < 2) return 0.0;
+    double sum = 0.0;
+    for (uint32_t s = 1; s < poses_; ++s) {
+      const glm::dvec3 d = at(s, from) - at(s, to);
+      const double length2 = glm::dot(d, d);
       for (uint32_t t : moved) {
         glm::dvec3 p[3], q[3];
         for (int c = 0; c < 3; ++c) {
@@ -276,13 +329,13 @@ class Collapser {
         }
         const glm::dvec3 before = glm::cross(p[1] - p[0], p[2] - p[0]);
         const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
-        const double lb = glm::length(before), la = glm::length(after);
-        // note: a face with no area has no orientation to lose.
-        if (!(lb > 0.0)) continue;
-        const double limit = s == 0 ? kMinBindNormalDot : kMinPoseNormalDot;
-        if (!(la > 0.0) || glm::dot(before, after) <= limit * lb * la) return true;
+        if (glm::dot(before, after) <= 0.0 && glm::length(before) > 0.0) {
+          sum += 0.5 * glm::length(before) * length2;
+          ++stats_.priced_flips;
+        }
       }
-    return false;
+    }
+    return kFlipWeight * sum / poses_;
   }
 
   const SimplifyMesh& mesh_;
@@ -298,16 +351,15 @@ class Collapser {
   std::vector<char> position_alive_;
   std::vector<uint32_t> version_;
   std::priority_queue<Candidate, std::vector<Candidate>, Later> queue_;
-  bool relaxed_ = false;
+  uint32_t collapses_ = 0;
 };
 
 }  // namespace
 
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, bool relax, DqemCost& cost,
-                                         CollapseStats& stats) {
-  return Collapser(mesh, posed, poses, all_poses, cost, stats).run(relax);
+                                         bool all_poses, DqemCost& cost, CollapseStats& stats) {
+  return Collapser(mesh, posed, poses, all_poses, cost, stats).run();
 }
 
 }  // namespace crowdbake

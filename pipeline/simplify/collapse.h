@@ -13,22 +13,28 @@
 namespace crowdbake {
 
 struct CollapseStats {
-  uint32_t strict_collapses = 0;  // collapses made before any rule was relaxed
   uint32_t locked_positions = 0;  // on non-manifold edges or complex borders: never moved
-  uint32_t rejected_flips = 0;    // collapses refused because a face flipped in some pose
+  uint32_t rejected_flips = 0;    // collapses refused because a face folded in the bind pose
   uint32_t rejected_topology = 0;
+  uint32_t priced_flips = 0;    // (face, pose) flips priced into candidates' costs
+  uint32_t seam_crossings = 0;  // collapses made that cross a UV seam or material border
+  // Collapses made before the first seam crossing: levels down to there keep every seam.
+  uint32_t collapses_before_crossing = 0;
 };
 
+// Penalties added to a candidate's DQEM cost, in the quadrics' units (area × squared
+// distance, normalised coordinates), with L the length of the collapsed edge:
+// - a corner that crosses a seam or material border: kSeamWeight × its face's area × L²;
+// - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S.
+constexpr double kSeamWeight = 1.0;
+constexpr double kFlipWeight = 1.0;
+
 // posed: every position in every pose (pose-major), pose 0 the bind pose. Returns the
-// collapses in order, in two phases:
-// 1. strict: attribute seams are kept and no face may flip in any pose (bind pose only
-//    when !all_poses);
-// 2. when relax is set and phase 1 is stuck, seams may be crossed (a moved corner takes
-//    the wedge with the nearest UV at the target) and flips are checked in the bind pose
-//    only, so coarse levels stay reachable. Levels above strict_collapses never see it.
+// collapses in cost order, under one set of rules all the way down: topology (link
+// condition, manifold borders, locked positions) and the bind-pose fold guard refuse;
+// seam crossings and flips in the other sampled poses (when all_poses) are priced.
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, bool relax, DqemCost& cost,
-                                         CollapseStats& stats);
+                                         bool all_poses, DqemCost& cost, CollapseStats& stats);
 
 }  // namespace crowdbake

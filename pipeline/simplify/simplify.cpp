@@ -49,14 +49,16 @@ ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& optio
   CollapseStats stats;
   const std::vector<CollapseRecord> records =
       collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                   options.check_flips_in_all_poses, options.relax_when_stuck, cost, stats);
+                   options.check_flips_in_all_poses, cost, stats);
   ProgressiveMesh pm =
       build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
   r.seconds_collapse = seconds_since(start);
   uint32_t removed = 0;
-  for (size_t i = 0; i < stats.strict_collapses; ++i)
+  for (size_t i = 0; i < stats.collapses_before_crossing; ++i)
     removed += static_cast<uint32_t>(records[i].wedges.size());
-  r.strict_min_vertices = mesh.vertex_count - removed;
+  r.seamless_min_vertices = mesh.vertex_count - removed;
+  r.seam_crossings = stats.seam_crossings;
+  r.priced_flips = stats.priced_flips;
 
   r.locked_vertices = stats.locked_positions;
   r.rejected_flips = stats.rejected_flips;

@@ -93,7 +93,7 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
   Outcome out;
   out.records =
       collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                   options.check_flips_in_all_poses, options.relax_when_stuck, cost, stats);
+                   options.check_flips_in_all_poses, cost, stats);
   out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive,
                                   out.records);
   expect_reconstruction_equals_replay(mesh, out.records, out.pm);

@@ -32,13 +32,9 @@ struct SimplifyOptions {
   PoseSource pose_source = PoseSource::kSampled;
   DqemForm form = DqemForm::kExact;
   std::string ranges_file;  // optional per-joint range JSON (docs/pose-ranges.md)
-  // Check every collapse for face flips in every sampled pose, not only the bind pose.
+  // Price face flips in every sampled pose into the collapse cost (a flip in one pose of
+  // S costs 1/S of it); false looks at the bind pose only.
   bool check_flips_in_all_poses = true;
-  // When no collapse passes the strict rules (seams kept, no flip in any pose), go on
-  // with relaxed ones (seams may be crossed, flips checked in the bind pose only) so
-  // coarse levels stay reachable. Levels above SimplifyReport::strict_min_vertices are
-  // unaffected.
-  bool relax_when_stuck = true;
   int threads = 0;  // 0 = hardware concurrency; the result never depends on it
 };
 
@@ -48,8 +44,12 @@ struct SimplifyReport {
   uint32_t positions = 0;        // distinct vertex positions after welding
   uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
   uint32_t degenerate_triangles_dropped = 0;
-  uint32_t rejected_flips = 0;
-  uint32_t strict_min_vertices = 0;  // coarsest level reached under the strict rules
+  uint32_t rejected_flips = 0;  // collapses refused because a face folded in the bind pose
+  uint32_t priced_flips = 0;    // (face, pose) flips priced into collapse costs
+  uint32_t seam_crossings = 0;  // collapses that cross a UV seam or material border
+  // Levels with at least this many vertices keep every seam and material border (the
+  // first seam crossing comes below it); the vertex count itself when none is crossed.
+  uint32_t seamless_min_vertices = 0;
   double seconds_poses = 0.0, seconds_quadrics = 0.0, seconds_collapse = 0.0;
   std::vector<std::string> warnings;
 };
