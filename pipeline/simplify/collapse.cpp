@@ -47,6 +47,7 @@ class Collapser {
       for (int k = 0; k < 3; ++k) incident_[position(t, k)].push_back(t);
     position_alive_.assign(positions, 1);
     version_.assign(positions, 0);
+    mark_small_parts();
   }
 
   std::vector<CollapseRecord> run() {
@@ -165,19 +166,30 @@ class Collapser {
     if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return reject_topology();
 
     // Link condition: the only positions next to both ends are the faces' third corners,
-    // otherwise the collapse would pinch the surface into a non-manifold edge.
+    // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
+    // faces with one third corner are the two sides of a flattened closed part: the
+    // collapse removes both.)
     std::vector<uint32_t> third;
     for (uint32_t t : shared)
       for (int c = 0; c < 3; ++c)
         if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
     std::sort(third.begin(), third.end());
+    third.erase(std::unique(third.begin(), third.end()), third.end());
     std::vector<uint32_t> common;
     const std::vector<uint32_t> nf = neighbours(from), nt = neighbours(to);
     std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
     if (common != third) return reject_topology();
 
+    // note: a closed part that has come down to a tetrahedron (an eye, a lock of hair, a
+    // bone of a skeleton) can only go on by flattening into two faces back to back, which
+    // the next collapse removes; otherwise every closed part would keep 4 faces at the
+    // lowest levels, however many parts there are, and the budget would go to them.
+    const bool closing = small_part_[from] && k == Kind::kInterior && incident_[from].size() == 3 &&
+                         incident_[to].size() == 3 && nf.size() == 3 && nt.size() == 3;
+
     // No face may end up duplicating one that already exists around `to`.
     for (uint32_t t : moved) {
+      if (closing) break;
       uint32_t x = 0, y = 0;
       for (int c = 0, n = 0; c < 3; ++c)
         if (position(t, c) != from) (n++ == 0 ? x : y) = position(t, c);
@@ -217,18 +229,19 @@ class Collapser {
       const uint32_t v = klass(t, from);
       // note: a substituted class is one no removed face pairs v with.
       bool paired = false;
-      for (uint32_t u : shared) paired = paired || (klass(u, from) == v && klass(u, to) == target(v));
+      for (uint32_t u : shared)
+        paired = paired || (klass(u, from) == v && klass(u, to) == target(v));
       if (!paired) crossed_area += bind_area(t);
     }
 
-    if (folds_in_bind_pose(from, to, moved)) {
+    if (!closing && folds_in_bind_pose(from, to, moved)) {
       ++stats_.rejected_flips;
       return false;
     }
     if (!candidate.priced) {
       const double length = glm::length(at(0, from) - at(0, to));
-      const double penalty =
-          kSeamWeight * crossed_area * length * length + flip_penalty(from, to, moved);
+      const double penalty = kSeamWeight * crossed_area * length * length +
+                             (closing ? 0.0 : flip_penalty(from, to, moved));
       if (penalty > 0.0) {
         Candidate again = candidate;
         again.cost += penalty;
@@ -285,8 +298,73 @@ class Collapser {
     return best;
   }
 
+  // Connected parts (on positions) whose bind-pose bounding box is under kSmallPartFraction
+  // of the whole character's may vanish at the lowest levels; larger parts (limbs, heads,
+  // tails, a skeleton's bones) and the largest part always keep at least a tetrahedron.
+  void mark_small_parts() {
+    const uint32_t positions = mesh_.position_count();
+    std::vector<uint32_t> up(positions);
+    for (uint32_t p = 0; p < positions; ++p) up[p] = p;
+    auto find = [&](uint32_t x) {
+      while (up[x] != x) x = up[x] = up[up[x]];
+      return x;
+    };
+    for (uint32_t t = 0; t < mesh_.triangle_count(); ++t)
+      for (int k = 1; k < 3; ++k) {
+        const uint32_t a = find(position(t, 0)), b = find(position(t, k));
+        if (a != b) up[std::max(a, b)] = std::min(a, b);
+      }
+    std::vector<glm::dvec3> lo(positions, glm::dvec3(1e300)), hi(positions, glm::dvec3(-1e300));
+    glm::dvec3 all_lo(1e300), all_hi(-1e300);
+    for (uint32_t p = 0; p < positions; ++p) {
+      if (incident_[p].empty()) continue;
+      const uint32_t r = find(p);
+      lo[r] = glm::min(lo[r], at(0, p)), hi[r] = glm::max(hi[r], at(0, p));
+      all_lo = glm::min(all_lo, at(0, p)), all_hi = glm::max(all_hi, at(0, p));
+    }
+    const double whole = glm::length(all_hi - all_lo);
+    uint32_t largest = 0;
+    double largest_size = -1.0;
+    for (uint32_t p = 0; p < positions; ++p)
+      if (find(p) == p && !incident_[p].empty() && glm::length(hi[p] - lo[p]) > largest_size)
+        largest = p, largest_size = glm::length(hi[p] - lo[p]);
+    // note: a part that leaves the rest of the character in some pose (a prop left on the
+    // ground while the body jumps) is not small in what its loss costs: it must stay within
+    // the limit of a part that does not vanish, in every sampled pose. Brute force over positions,
+    // strided so that huge meshes with many parts stay cheap.
+    const double limit = kSmallPartFraction * whole;
+    std::vector<uint32_t> roots;
+    for (uint32_t p = 0; p < positions; ++p)
+      if (find(p) == p && p != largest && !incident_[p].empty() &&
+          glm::length(hi[p] - lo[p]) < limit)
+        roots.push_back(p);
+    std::vector<char> candidate(positions, 0), small(positions, 0);
+    for (uint32_t r : roots) candidate[r] = 1;
+    const uint64_t work = uint64_t{roots.size()} * positions * poses_;
+    const uint32_t stride = static_cast<uint32_t>(std::max<uint64_t>(1, work / 50000000));
+    for (uint32_t r : roots) {
+      bool near = true;
+      for (uint32_t s = 0; s < poses_ && near; ++s) {
+        glm::dvec3 centre(0.0);
+        double count = 0.0;
+        for (uint32_t p = 0; p < positions; ++p)
+          if (!incident_[p].empty() && find(p) == r) centre += at(s, p), count += 1.0;
+        centre /= std::max(count, 1.0);
+        double nearest = 1e300;
+        for (uint32_t p = 0; p < positions; p += stride)
+          if (!incident_[p].empty() && !candidate[find(p)])
+            nearest = std::min(nearest, glm::length(at(s, p) - centre));
+        near = nearest < limit;
+      }
+      small[r] = near;
+    }
+    small_part_.assign(positions, 0);
+    for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[find(p)];
+  }
+
   double bind_area(uint32_t t) const {
-    const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)), c = at(0, position(t, 2));
+    const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)),
+                     c = at(0, position(t, 2));
     return 0.5 * glm::length(glm::cross(b - a, c - a));
   }
 
@@ -349,6 +427,7 @@ class Collapser {
   std::vector<char> triangle_alive_;
   std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
   std::vector<char> position_alive_;
+  std::vector<char> small_part_;  // position lies on a part that may vanish
   std::vector<uint32_t> version_;
   std::priority_queue<Candidate, std::vector<Candidate>, Later> queue_;
   uint32_t collapses_ = 0;

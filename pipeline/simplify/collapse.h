@@ -28,6 +28,9 @@ struct CollapseStats {
 // - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S.
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
+// A connected part whose bind-pose bounding-box diagonal is under this fraction of the
+// character's may vanish at the lowest levels (eyes, buttons, locks of hair).
+constexpr double kSmallPartFraction = 0.1;
 
 // posed: every position in every pose (pose-major), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
