@@ -250,7 +250,7 @@ int run_bench_simplify(const BenchSettings& settings) {
   BenchResult result;
   result.quick = settings.quick;
   result.frame_stride = settings.quick ? 6 : 1;
-  result.fractions = {0.50, 0.25, 0.10, 0.05};
+  result.fractions = {0.25, 0.10, 0.05, 0.02};
   result.gltfpack = find_gltfpack();
   if (result.gltfpack.empty())
     std::cerr << "note: gltfpack not found; run scripts/gltfpack/install.sh <build>/npm-gltfpack "

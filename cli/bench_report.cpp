@@ -124,14 +124,15 @@ void print_table(const BenchAsset& a, const std::vector<double>& fractions) {
 void print_summary(const BenchResult& result) {
   std::printf(
       "\nDQEM against the better peer (targets: max below both peers on every asset; mean-RMS\n"
-      "at least 20%% below the better peer's on average), %zu assets\n",
+      "at most 0.75x the better peer's on average), %zu assets\n",
       result.assets.size());
   std::printf("  %-20s", "config");
-  for (double f : {0.25, 0.10}) std::printf(" | %2.0f%%: max < peers  rms / best peer", 100.0 * f);
+  for (double f : result.fractions)
+    std::printf(" | %2.0f%%: max < peers  rms / best peer", 100.0 * f);
   std::printf("\n");
   for (const std::string& config : dqem_configs(result)) {
     std::printf("  %-20s", config.c_str());
-    for (double f : {0.25, 0.10}) {
+    for (double f : result.fractions) {
       const Versus v = versus_peers(result, config, f);
       std::printf(" | %9d of %-2d %16.2f", v.max_below_both, v.assets,
                   v.assets ? v.rms_ratio_sum / v.assets : NAN);
@@ -215,7 +216,7 @@ void write_json(const BenchResult& result, const std::string& path) {
   }
   j["versus_peers"] = nlohmann::json::array();
   for (const std::string& config : dqem_configs(result))
-    for (double f : {0.25, 0.10}) {
+    for (double f : result.fractions) {
       const Versus v = versus_peers(result, config, f);
       j["versus_peers"].push_back(
           {{"config", config},

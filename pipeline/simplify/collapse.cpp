@@ -12,11 +12,15 @@ namespace {
 constexpr double kMinBindNormalDot = 0.25;
 
 struct Candidate {
-  double cost;
+  double cost;  // base DQEM cost, plus the penalties once priced
   uint32_t from, to;
-  uint32_t version_from, version_to;
-  bool priced = false;  // the penalties for posed flips and seam crossings are in `cost`
+  uint32_t version_from, version_to;  // quadric versions the base cost was computed with
+  double base = 0.0;
+  bool priced = false;  // penalties for posed flips and seam crossings are in `cost`
+  uint32_t star_from = 0, star_to = 0;  // neighbourhood versions the penalties were priced on
 };
+
+enum class Outcome { kDone, kRefused, kRequeued };
 
 // Lowest cost first; ties broken by ids so the order never depends on the heap's history.
 struct Later {
@@ -47,6 +51,8 @@ class Collapser {
       for (int k = 0; k < 3; ++k) incident_[position(t, k)].push_back(t);
     position_alive_.assign(positions, 1);
     version_.assign(positions, 0);
+    star_.assign(positions, 0);
+    refused_.resize(positions);
     mark_small_parts();
   }
 
@@ -76,7 +82,15 @@ class Collapser {
           version_[c.from] != c.version_from || version_[c.to] != c.version_to)
         continue;
       CollapseRecord record;
-      if (try_collapse(c, record)) records.push_back(std::move(record));
+      const Outcome outcome = try_collapse(c, record);
+      if (outcome == Outcome::kDone) {
+        records.push_back(std::move(record));
+      } else if (outcome == Outcome::kRefused) {
+        // note: a refused collapse may become legal when either end's neighbourhood
+        // changes; it waits at both ends instead of being pushed after every collapse.
+        refused_[c.from].push_back({c.from, c.to});
+        refused_[c.to].push_back({c.from, c.to});
+      }
     }
   }
 
@@ -88,7 +102,8 @@ class Collapser {
   }
 
   void push(uint32_t from, uint32_t to) {
-    queue_.push({cost_.cost(from, to), from, to, version_[from], version_[to]});
+    const double c = cost_.cost(from, to);
+    queue_.push({c, from, to, version_[from], version_[to], c});
   }
 
   void compact(uint32_t p) {
@@ -148,14 +163,14 @@ class Collapser {
     return -1;
   }
 
-  bool reject_topology() {
+  Outcome reject_topology() {
     ++stats_.rejected_topology;
-    return false;
+    return Outcome::kRefused;
   }
 
   // Performs the collapse when it is legal and its penalties are priced in; a legal
   // candidate with a penalty still to pay goes back into the queue at its full cost.
-  bool try_collapse(const Candidate& candidate, CollapseRecord& record) {
+  Outcome try_collapse(const Candidate& candidate, CollapseRecord& record) {
     const uint32_t from = candidate.from, to = candidate.to;
     compact(from);
     compact(to);
@@ -236,18 +251,21 @@ class Collapser {
 
     if (!closing && folds_in_bind_pose(from, to, moved)) {
       ++stats_.rejected_flips;
-      return false;
+      return Outcome::kRefused;
     }
-    if (!candidate.priced) {
+    const bool priced =
+        candidate.priced && candidate.star_from == star_[from] && candidate.star_to == star_[to];
+    if (!priced) {
       const double length = glm::length(at(0, from) - at(0, to));
       const double penalty = kSeamWeight * crossed_area * length * length +
                              (closing ? 0.0 : flip_penalty(from, to, moved));
       if (penalty > 0.0) {
         Candidate again = candidate;
-        again.cost += penalty;
+        again.cost = candidate.base + penalty;
         again.priced = true;
+        again.star_from = star_[from], again.star_to = star_[to];
         queue_.push(again);
-        return false;
+        return Outcome::kRequeued;
       }
     }
     if (crossed_area > 0.0 && stats_.seam_crossings++ == 0)
@@ -271,16 +289,34 @@ class Collapser {
     incident_[from].clear();
     cost_.merge(from, to);
 
-    // `to` has a new quadric; its neighbours have new faces whose validity may differ.
+    // `to` has a new quadric, so its edges get new costs; the ring's other edges keep theirs
+    // (their quadrics did not change) but their stars did: penalties priced on the old
+    // stars are priced again, and collapses refused there get another chance.
     ++version_[to];
+    ++star_[to];
     const std::vector<uint32_t> ring = neighbours(to);
-    for (uint32_t x : ring) ++version_[x];
     for (uint32_t x : ring) {
+      ++star_[x];
       push(to, x), push(x, to);
-      for (uint32_t y : neighbours(x))
-        if (y != to) push(x, y), push(y, x);
     }
-    return true;
+    retry_refused(to, ring);
+    return Outcome::kDone;
+  }
+
+  // Pushes the refused collapses waiting at `to` and its ring once each (a pair waits at
+  // both its ends; pushing it twice would make it wait twice over).
+  void retry_refused(uint32_t to, const std::vector<uint32_t>& ring) {
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    auto take = [&](uint32_t p) {
+      pairs.insert(pairs.end(), refused_[p].begin(), refused_[p].end());
+      refused_[p].clear();
+    };
+    take(to);
+    for (uint32_t x : ring) take(x);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    for (const auto& [a, b] : pairs)
+      if (position_alive_[a] && position_alive_[b] && a != to && b != to) push(a, b);
   }
 
   // The attribute class at position p in the same primitive as class v with the nearest
@@ -427,8 +463,10 @@ class Collapser {
   std::vector<char> triangle_alive_;
   std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
   std::vector<char> position_alive_;
-  std::vector<char> small_part_;  // position lies on a part that may vanish
-  std::vector<uint32_t> version_;
+  std::vector<char> small_part_;   // position lies on a part that may vanish
+  std::vector<uint32_t> version_;  // per position: bumped when its quadric changes
+  std::vector<uint32_t> star_;     // per position: bumped when its incident faces change
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
   std::priority_queue<Candidate, std::vector<Candidate>, Later> queue_;
   uint32_t collapses_ = 0;
 };

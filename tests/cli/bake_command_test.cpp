@@ -105,6 +105,21 @@ TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
 }
 
+// The two-phase simplifier's switch is gone; an old config says so instead of being ignored.
+TEST(BakeCommandErrors, RemovedRelaxWhenStuckKeyIsNamed) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"simplify": {"relax_when_stuck": true}})";
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
+                           (dir / "config.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("'simplify.relax_when_stuck': is no longer an option"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
+}
+
 TEST(BakeCommandErrors, BadConfigValue) {
   test::TempDir dir;
   const auto input = write_character(dir);
