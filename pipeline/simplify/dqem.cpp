@@ -74,7 +74,11 @@ DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh&
   }
   // note: poses are summed in fixed chunks, then the chunks in order, so the floating-point
   // sums are the same whatever the thread count.
-  const size_t chunks = std::min<size_t>(poses_, 16);
+  // note: on big meshes fewer chunks bound the partial sums' memory (chunks x positions
+  // quadrics); the partition depends on the mesh only, never on the thread count.
+  const size_t max_chunks =
+      size_t{positions_} * 16 * sizeof(Quadric) <= (size_t{128} << 20) ? 16 : 4;
+  const size_t chunks = std::min<size_t>(poses_, max_chunks);
   std::vector<std::vector<Quadric>> partial(chunks, std::vector<Quadric>(positions_));
   const double weight = 1.0 / poses_;
   parallel_for(chunks, threads, [&](size_t c) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 #include "crowdbake/pipeline/error.h"
@@ -42,7 +43,21 @@ ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& optio
   r.seconds_poses = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  DqemCost cost(options.form, asset, mesh, poses, posed, options.threads);
+  r.form = options.form;
+  const double exact_megabytes =
+      static_cast<double>(poses.size()) * mesh.position_count() * sizeof(Quadric) / 1048576.0;
+  if (r.form == DqemForm::kExact && options.max_quadric_megabytes > 0.0 &&
+      exact_megabytes > options.max_quadric_megabytes) {
+    r.form = DqemForm::kPullback;
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "exact DQEM would keep %.0f MB of quadrics (%zu poses x %u positions), more than "
+                  "%.0f MB; used the pull-back form",
+                  exact_megabytes, poses.size(), mesh.position_count(),
+                  options.max_quadric_megabytes);
+    r.warnings.push_back(line);
+  }
+  DqemCost cost(r.form, asset, mesh, poses, posed, options.threads);
   r.seconds_quadrics = seconds_since(start);
 
   start = std::chrono::steady_clock::now();

@@ -91,9 +91,8 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
     }
   CollapseStats stats;
   Outcome out;
-  out.records =
-      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                   options.check_flips_in_all_poses, cost, stats);
+  out.records = collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
+                             options.check_flips_in_all_poses, cost, stats);
   out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive,
                                   out.records);
   expect_reconstruction_equals_replay(mesh, out.records, out.pm);
@@ -200,6 +199,22 @@ TEST(SimplifyHardCases, PerfectlyFlatRegionHasSingularQuadrics) {
 
 TEST(SimplifyHardCases, SingleTriangle) {
   expect_valid(from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}));
+}
+
+// Every corner at one point: nothing to weld into a surface. The simplifier says so and
+// gives the (empty) sequence instead of crashing.
+TEST(SimplifyHardCases, AllCornersCoincident) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(3, 3, p, i);
+  for (glm::vec3& v : p) v = glm::vec3(0.25f);
+  const SkinnedAsset a = from(p, i);
+  SimplifyReport report;
+  const ProgressiveMesh pm = simplify(a, SimplifyOptions{}, &report);
+  EXPECT_EQ(check_progressive_mesh(pm), "");
+  EXPECT_EQ(report.degenerate_triangles_dropped, a.triangle_count());
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.front().find("dropped"), std::string::npos);
 }
 
 TEST(SimplifyHardCases, StripThatIsAllBorder) {
@@ -321,6 +336,28 @@ TEST(SimplifyOptionsErrors, ZeroSamplesIsAUsageError) {
   SimplifyOptions o;
   o.samples = 0;
   EXPECT_THROW(simplify(from(p, i), o), Error);
+}
+
+// Past the quadric budget the exact form falls back to the pull-back form, says so, and gives
+// exactly what asking for the pull-back form gives.
+TEST(SimplifyOptionsMemory, ExactFormOverTheQuadricBudgetUsesPullback) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(8, 8, p, i, 0.05f);
+  const SkinnedAsset a = from(p, i);
+  SimplifyOptions tight;
+  tight.max_quadric_megabytes = 1e-3;  // 81 positions x 16 poses x 80 bytes is 0.1 MB
+  SimplifyReport report;
+  const ProgressiveMesh pm = simplify(a, tight, &report);
+  EXPECT_EQ(report.form, DqemForm::kPullback);
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.back().find("used the pull-back form"), std::string::npos);
+  SimplifyOptions pullback;
+  pullback.form = DqemForm::kPullback;
+  EXPECT_EQ(simplify(a, pullback).collapse_to, pm.collapse_to);
+  SimplifyReport roomy;
+  simplify(a, SimplifyOptions{}, &roomy);
+  EXPECT_EQ(roomy.form, DqemForm::kExact);
 }
 
 TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {

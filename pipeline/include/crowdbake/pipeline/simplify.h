@@ -36,6 +36,10 @@ struct SimplifyOptions {
   // S costs 1/S of it); false looks at the bind pose only.
   bool check_flips_in_all_poses = true;
   int threads = 0;  // 0 = hardware concurrency; the result never depends on it
+  // The exact form keeps S quadrics (80 bytes each) per position; above this budget the
+  // pull-back form (one per position) is used instead and the report says so. 256 MB is
+  // S = 16 on about 200,000 positions (400k triangles); 0 = no limit.
+  double max_quadric_megabytes = 256.0;
 };
 
 struct SimplifyReport {
@@ -44,9 +48,10 @@ struct SimplifyReport {
   uint32_t positions = 0;        // distinct vertex positions after welding
   uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
   uint32_t degenerate_triangles_dropped = 0;
-  uint32_t rejected_flips = 0;  // collapses refused because a face folded in the bind pose
-  uint32_t priced_flips = 0;    // (face, pose) flips priced into collapse costs
-  uint32_t seam_crossings = 0;  // collapses that cross a UV seam or material border
+  uint32_t rejected_flips = 0;       // collapses refused because a face folded in the bind pose
+  uint32_t priced_flips = 0;         // (face, pose) flips priced into collapse costs
+  uint32_t seam_crossings = 0;       // collapses that cross a UV seam or material border
+  DqemForm form = DqemForm::kExact;  // the form used (see max_quadric_megabytes)
   // Levels with at least this many vertices keep every seam and material border (the
   // first seam crossing comes below it); the vertex count itself when none is crossed.
   uint32_t seamless_min_vertices = 0;
