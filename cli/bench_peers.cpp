@@ -40,41 +40,6 @@ Primitive compact(const Primitive& src, const std::vector<uint32_t>& indices) {
   return dst;
 }
 
-// meshopt_simplify on every primitive at ratio × its index count, on a position-welded
-// copy of the primitive.
-// note: a shadow index buffer alone is not enough in 0.18: the duplicates it leaves
-// unreferenced still share the welded vertices' positions, so meshopt classifies those
-// vertices as seams and, on corner-split meshes like Fox, collapses nothing. A careful user
-// welds the vertex buffer itself (meshopt_generateVertexRemap over positions only) and maps
-// the result back to the first original vertex at each position for its attributes.
-SkinnedAsset meshopt_simplify_all(const SkinnedAsset& asset, double ratio) {
-  SkinnedAsset lod = asset;
-  lod.clips.clear();
-  lod.primitives.clear();
-  for (const Primitive& p : asset.primitives) {
-    const size_t n = p.indices.size();
-    std::vector<unsigned int> remap(p.vertex_count());
-    const size_t welded_count = meshopt_generateVertexRemap(
-        remap.data(), p.indices.data(), n, p.positions.data(), p.vertex_count(), sizeof(glm::vec3));
-    std::vector<unsigned int> welded(n), out(n);
-    meshopt_remapIndexBuffer(welded.data(), p.indices.data(), n, remap.data());
-    std::vector<glm::vec3> positions(welded_count);
-    meshopt_remapVertexBuffer(positions.data(), p.positions.data(), p.vertex_count(),
-                              sizeof(glm::vec3), remap.data());
-    std::vector<unsigned int> first(welded_count, UINT32_MAX);
-    for (unsigned int v = 0; v < p.vertex_count(); ++v)
-      if (remap[v] != ~0u && first[remap[v]] == UINT32_MAX) first[remap[v]] = v;
-    const size_t target = static_cast<size_t>(std::lround(ratio * double(n / 3))) * 3;
-    float error = 0.0f;
-    // note: no error bound: the target count alone decides where it stops.
-    out.resize(meshopt_simplify(out.data(), welded.data(), n, &positions[0].x, welded_count,
-                                sizeof(glm::vec3), target, FLT_MAX, 0, &error));
-    for (unsigned int& i : out) i = first[i];
-    if (!out.empty()) lod.primitives.push_back(compact(p, out));
-  }
-  return lod;
-}
-
 // Maps the imported LoD's joints onto the original skeleton by name and brings its
 // vertices into the original's bind space.
 // note: the original is skinned with v' = G_j · B_j · v, gltfpack's output with its own
@@ -130,6 +95,41 @@ void adopt_skeleton(SkinnedAsset& lod, const SkinnedAsset& original) {
 uint32_t distance(uint32_t a, uint32_t b) { return a > b ? a - b : b - a; }
 
 }  // namespace
+
+// meshopt_simplify on every primitive at ratio × its index count, on a position-welded
+// copy of the primitive.
+// note: a shadow index buffer alone is not enough in 0.18: the duplicates it leaves
+// unreferenced still share the welded vertices' positions, so meshopt classifies those
+// vertices as seams and, on corner-split meshes like Fox, collapses nothing. A careful user
+// welds the vertex buffer itself (meshopt_generateVertexRemap over positions only) and maps
+// the result back to the first original vertex at each position for its attributes.
+SkinnedAsset meshopt_simplify_all(const SkinnedAsset& asset, double ratio) {
+  SkinnedAsset lod = asset;
+  lod.clips.clear();
+  lod.primitives.clear();
+  for (const Primitive& p : asset.primitives) {
+    const size_t n = p.indices.size();
+    std::vector<unsigned int> remap(p.vertex_count());
+    const size_t welded_count = meshopt_generateVertexRemap(
+        remap.data(), p.indices.data(), n, p.positions.data(), p.vertex_count(), sizeof(glm::vec3));
+    std::vector<unsigned int> welded(n), out(n);
+    meshopt_remapIndexBuffer(welded.data(), p.indices.data(), n, remap.data());
+    std::vector<glm::vec3> positions(welded_count);
+    meshopt_remapVertexBuffer(positions.data(), p.positions.data(), p.vertex_count(),
+                              sizeof(glm::vec3), remap.data());
+    std::vector<unsigned int> first(welded_count, UINT32_MAX);
+    for (unsigned int v = 0; v < p.vertex_count(); ++v)
+      if (remap[v] != ~0u && first[remap[v]] == UINT32_MAX) first[remap[v]] = v;
+    const size_t target = static_cast<size_t>(std::lround(ratio * double(n / 3))) * 3;
+    float error = 0.0f;
+    // note: no error bound: the target count alone decides where it stops.
+    out.resize(meshopt_simplify(out.data(), welded.data(), n, &positions[0].x, welded_count,
+                                sizeof(glm::vec3), target, FLT_MAX, 0, &error));
+    for (unsigned int& i : out) i = first[i];
+    if (!out.empty()) lod.primitives.push_back(compact(p, out));
+  }
+  return lod;
+}
 
 PeerLod meshopt_lod(const SkinnedAsset& asset, uint32_t target) {
   PeerLod r;

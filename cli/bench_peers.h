@@ -32,6 +32,10 @@ struct PeerLod {
 
 PeerLod meshopt_lod(const SkinnedAsset& asset, uint32_t target_positions);
 
+// One meshopt_simplify run per primitive at ratio × its index count, on a position-welded
+// copy (see bench_peers.cpp for why); kept vertices keep the first original's attributes.
+SkinnedAsset meshopt_simplify_all(const SkinnedAsset& asset, double ratio);
+
 // `gltfpack`: the program to run; `input_glb`: export_glb(asset); `work_dir`: scratch.
 PeerLod gltfpack_lod(const SkinnedAsset& asset, const std::string& gltfpack,
                      const std::string& input_glb, const std::string& work_dir,

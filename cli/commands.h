@@ -70,6 +70,16 @@ struct BenchSettings {
 
 int run_bench_simplify(const BenchSettings& settings);
 
+// `crowdbake bench scale FILE...`: simplify time and peak memory at scale, against
+// meshoptimizer (docs/accuracy.md, "At scale").
+struct BenchScaleSettings {
+  std::vector<std::string> files;
+  double meshopt_ratio = 0.1;
+  int threads = 0;
+};
+
+int run_bench_scale(const BenchScaleSettings& settings);
+
 // `crowdbake render SCENE.json -o OUT.png`: one frame, or with --frames a sequence into a
 // folder, rendered offscreen with Vulkan (lavapipe on machines without a GPU).
 struct RenderSettings {

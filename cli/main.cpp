@@ -88,6 +88,13 @@ int main(int argc, char** argv) {
                                "Only the generated spectator");
   bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
 
+  crowdbake::cli::BenchScaleSettings bench_scale;
+  CLI::App* bench_scale_cmd = bench_cmd->add_subcommand(
+      "scale", "Simplify time and peak memory of big characters, against meshoptimizer");
+  bench_scale_cmd->add_option("files", bench_scale.files, "Characters (make_limb_chain)")
+      ->required();
+  bench_scale_cmd->add_option("--threads", bench_scale.threads, "Threads (0 = all cores)");
+
   crowdbake::cli::BenchRenderSettings bench_render;
   CLI::App* bench_render_cmd = bench_cmd->add_subcommand(
       "render",
@@ -227,6 +234,7 @@ int main(int argc, char** argv) {
     if (*bake_cmd) return crowdbake::cli::run_bake(bake);
     if (*diff_cmd) return crowdbake::cli::run_diff(diff);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
+    if (*bench_scale_cmd) return crowdbake::cli::run_bench_scale(bench_scale);
     if (*bench_render_cmd) return crowdbake::cli::run_bench_render(bench_render);
     if (*render_cmd) {
       render.frames_given = frames_opt->count() > 0;

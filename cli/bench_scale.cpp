@@ -1,0 +1,58 @@
+// `crowdbake bench scale FILE...`: simplification time and peak memory of the default DQEM
+// settings against meshoptimizer on big characters (docs/accuracy.md, "At scale"); the
+// characters come from samples/limb_chain (make_limb_chain --triangles N).
+#include <chrono>
+#include <cstdio>
+
+#include "bench_child.h"
+#include "bench_peers.h"
+#include "commands.h"
+#include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/simplify.h"
+
+namespace crowdbake::cli {
+
+int run_bench_scale(const BenchScaleSettings& settings) {
+  std::printf("%-28s %9s %9s | %-9s %9s %9s %9s | %9s %9s\n", "character", "triangles", "positions",
+              "form", "DQEM s", "peak MB", "min tris", "meshopt s", "peak MB");
+  for (const std::string& file : settings.files) {
+    const auto start = std::chrono::steady_clock::now();
+    const SkinnedAsset asset = import_asset(file);
+    const double import_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // note: the child's results come back as text, parsed below.
+    const ChildResult dqem = run_in_child([&] {
+      SimplifyReport report;
+      SimplifyOptions options;
+      options.threads = settings.threads;
+      const ProgressiveMesh pm = simplify(asset, options, &report);
+      return std::to_string(report.positions) + " " +
+             (report.form == DqemForm::kExact ? "exact" : "pullback") + " " +
+             std::to_string(pm.triangle_count[pm.min_vertices]);
+    });
+    const ChildResult meshopt = run_in_child([&] {
+      return std::to_string(meshopt_simplify_all(asset, settings.meshopt_ratio).triangle_count());
+    });
+    if (!dqem.ok || !meshopt.ok)
+      throw Error(Error::Kind::kInput, file,
+                  "a benchmark run failed: " + (dqem.ok ? meshopt.error : dqem.error));
+    unsigned positions = 0, min_triangles = 0;
+    char form[16] = {};
+    std::sscanf(dqem.payload.c_str(), "%u %15s %u", &positions, form, &min_triangles);
+    std::printf("%-28s %9zu %9u | %-9s %9.2f %9.0f %9u | %9.2f %9.0f   (import %.2f s)\n",
+                file.substr(file.find_last_of('/') + 1).c_str(), asset.triangle_count(), positions,
+                form, dqem.seconds, dqem.peak_rss_mb, min_triangles, meshopt.seconds,
+                meshopt.peak_rss_mb, import_seconds);
+    std::fflush(stdout);
+  }
+  std::printf(
+      "\nDQEM: simplify() with the default options, every level at once (S poses, quadrics, "
+      "collapses, arrays);\nmeshopt: one meshopt_simplify per primitive to %.0f%% of its "
+      "indices on a position-welded copy.\nPeak MB: how far the forked child's resident set "
+      "rose above its start.\n",
+      100.0 * settings.meshopt_ratio);
+  return 0;
+}
+
+}  // namespace crowdbake::cli
