@@ -215,7 +215,7 @@ BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
   std::vector<const SkinnedAsset*> pointers;
   for (const SkinnedAsset& lod : lods) pointers.push_back(&lod);
   AnimatedErrorOptions options;
-  options.frame_stride = settings.quick ? 6 : 1;
+  options.frame_stride = settings.frame_stride > 0 ? settings.frame_stride : settings.quick ? 6 : 1;
   options.threads = settings.threads;
   const std::vector<AnimatedError> errors = animated_error(asset, pointers, options);
   out.seconds_error =
@@ -249,7 +249,7 @@ int run_bench_simplify(const BenchSettings& settings) {
   const Progress progress;
   BenchResult result;
   result.quick = settings.quick;
-  result.frame_stride = settings.quick ? 6 : 1;
+  result.frame_stride = settings.frame_stride > 0 ? settings.frame_stride : settings.quick ? 6 : 1;
   result.fractions = {0.25, 0.10, 0.05, 0.02};
   result.gltfpack = find_gltfpack();
   if (result.gltfpack.empty())

@@ -66,6 +66,7 @@ struct BenchSettings {
   bool quick = false;           // fewer configurations, every 6th frame (CI smoke test)
   bool spectator_only = false;  // skip the manifest assets
   int threads = 0;              // 0 = hardware concurrency
+  int frame_stride = 0;         // measure every k-th 30 fps frame; 0 = 6 with quick, else 1
 };
 
 int run_bench_simplify(const BenchSettings& settings);
