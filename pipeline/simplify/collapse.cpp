@@ -4,6 +4,8 @@
 #include <cmath>
 #include <queue>
 
+#include "eval/triangle_bvh.h"
+
 namespace crowdbake {
 namespace {
 
@@ -258,8 +260,10 @@ class Collapser {
     if (!priced) {
       const double length = glm::length(at(0, from) - at(0, to));
       const double penalty = kSeamWeight * crossed_area * length * length +
-                             (closing ? 0.0 : flip_penalty(from, to, moved));
-      if (penalty > 0.0) {
+                             (closing ? 0.0 : flip_penalty(from, to, moved)) +
+                             left_behind_penalty(from, to, moved);
+      // note: a candidate still cheaper than the queue's top would be popped next anyway.
+      if (penalty > 0.0 && !queue_.empty() && candidate.base + penalty > queue_.top().cost) {
         Candidate again = candidate;
         again.cost = candidate.base + penalty;
         again.priced = true;
@@ -422,6 +426,30 @@ class Collapser {
       if (!(la > 0.0) || glm::dot(before, after) <= kMinBindNormalDot * lb * la) return true;
     }
     return false;
+  }
+
+  // How far the surface moves away from where `from` was: per pose, the squared distance
+  // from `from` to the nearest face around `to` after the collapse, times the bind-pose area
+  // around `from`, averaged over the poses. QEM measures the new vertex against the old
+  // planes only; a thin feature (a tail, a finger) that slides along its own side planes
+  // costs nothing there while its tip is left far from the new surface.
+  double left_behind_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) {
+    double around = 0.0;
+    for (uint32_t t : incident_[from]) around += bind_area(t);
+    double sum = 0.0;
+    for (uint32_t s = 0; s < poses_; ++s) {
+      const glm::dvec3& x = at(s, from);
+      double best = glm::dot(x - at(s, to), x - at(s, to));
+      for (uint32_t t : moved) {
+        glm::dvec3 q[3];
+        for (int c = 0; c < 3; ++c)
+          q[c] = position(t, c) == from ? at(s, to) : at(s, position(t, c));
+        const glm::dvec3 y = closest_point_on_triangle(x, q[0], q[1], q[2]);
+        best = std::min(best, glm::dot(x - y, x - y));
+      }
+      sum += best;
+    }
+    return kLeftBehindWeight * around * sum / poses_;
   }
 
   // Expected cost of the faces the collapse flips in the sampled poses: per pose, each

@@ -25,9 +25,12 @@ struct CollapseStats {
 // Penalties added to a candidate's DQEM cost, in the quadrics' units (area × squared
 // distance, normalised coordinates), with L the length of the collapsed edge:
 // - a corner that crosses a seam or material border: kSeamWeight × its face's area × L²;
-// - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S.
+// - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S;
+// - the surface leaving `from` behind: kLeftBehindWeight × the area around `from` × the
+//   squared distance from `from` to the new faces, averaged over the poses.
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
+constexpr double kLeftBehindWeight = 3.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
