@@ -100,7 +100,7 @@ class Collapser {
     return mesh_.position_of[corner_[3 * triangle + k]];
   }
   const glm::dvec3& at(uint32_t pose, uint32_t p) const {
-    return posed_[size_t{pose} * mesh_.position_count() + p];
+    return posed_[size_t{p} * poses_ + pose];
   }
 
   void push(uint32_t from, uint32_t to) {

@@ -35,7 +35,7 @@ constexpr double kLeftBehindWeight = 3.0;
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
 
-// posed: every position in every pose (pose-major), pose 0 the bind pose. Returns the
+// posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
 // condition, manifold borders, locked positions) and the bind-pose fold guard refuse;
 // seam crossings and flips in the other sampled poses (when all_poses) are priced.

@@ -55,6 +55,12 @@ void accumulate_pose(const SimplifyMesh& mesh, const std::vector<BorderEdge>& bo
 
 }  // namespace
 
+std::vector<glm::dvec3> DqemCost::pose_of(const std::vector<glm::dvec3>& posed, size_t s) const {
+  std::vector<glm::dvec3> x(positions_);
+  for (uint32_t p = 0; p < positions_; ++p) x[p] = posed[size_t{p} * poses_ + s];
+  return x;
+}
+
 DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh& mesh,
                    const std::vector<std::vector<glm::dmat4>>& poses,
                    const std::vector<glm::dvec3>& posed, int threads)
@@ -67,7 +73,7 @@ DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh&
     quadrics_.assign(size_t{positions_} * poses_, Quadric{});
     parallel_for(poses_, threads, [&](size_t s) {
       std::vector<Quadric> acc;
-      accumulate_pose(mesh, borders, posed.data() + s * positions_, acc);
+      accumulate_pose(mesh, borders, pose_of(posed, s).data(), acc);
       for (uint32_t p = 0; p < positions_; ++p) quadrics_[size_t{p} * poses_ + s] = acc[p];
     });
     return;
@@ -84,7 +90,7 @@ DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh&
   parallel_for(chunks, threads, [&](size_t c) {
     std::vector<Quadric> acc;
     for (size_t s = c * poses_ / chunks; s < (c + 1) * poses_ / chunks; ++s) {
-      accumulate_pose(mesh, borders, posed.data() + s * positions_, acc);
+      accumulate_pose(mesh, borders, pose_of(posed, s).data(), acc);
       for (uint32_t p = 0; p < positions_; ++p)
         partial[c][p] += pull_back(acc[p], position_transform(asset, mesh, p, poses[s])) * weight;
     }
@@ -98,7 +104,7 @@ double DqemCost::cost(uint32_t from, uint32_t to) const {
   if (form_ == DqemForm::kPullback) {
     Quadric q = quadrics_[from];
     q += quadrics_[to];
-    return evaluate(q, posed_[to]);
+    return evaluate(q, posed_[size_t{to} * poses_]);
   }
   double sum = 0.0;
   const Quadric* qf = &quadrics_[size_t{from} * poses_];
@@ -106,7 +112,7 @@ double DqemCost::cost(uint32_t from, uint32_t to) const {
   for (uint32_t s = 0; s < poses_; ++s) {
     Quadric q = qf[s];
     q += qt[s];
-    sum += evaluate(q, posed_[size_t{s} * positions_ + to]);
+    sum += evaluate(q, posed_[size_t{to} * poses_ + s]);
   }
   return sum / poses_;
 }

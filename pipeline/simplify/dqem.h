@@ -16,7 +16,8 @@ namespace crowdbake {
 
 class DqemCost {
  public:
-  // posed: every position in every pose (pose-major, normalised), pose 0 the bind pose.
+  // posed: every position in every pose (posed_positions' layout, normalised), pose 0 the
+  // bind pose.
   DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh& mesh,
            const std::vector<std::vector<glm::dmat4>>& poses, const std::vector<glm::dvec3>& posed,
            int threads = 0);
@@ -29,6 +30,8 @@ class DqemCost {
   size_t bytes() const { return quadrics_.size() * sizeof(Quadric); }
 
  private:
+  std::vector<glm::dvec3> pose_of(const std::vector<glm::dvec3>& posed, size_t s) const;
+
   DqemForm form_;
   uint32_t poses_;
   uint32_t positions_;

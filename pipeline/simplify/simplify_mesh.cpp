@@ -171,7 +171,7 @@ std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const Simplif
   for (size_t s = 0; s < poses.size(); ++s)
     for (uint32_t p = 0; p < positions; ++p) {
       const glm::dvec3 x = glm::dvec3(blend(skins[p], poses[s]) * glm::dvec4(skins[p].bind, 1.0));
-      out[s * positions + p] = (x - mesh.centre) * mesh.inverse_scale;
+      out[p * poses.size() + s] = (x - mesh.centre) * mesh.inverse_scale;
     }
   return out;
 }

@@ -38,7 +38,8 @@ struct SimplifyMesh {
 SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset);
 
 // Positions of every position (normalised) in each pose, from skinning matrices per pose
-// (pose 0 = bind): out[s * position_count + p].
+// (pose 0 = bind): out[p * poses + s], a position's poses side by side (the collapse loop
+// reads all poses of a few positions at a time).
 std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const SimplifyMesh& mesh,
                                         const std::vector<std::vector<glm::dmat4>>& poses);
 

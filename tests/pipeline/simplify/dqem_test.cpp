@@ -76,8 +76,8 @@ TEST(Dqem, ExactFormAveragesThePoses) {
   double sum = 0.0;
   for (size_t s = 0; s < poses.size(); ++s) {
     const std::vector<std::vector<glm::dmat4>> one = {poses[s]};
-    const std::vector<glm::dvec3> x(posed.begin() + s * mesh.position_count(),
-                                    posed.begin() + (s + 1) * mesh.position_count());
+    std::vector<glm::dvec3> x(mesh.position_count());
+    for (uint32_t q = 0; q < mesh.position_count(); ++q) x[q] = posed[q * poses.size() + s];
     sum += DqemCost(DqemForm::kExact, a, mesh, one, x).cost(from, to);
   }
   EXPECT_NEAR(all.cost(from, to), sum / poses.size(), 1e-12);
