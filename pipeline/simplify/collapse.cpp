@@ -378,28 +378,31 @@ class Collapser {
       if (find(p) == p && p != largest && !incident_[p].empty() &&
           glm::length(hi[p] - lo[p]) < limit)
         roots.push_back(p);
+    std::vector<uint32_t> root_of(positions);
+    for (uint32_t p = 0; p < positions; ++p) root_of[p] = find(p);
     std::vector<char> candidate(positions, 0), small(positions, 0);
-    for (uint32_t r : roots) candidate[r] = 1;
+    for (uint32_t r : roots) candidate[r] = small[r] = 1;
     const uint64_t work = uint64_t{roots.size()} * positions * poses_;
     const uint32_t stride = static_cast<uint32_t>(std::max<uint64_t>(1, work / 50000000));
-    for (uint32_t r : roots) {
-      bool near = true;
-      for (uint32_t s = 0; s < poses_ && near; ++s) {
-        glm::dvec3 centre(0.0);
-        double count = 0.0;
-        for (uint32_t p = 0; p < positions; ++p)
-          if (!incident_[p].empty() && find(p) == r) centre += at(s, p), count += 1.0;
-        centre /= std::max(count, 1.0);
+    std::vector<glm::dvec3> centre(positions);
+    std::vector<double> count(positions);
+    for (uint32_t s = 0; s < poses_ && !roots.empty(); ++s) {
+      for (uint32_t r : roots) centre[r] = glm::dvec3(0.0), count[r] = 0.0;
+      for (uint32_t p = 0; p < positions; ++p)
+        if (!incident_[p].empty() && candidate[root_of[p]])
+          centre[root_of[p]] += at(s, p), count[root_of[p]] += 1.0;
+      for (uint32_t r : roots) {
+        if (!small[r]) continue;
+        const glm::dvec3 c = centre[r] / std::max(count[r], 1.0);
         double nearest = 1e300;
         for (uint32_t p = 0; p < positions; p += stride)
-          if (!incident_[p].empty() && !candidate[find(p)])
-            nearest = std::min(nearest, glm::length(at(s, p) - centre));
-        near = nearest < limit;
+          if (!incident_[p].empty() && !candidate[root_of[p]])
+            nearest = std::min(nearest, glm::length(at(s, p) - c));
+        small[r] = nearest < limit;
       }
-      small[r] = near;
     }
     small_part_.assign(positions, 0);
-    for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[find(p)];
+    for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[root_of[p]];
   }
 
   double bind_area(uint32_t t) const {
