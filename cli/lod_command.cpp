@@ -42,8 +42,7 @@ int run_lod(const LodSettings& settings) {
     std::printf("  vertices   %u of %u (asked %u)\n", used, total, wanted);
     std::printf("  triangles  %zu of %u\n", lod.triangle_count(), pm.max_triangles());
     std::printf("  poses      %d, %s, %.2f s (poses %.2f, quadrics %.2f, collapses %.2f)\n",
-                report.poses,
-                report.form == DqemForm::kExact ? "exact DQEM" : "pull-back DQEM",
+                report.poses, report.form == DqemForm::kExact ? "exact DQEM" : "pull-back DQEM",
                 report.seconds_poses + report.seconds_quadrics + report.seconds_collapse,
                 report.seconds_poses, report.seconds_quadrics, report.seconds_collapse);
     std::printf("  densities  %s\n", report.pose_estimator.c_str());
