@@ -8,6 +8,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "import/animated_nodes.h"
 #include "import/assimp_scene.h"
+#include "import/name_list.h"
 #include "import/node_transform.h"
 
 namespace crowdbake::ai {
@@ -77,13 +78,6 @@ bool moves(const aiNodeAnim& channel, const glm::dmat4& stored) {
   for (unsigned k = 0; k < channel.mNumScalingKeys; ++k)
     if (moves_scale(to_glm(channel.mScalingKeys[k].mValue), rest)) return true;
   return false;
-}
-
-std::string name_list(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size() && i < 5; ++i) out += (i ? ", '" : "'") + names[i] + "'";
-  if (names.size() > 5) out += " and " + std::to_string(names.size() - 5) + " more";
-  return out;
 }
 
 template <typename T>

@@ -25,6 +25,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "import/assimp_scene.h"
 #include "import/influences.h"
+#include "import/name_list.h"
 #include "import/node_transform.h"
 
 namespace crowdbake {
@@ -33,13 +34,6 @@ namespace {
 using ai::NodeTable;
 
 std::string mesh_name(const aiMesh& mesh) { return mesh.mName.C_Str(); }
-
-std::string name_list(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size() && i < 5; ++i) out += (i ? ", '" : "'") + names[i] + "'";
-  if (names.size() > 5) out += " and " + std::to_string(names.size() - 5) + " more";
-  return out;
-}
 
 // Read without triangulation first so polygons can be counted, then triangulate in place.
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path,

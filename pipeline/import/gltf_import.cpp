@@ -18,6 +18,7 @@
 #include "import/animated_nodes.h"
 #include "import/gltf_accessor.h"
 #include "import/influences.h"
+#include "import/name_list.h"
 #include "import/node_transform.h"
 #include "import/tinygltf.h"
 
@@ -305,16 +306,13 @@ class GltfImporter {
     const AnimatedNodes animated = find_animated_nodes(nodes);
     reported_nodes_.insert(animated.reported.begin(), animated.reported.end());
     if (!animated.kept.empty()) {
-      std::string names;
-      for (size_t k = 0; k < animated.kept.size() && k < 5; ++k)
-        names += (k ? ", '" : "'") + node_name(model_, animated.kept[k]) + "'";
-      if (animated.kept.size() > 5)
-        names += " and " + std::to_string(animated.kept.size() - 5) + " more";
+      std::vector<std::string> names;
+      for (int n : animated.kept) names.push_back(node_name(model_, n));
       asset_.stats.animated_nodes_kept = static_cast<int>(animated.kept.size());
       asset_.warnings.push_back(std::to_string(animated.kept.size()) +
                                 " animated node(s) that are not skin joints move the character; "
                                 "kept as joints without skin weights (" +
-                                names + ")");
+                                name_list(names) + ")");
     }
     return animated.kept;
   }
