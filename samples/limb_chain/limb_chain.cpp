@@ -47,33 +47,36 @@ SkinnedAsset make_limb_chain(const LimbChainOptions& options) {
       w = {static_cast<float>(1.0 - t), static_cast<float>(t), 0.0f, 0.0f};
     }
   };
-  auto add = [&](glm::dvec3 x, glm::dvec3 n) {
+  auto add = [&](glm::dvec3 x, glm::dvec3 n, double u) {
     std::array<uint16_t, 4> ids;
     std::array<float, 4> w;
     skin(x.y, ids, w);
     p.positions.push_back(glm::vec3(x));
     p.normals.push_back(glm::vec3(n));
-    p.uvs.push_back({0.0f, static_cast<float>(x.y / options.length)});
+    p.uvs.push_back({static_cast<float>(u), static_cast<float>(x.y / options.length)});
     p.joints.push_back(ids);
     p.weights.push_back(w);
     return static_cast<uint32_t>(p.positions.size() - 1);
   };
+  // note: each ring has segments + 1 vertices; the last repeats the first's position with
+  // u = 1, a UV seam down the tube, as texture-mapped characters have.
   for (uint32_t r = 0; r <= rings; ++r)
-    for (uint32_t s = 0; s < segments; ++s) {
-      const double phi = 2.0 * M_PI * s / segments, y = options.length * r / rings;
+    for (uint32_t s = 0; s <= segments; ++s) {
+      const double phi = 2.0 * M_PI * (s % segments) / segments, y = options.length * r / rings;
       // note: a slight bulge per joint gives the quadrics curvature to work with.
       const double bulge = 1.0 + 0.15 * std::sin(M_PI * std::fmod(y / step, 1.0));
       const glm::dvec3 n(std::cos(phi), 0.0, std::sin(phi));
-      add(glm::dvec3(options.radius * bulge * n.x, y, options.radius * bulge * n.z), n);
+      add(glm::dvec3(options.radius * bulge * n.x, y, options.radius * bulge * n.z), n,
+          static_cast<double>(s) / segments);
     }
-  auto at = [&](uint32_t r, uint32_t s) { return r * segments + s % segments; };
+  auto at = [&](uint32_t r, uint32_t s) { return r * (segments + 1) + s; };
   for (uint32_t r = 0; r < rings; ++r)
     for (uint32_t s = 0; s < segments; ++s) {
       const uint32_t a0 = at(r, s), a1 = at(r, s + 1), b0 = at(r + 1, s), b1 = at(r + 1, s + 1);
       p.indices.insert(p.indices.end(), {a0, b0, a1, a1, b0, b1});
     }
-  const uint32_t bottom = add({0.0, 0.0, 0.0}, {0.0, -1.0, 0.0});
-  const uint32_t top = add({0.0, options.length, 0.0}, {0.0, 1.0, 0.0});
+  const uint32_t bottom = add({0.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, 0.5);
+  const uint32_t top = add({0.0, options.length, 0.0}, {0.0, 1.0, 0.0}, 0.5);
   for (uint32_t s = 0; s < segments; ++s) {
     p.indices.insert(p.indices.end(), {bottom, at(0, s), at(0, s + 1)});
     p.indices.insert(p.indices.end(), {top, at(rings, s + 1), at(rings, s)});
