@@ -77,6 +77,10 @@ SkinnedAsset make_limb_chain(const LimbChainOptions& options) {
     }
   const uint32_t bottom = add({0.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, 0.5);
   const uint32_t top = add({0.0, options.length, 0.0}, {0.0, 1.0, 0.0}, 0.5);
+  // note: the caps' centres sit just outside the tube's UV rows so no cap triangle has a
+  // zero UV area (the partition bake skips those).
+  p.uvs[bottom].y = -1.0f / static_cast<float>(rings);
+  p.uvs[top].y = 1.0f + 1.0f / static_cast<float>(rings);
   for (uint32_t s = 0; s < segments; ++s) {
     p.indices.insert(p.indices.end(), {bottom, at(0, s), at(0, s + 1)});
     p.indices.insert(p.indices.end(), {top, at(rings, s + 1), at(rings, s)});
