@@ -13,13 +13,16 @@ namespace {
 // fold guard meshoptimizer uses); that is the one geometric refusal.
 constexpr double kMinBindNormalDot = 0.25;
 
+// note: 32-byte candidates: the queue holds one per directed edge, and its sifting is the
+// loop's largest cost on big meshes.
+constexpr uint32_t kUnpriced = 0xffffffffu;
+
 struct Candidate {
-  double cost;  // base DQEM cost, plus the penalties once priced
+  double cost;  // DQEM cost, plus the penalties once priced
   uint32_t from, to;
-  uint32_t version_from, version_to;  // quadric versions the base cost was computed with
-  double base = 0.0;
-  bool priced = false;  // penalties for posed flips and seam crossings are in `cost`
-  uint32_t star_from = 0, star_to = 0;  // neighbourhood versions the penalties were priced on
+  uint32_t version_from, version_to;  // quadric versions the DQEM cost was computed with
+  // Neighbourhood versions the penalties were priced on; kUnpriced until then.
+  uint32_t star_from = kUnpriced, star_to = kUnpriced;
 };
 
 enum class Outcome { kDone, kRefused, kRequeued };
@@ -104,8 +107,7 @@ class Collapser {
   }
 
   void push(uint32_t from, uint32_t to) {
-    const double c = cost_.cost(from, to);
-    queue_.push({c, from, to, version_[from], version_[to], c});
+    queue_.push({cost_.cost(from, to), from, to, version_[from], version_[to]});
   }
 
   void compact(uint32_t p) {
@@ -255,18 +257,19 @@ class Collapser {
       ++stats_.rejected_flips;
       return Outcome::kRefused;
     }
-    const bool priced =
-        candidate.priced && candidate.star_from == star_[from] && candidate.star_to == star_[to];
+    const bool priced = candidate.star_from == star_[from] && candidate.star_to == star_[to];
     if (!priced) {
+      // note: the DQEM cost is the key of an unpriced candidate; a priced one's stale penalty
+      // is dropped by computing the cost again (its quadrics are unchanged: same versions).
+      const double base = candidate.star_from == kUnpriced ? candidate.cost : cost_.cost(from, to);
       const double length = glm::length(at(0, from) - at(0, to));
       const double penalty = kSeamWeight * crossed_area * length * length +
                              (closing ? 0.0 : flip_penalty(from, to, moved)) +
                              left_behind_penalty(from, to, moved);
       // note: a candidate still cheaper than the queue's top would be popped next anyway.
-      if (penalty > 0.0 && !queue_.empty() && candidate.base + penalty > queue_.top().cost) {
+      if (penalty > 0.0 && !queue_.empty() && base + penalty > queue_.top().cost) {
         Candidate again = candidate;
-        again.cost = candidate.base + penalty;
-        again.priced = true;
+        again.cost = base + penalty;
         again.star_from = star_[from], again.star_to = star_[to];
         queue_.push(again);
         return Outcome::kRequeued;
