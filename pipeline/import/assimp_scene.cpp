@@ -175,10 +175,6 @@ AdoptedNodes adopt_animated_nodes(const aiScene& scene, const NodeTable& table,
                                   const SceneCharacters& found, size_t pick, Character& character) {
   const int node_count = static_cast<int>(table.nodes.size());
   const int ours = static_cast<int>(pick);
-  std::vector<bool> is_bone(node_count, false);
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m)
-    for (unsigned b = 0; b < scene.mMeshes[m]->mNumBones; ++b)
-      is_bone[table.by_name.at(scene.mMeshes[m]->mBones[b]->mName.C_Str())] = true;
   SceneNodes nodes;
   nodes.parent = table.parent;
   nodes.moving = moving_nodes(scene, table);
@@ -210,7 +206,10 @@ AdoptedNodes adopt_animated_nodes(const aiScene& scene, const NodeTable& table,
   std::vector<bool> adopted(scene.mNumMeshes, false);
   for (int n = 0; n < node_count; ++n) {
     const aiNode* node = table.nodes[n];
-    const int up = nearest_joint(table, n, [&](int k) { return joint[k] || is_bone[k]; });
+    if (node->mNumMeshes == 0) continue;
+    // note: found.joint_of_node marks every bone, of any character.
+    const int up =
+        nearest_joint(table, n, [&](int k) { return joint[k] || found.joint_of_node[k] >= 0; });
     if (up < 0 || !joint[up]) continue;
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
       const int m = static_cast<int>(node->mMeshes[i]);
