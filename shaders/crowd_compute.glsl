@@ -76,7 +76,8 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint instanced;      // 1: static levels drawn instanced (full/discrete), no corner buffer
   uint key_count;      // scan keys: types, or types · kMaxLevels when instanced
   uint indexed_slots;  // VkDrawIndexedIndirectCommands in indexed_args (0 when none)
-  uint pad0, pad1, pad2;
+  uint drop_below_min_t;  // 1: the MinT rule drops instances (LodSettings::drop_below_min_t)
+  uint pad1, pad2;
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };

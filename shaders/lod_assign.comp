@@ -58,7 +58,7 @@ void main() {
         } else if (vc >= double(t.min_vertices)) {
           selected = uint(floor(vc));
           atomicAdd(counts[3], 1u);
-        } else if (vc / double(t.min_vertices) >= params.min_t) {
+        } else if (params.drop_below_min_t == 0u || vc / double(t.min_vertices) >= params.min_t) {
           selected = t.min_vertices;
           atomicAdd(counts[4], 1u);
         } else {

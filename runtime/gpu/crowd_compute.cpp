@@ -25,7 +25,8 @@ struct Params {
   uint32_t group_count;
   float near_plane;
   uint32_t instanced, key_count, indexed_slots;
-  uint32_t pad[3];
+  uint32_t drop_below_min_t;
+  uint32_t pad[2];
 };
 static_assert(sizeof(Params) == 192 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
@@ -206,6 +207,7 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.alpha = scene.lod.alpha;
   p.budget = scene.lod.budget;
   p.min_t = scene.lod.min_t;
+  p.drop_below_min_t = scene.lod.drop_below_min_t ? 1 : 0;
   p.instance_count = instance_count_;
   p.type_count = type_count_;
   p.mode = static_cast<uint32_t>(scene.lod.mode);

@@ -186,7 +186,7 @@ bool LodSelectJob::Run() const {
         } else if (vc >= t.min_vertices) {
           selected = static_cast<uint32_t>(std::floor(vc));
           ++s.in_range;
-        } else if (vc / t.min_vertices >= settings.min_t) {
+        } else if (!settings.drop_below_min_t || vc / t.min_vertices >= settings.min_t) {
           selected = t.min_vertices;
           ++s.promoted;
         } else {
@@ -208,6 +208,7 @@ bool LodSelectJob::Run() const {
     s.drawn += selected > 0;
     s.selected_vertices += selected;
   }
+  s.budget_exceeded = settings.mode != LodMode::kFull && s.selected_vertices > settings.budget;
   if (stats) *stats = s;
   return true;
 }

@@ -348,7 +348,8 @@ void parse_camera(const json& v, RawScene& s) {
 
 void parse_lod(const json& v, RawScene& s) {
   const std::string path = "lod";
-  check_object(v, path, {"mode", "budget", "alpha", "min_t", "discrete_levels"});
+  check_object(v, path,
+               {"mode", "budget", "alpha", "min_t", "drop_below_min_t", "discrete_levels"});
   LodSettings& l = s.lod;
   if (const json* p = find(v, "mode")) {
     const std::string mode = string(*p, path + ".mode");
@@ -374,6 +375,8 @@ void parse_lod(const json& v, RawScene& s) {
     if (!(t >= 0.0 && t <= 1.0)) fail(path + ".min_t", "must be in [0, 1], got " + show(t));
     l.min_t = static_cast<float>(t);
   }
+  if (const json* p = find(v, "drop_below_min_t"))
+    l.drop_below_min_t = boolean(*p, path + ".drop_below_min_t");
   if (const json* p = find(v, "discrete_levels")) {
     const std::string lp = path + ".discrete_levels";
     const json& arr = array(*p, lp);

@@ -112,17 +112,28 @@ TEST(UpdateFrame, NeedsOnlyThePackTables) {
 
 TEST(UpdateFrame, ModesAndBudgets) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
-  uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0;
-  for (const auto& [lod, out] :
-       {std::pair<const char*, uint64_t*>{R"({"budget": 300000, "min_t": 1})", &continuous},
-        {R"({"budget": 300000, "min_t": 1, "mode": "discrete"})", &discrete},
-        {R"({"mode": "full"})", &full},
-        {R"({"budget": 20000, "min_t": 1})", &small_budget}}) {
+  uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0, never_drop = 0;
+  const char* drop = R"("min_t": 1, "drop_below_min_t": true)";
+  const std::string lods[] = {
+      std::string("{\"budget\": 300000, ") + drop + "}",
+      std::string("{\"budget\": 300000, \"mode\": \"discrete\", ") + drop + "}",
+      R"({"mode": "full"})", std::string("{\"budget\": 20000, ") + drop + "}",
+      R"({"budget": 20000})"};
+  uint64_t* outs[] = {&continuous, &discrete, &full, &small_budget, &never_drop};
+  uint32_t visible = 0, drawn_by_default = 0;
+  for (size_t run = 0; run < 5; ++run) {
+    const std::string& lod = lods[run];
+    uint64_t* out = outs[run];
     Scene scene;
     ASSERT_TRUE(stadium(scene, kPackTables, lod));
     FrameState state;
     ASSERT_TRUE(update_frame(scene, 1.0f, state));
     *out = state.lod.selected_vertices;
+    if (out == &never_drop) {
+      visible = state.lod.visible;
+      drawn_by_default = state.lod.drawn;
+      EXPECT_TRUE(state.lod.budget_exceeded);
+    }
     if (scene.lod.mode == LodMode::kDiscrete) {
       // Every drawn instance uses one of its type's levels.
       for (size_t i = 0; i < scene.instances.size(); ++i) {
@@ -139,6 +150,10 @@ TEST(UpdateFrame, ModesAndBudgets) {
   EXPECT_GT(full, continuous);
   EXPECT_LE(small_budget, 20000u);
   EXPECT_LT(small_budget, continuous);
+  // The default never drops: every visible instance is drawn, over the budget if need be.
+  EXPECT_GT(visible, 0u);
+  EXPECT_EQ(drawn_by_default, visible);
+  EXPECT_GT(never_drop, 20000u);
 }
 
 TEST(UpdateFrame, RejectsBadInput) {

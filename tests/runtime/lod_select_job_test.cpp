@@ -71,11 +71,13 @@ struct Crowd {
   }
 };
 
+// note: with the MinT rule on (the tests below check it); the default draws every instance.
 LodSettings settings(uint32_t budget, float alpha = 2.0f, float min_t = 0.5f) {
   LodSettings s;
   s.budget = budget;
   s.alpha = alpha;
   s.min_t = min_t;
+  s.drop_below_min_t = true;
   return s;
 }
 
@@ -144,6 +146,21 @@ TEST(LodSelectJob, BelowMinTIsNotDrawn) {
   EXPECT_EQ(c.vertex_count[1], 0u);
   EXPECT_EQ(c.stats.dropped, 1u);
   EXPECT_EQ(c.stats.drawn, 1u);
+}
+
+TEST(LodSelectJob, ByDefaultEveryVisibleInstanceIsDrawnAndTheExcessReported) {
+  Crowd c = two_instances();
+  LodSettings s = settings(365);
+  s.drop_below_min_t = false;
+  ASSERT_TRUE(c.run(s));               // far: 40.56, below MinT · min, drawn at min anyway
+  EXPECT_EQ(c.vertex_count[0], 324u);  // 324.4
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  EXPECT_EQ(c.stats.dropped, 0u);
+  EXPECT_EQ(c.stats.promoted, 1u);
+  EXPECT_EQ(c.stats.drawn, 2u);
+  EXPECT_TRUE(c.stats.budget_exceeded);  // 424 > 365
+  ASSERT_TRUE(c.run(settings(2000)));
+  EXPECT_FALSE(c.stats.budget_exceeded);
 }
 
 TEST(LodSelectJob, MinTBoundsDecideBetweenPromotionAndDropping) {

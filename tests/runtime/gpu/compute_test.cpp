@@ -121,12 +121,13 @@ class ComputeTest : public test::GpuTest {
   std::vector<GpuInstance> instances_;
 };
 
-LodSettings continuous(uint32_t budget, float min_t = 0.5f) {
+LodSettings continuous(uint32_t budget, float min_t = 0.5f, bool drop = true) {
   LodSettings lod;
   lod.mode = LodMode::kContinuous;
   lod.budget = budget;
   lod.alpha = 2.0f;
   lod.min_t = min_t;
+  lod.drop_below_min_t = drop;
   return lod;
 }
 
@@ -179,13 +180,14 @@ TEST_F(ComputeTest, IdenticalOverASweepOfSettings) {
   std::unique_ptr<CrowdCompute> compute;
   ASSERT_TRUE(CrowdCompute::create(context(), scene, {}, compute).ok());
   const float alphas[] = {1.05f, 1.5f, 2.0f, 3.0f, 7.5f};
-  const float min_ts[] = {0.0f, 0.3f, 1.0f};
+  // note: min_t < 0 stands for the default, which draws every visible instance.
+  const float min_ts[] = {-1.0f, 0.0f, 0.3f, 1.0f};
   const uint32_t budgets[] = {5000, 77777, 400000};
   uint32_t frame = 0;
   for (float alpha : alphas)
     for (float min_t : min_ts)
       for (uint32_t budget : budgets) {
-        scene.lod = continuous(budget, min_t);
+        scene.lod = min_t < 0.0f ? continuous(budget, 0.5f, false) : continuous(budget, min_t);
         scene.lod.alpha = alpha;
         SCOPED_TRACE("alpha " + std::to_string(alpha) + " min_t " + std::to_string(min_t) +
                      " budget " + std::to_string(budget));

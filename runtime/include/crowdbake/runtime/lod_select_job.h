@@ -15,6 +15,8 @@
 // and then, with min_i / max_i the pack's LoD range (Pack::min_vertices, max_vertices):
 //     vc_i in [min_i, max_i]       → vc_i (rounded down to a whole vertex count)
 //     vc_i > max_i                 → max_i
+//     vc_i < min_i                 → min_i (never drop a visible instance: the default)
+// or, with LodSettings::drop_below_min_t (the thesis's MinT rule),
 //     vc_i / min_i in [MinT, 1)    → min_i
 //     vc_i / min_i < MinT          → 0: not drawn
 // Budget left over by instances clamped to max_i is not handed to the others (the design
@@ -68,7 +70,11 @@ struct LodSettings {
   LodMode mode = LodMode::kContinuous;
   uint32_t budget = 1000000;  // N: vertices for all visible instances together, >= 1
   float alpha = 2.0f;         // α > 1 (β = α − 1 must be positive)
-  float min_t = 0.5f;         // MinT in [0, 1]
+  float min_t = 0.5f;         // MinT in [0, 1]; only with drop_below_min_t
+  // The thesis's rule: vc_i / min_i < MinT → not drawn. Off by default: every visible
+  // instance is drawn, at min_i when its share is below it (LodStats::budget_exceeded says
+  // when the selection then spends more than N).
+  bool drop_below_min_t = false;
   // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
   std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
   uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels
@@ -95,10 +101,11 @@ struct LodStats {
   uint32_t drawn = 0;              // instances with n_i > 0
   uint32_t at_max = 0;             // vc_i > max_i, clamped to max_i
   uint32_t in_range = 0;           // vc_i kept
-  uint32_t promoted = 0;           // vc_i / min_i in [MinT, 1), raised to min_i
-  uint32_t dropped = 0;            // vc_i / min_i < MinT, not drawn
+  uint32_t promoted = 0;           // vc_i < min_i, raised to min_i
+  uint32_t dropped = 0;            // vc_i / min_i < MinT with drop_below_min_t: not drawn
   double weight_sum = 0.0;         // Σ w_j^(1/α) (pass 1's reduction)
   uint64_t selected_vertices = 0;  // Σ n_i
+  bool budget_exceeded = false;    // Σ n_i > N (promotions to min_i spent more than N)
 };
 
 struct LodSelectJob {
