@@ -28,6 +28,11 @@ struct TypeData {
   uint levels[8];          // discrete levels, finest first
   double type_log_weight;  // lod_type_log_weight(α, triangles)
   double pad2;
+  // Level cache (continuous frames on the instanced path): the type's keys are
+  // key_base + n' for n' in 0..vertex_count; its slots slot_base .. + slot_count, each
+  // slot_stride indices from cache_base; its draw commands cmd_base .. + slot_count.
+  uint key_base, slot_base, slot_count, slot_stride;
+  uint cache_base, cmd_base, pad3, pad4;
 };
 
 struct InstanceLod {
@@ -57,7 +62,8 @@ struct Stats {
   uint visible, drawn, at_max, in_range;
   uint promoted, dropped, overflow, fitting;
   uint drawn_corners, selected_lo, selected_hi, requested_lo;
-  uint requested_hi, chunks, pad0, pad1;  // chunks: reconstruction workgroups
+  uint requested_hi, chunks, levels_drawn, levels_built;  // chunks: reconstruction workgroups
+  uint coarser, pad0;  // coarser: instances drawn at a coarser cached level (cache full)
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
@@ -77,7 +83,8 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint key_count;      // scan keys: types, or types · kMaxLevels when instanced
   uint indexed_slots;  // VkDrawIndexedIndirectCommands in indexed_args (0 when none)
   uint drop_below_min_t;  // 1: the MinT rule drops instances (LodSettings::drop_below_min_t)
-  uint pad1, pad2;
+  uint cached;  // 1: a continuous frame drawn instanced from the level cache
+  uint frame;   // frame number of the level cache's use marks (never 0)
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };
@@ -103,8 +110,37 @@ layout(std430, set = 0, binding = 14) buffer ChunkTable { uint chunk_entry[]; };
 layout(std430, set = 0, binding = 15) readonly buffer LevelRanges { uvec2 level_ranges[]; };
 layout(std430, set = 0, binding = 16) buffer IndexedArgs { uint indexed_args[]; };
 layout(std430, set = 0, binding = 17) buffer InstanceList { uint instance_list[]; };
+// Level cache. Per key: this frame's instance count (cleared every frame); (slot or
+// kNotDrawn, first instance-list entry) — the slot persists across frames. Per slot: (key or
+// kNotDrawn, frame last drawn), persistent. This frame's levels to reconstruct: (slot, key,
+// type, 0). The cached indices. Per type: the clock hand of its slots, persistent.
+layout(std430, set = 0, binding = 18) buffer KeyCounts { uint key_counts[]; };
+layout(std430, set = 0, binding = 19) buffer KeyStates { uvec2 key_states[]; };
+layout(std430, set = 0, binding = 20) buffer SlotStates { uvec2 slot_states[]; };
+layout(std430, set = 0, binding = 21) buffer BuildList { uvec4 build_list[]; };
+layout(std430, set = 0, binding = 22) buffer LevelCache { uint level_cache[]; };
+layout(std430, set = 0, binding = 23) buffer CacheHands { uint cache_hands[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
+
+// Triangles of the usable count n' (ReconstructJob: the pack's prefix T(n')).
+uint level_triangles(TypeData t, uint usable) {
+  return t.progressive != 0u ? mesh_data[t.tcount_offset + usable] : t.mesh_triangles;
+}
+
+// Corner `corner` of level n' (`usable`): the pack's triangle corner walked down the collapse
+// chain (`while v >= n'`), as ReconstructJob does.
+uint level_corner(TypeData t, uint usable, uint corner) {
+  uint v = mesh_data[t.tri_offset + corner];
+  if (t.progressive != 0u) {
+    while (v >= usable) {
+      const uint next = mesh_data[t.collapse_offset + v];
+      if (next >= v) break;
+      v = next;
+    }
+  }
+  return v;
+}
 
 // The scan key of a drawn instance: its type, or with instanced static levels its slot
 // type · kMaxLevels + level (the first level equal to its count; full mode has one level).

@@ -24,7 +24,8 @@ void main() {
     draw_args[4u * t + 2u] = base;
     draw_args[4u * t + 3u] = 0u;
   }
-  for (uint s = lid; s < params.indexed_slots; s += 64u) {
+  // note: level-cache frames get their indexed commands from level_cache.comp.
+  for (uint s = lid; s < params.indexed_slots && params.cached == 0u; s += 64u) {
     const uvec2 level = instanced ? level_ranges[s] : uvec2(0u);
     indexed_args[5u * s + 0u] = level.y;
     indexed_args[5u * s + 1u] = instanced ? ranges[s].draw_total : 0u;
@@ -32,7 +33,13 @@ void main() {
     indexed_args[5u * s + 3u] = 0u;  // vertexOffset
     indexed_args[5u * s + 4u] = instanced ? ranges[s].draw_base : 0u;
   }
-  if (lid == 0u) {
+  if (lid == 0u && params.cached != 0u) {
+    // One reconstruction workgroup per level to build (drawn_corners: level_cache.comp).
+    const uint groups = stats.levels_built;
+    dispatch_args[0] = min(groups, 65535u);
+    dispatch_args[1] = (groups + 65534u) / 65535u;
+    dispatch_args[2] = 1u;
+  } else if (lid == 0u) {
     uint total = 0u;
     if (instanced) {
       for (uint s = 0u; s < params.key_count; ++s)

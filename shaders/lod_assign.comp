@@ -80,10 +80,10 @@ void main() {
       atomicAdd(counts[1], 1u);
       ADD64(counts[6], counts[7], selected);
       usable = usable_vertices(t, selected);
-      const uint tris =
-          t.progressive != 0u ? mesh_data[t.tcount_offset + usable] : t.mesh_triangles;
-      corner_count = min(3u * tris, kSaturated);
+      corner_count = min(3u * level_triangles(t, usable), kSaturated);
       ADD64(requested_lo, requested_hi, corner_count);
+      // note: the rank within the key is taken in any order (it changes no pixel).
+      if (params.cached != 0u) lods[i].local_draw = atomicAdd(key_counts[t.key_base + usable], 1u);
     }
     lods[i].selected = selected;
     lods[i].usable = usable;
@@ -118,7 +118,7 @@ void main() {
   const uvec3 exclusive = lane_values[lid];
   for (uint t = lid; t < params.key_count; t += 256u)
     group_sums[gl_WorkGroupID.x * params.key_count + t] = uvec4(type_running[t], 0u);
-  if (i < params.instance_count) {
+  if (i < params.instance_count && params.cached == 0u) {
     lods[i].local_corner = exclusive.x;
     lods[i].local_draw = exclusive.y;
     lods[i].local_chunk = exclusive.z;

@@ -6,6 +6,7 @@
 //   whose corners do not fit are not drawn and counted (stats.overflow); they are the last
 //   ones in (type, instance) order.
 //   Instanced static levels: its entry in the instance list of its (type, level) slot.
+//   Level cache: its entry in the instance list of its (type, n') key.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
@@ -16,7 +17,14 @@ void main() {
   if (i >= params.instance_count) return;
   const InstanceLod lod = lods[i];
   uint offset = kNotDrawn;
-  if (params.instanced != 0u) {
+  if (params.cached != 0u) {
+    // Level cache: the key's first entry (level_cache.comp) + the rank lod_assign took.
+    if (lod.selected > 0u) {
+      const uint key = types[instances[i].type].key_base + lod.usable;
+      instance_list[key_states[key].y + lod.local_draw] = i;
+      atomicAdd(stats.fitting, 1u);
+    }
+  } else if (params.instanced != 0u) {
     if (lod.selected > 0u) {
       const uint t = instances[i].type;
       const uint key = draw_key(types[t], t, lod.selected);

@@ -5,7 +5,8 @@
 // memory, no barrier (a barrier makes llvmpipe run a workgroup as coroutines).
 // Corner c's vertex is the pack's triangle corner walked down the collapse chain
 // (`while v >= n'`, ReconstructJob); the thread writes uvec2(instance, vertex) at the
-// instance's first corner + c.
+// instance's first corner + c. Level-cache frames instead build each newly cached level n'
+// once (build_list, written by level_cache.comp) into its slot of the level cache.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
@@ -14,6 +15,17 @@ layout(local_size_x = 256) in;  // kChunksPerGroup chunks of 64 threads, 4 corne
 void main() {
   const uint lid = gl_LocalInvocationID.x;
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  if (params.cached != 0u) {
+    // Level cache: one workgroup per level to build, its 3·T(n') corners into its slot.
+    if (group >= stats.levels_built) return;
+    const uvec4 build = build_list[group];  // slot, key, type
+    const TypeData t = types[build.z];
+    const uint usable = build.y - t.key_base;
+    const uint first = t.cache_base + (build.x - t.slot_base) * t.slot_stride;
+    const uint corners = 3u * level_triangles(t, usable);
+    for (uint c = lid; c < corners; c += 256u) level_cache[first + c] = level_corner(t, usable, c);
+    return;
+  }
   const uint chunk = group * kChunksPerGroup + lid / 64u;
   if (chunk >= stats.chunks) return;
   const uint entry = chunk_entry[chunk];

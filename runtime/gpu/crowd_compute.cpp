@@ -13,7 +13,7 @@ namespace {
 
 constexpr uint32_t kGroupSize = 256;    // shaders/crowd_compute.glsl: kGroupSize
 constexpr uint32_t kMaxGroups = 65535;  // maxComputeWorkGroupCount[0] guaranteed minimum
-constexpr uint32_t kStatsBytes = 72;    // Stats in crowd_compute.glsl
+constexpr uint32_t kStatsBytes = 80;    // Stats in crowd_compute.glsl
 constexpr uint32_t kMaxTypes = 1024;    // crowd_compute.glsl: kMaxTypes (lod_assign shared memory)
 
 // C++ mirrors of shaders/crowd_compute.glsl (std430).
@@ -26,7 +26,7 @@ struct Params {
   float near_plane;
   uint32_t instanced, key_count, indexed_slots;
   uint32_t drop_below_min_t;
-  uint32_t pad[2];
+  uint32_t cached, frame;
 };
 static_assert(sizeof(Params) == 192 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
@@ -40,9 +40,11 @@ struct TypeData {
   uint32_t levels[8];
   double type_log_weight;
   double pad2;
+  uint32_t key_base, slot_base, slot_count, slot_stride;
+  uint32_t cache_base, cmd_base, pad3, pad4;
 };
-static_assert(sizeof(TypeData) == 112 && offsetof(TypeData, levels) == 64 &&
-                  offsetof(TypeData, type_log_weight) == 96,
+static_assert(sizeof(TypeData) == 144 && offsetof(TypeData, levels) == 64 &&
+                  offsetof(TypeData, type_log_weight) == 96 && offsetof(TypeData, key_base) == 112,
               "TypeData must match crowd_compute.glsl");
 
 struct StatsData {
@@ -50,15 +52,18 @@ struct StatsData {
   uint32_t visible, drawn, at_max, in_range;
   uint32_t promoted, dropped, overflow, fitting;
   uint32_t drawn_corners, selected_lo, selected_hi, requested_lo;
-  uint32_t requested_hi, chunks, pad0, pad1;
+  uint32_t requested_hi, chunks, levels_drawn, levels_built;
+  uint32_t coarser, pad0;
 };
 static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
 static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
 
-constexpr const char* kShaders[7] = {"lod_weights.comp", "lod_sum.comp",         "lod_assign.comp",
-                                     "scan_types.comp",  "place_instances.comp", "draw_args.comp",
-                                     "reconstruct.comp"};
-constexpr uint32_t kBindings = 18;
+constexpr uint32_t kKernels = CrowdCompute::kKernelCount;
+constexpr const char* kShaders[kKernels] = {
+    "lod_weights.comp", "lod_sum.comp",         "lod_assign.comp", "scan_types.comp",
+    "level_cache.comp", "place_instances.comp", "draw_args.comp",  "reconstruct.comp"};
+constexpr uint32_t kBindings = 24;
+constexpr uint64_t kDefaultLevelCacheBytes = uint64_t{64} << 20;
 constexpr uint32_t kChunk = 256;  // crowd_compute.glsl: kChunk
 
 uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
@@ -108,6 +113,9 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     c->progressive_.push_back(v.collapse_to.empty() ? 0 : 1);
     c->vertex_counts_.push_back(v.vertex_count);
     c->triangle_counts_.push_back(static_cast<uint32_t>(v.triangles.size() / 3));
+    c->full_triangles_.push_back(v.collapse_to.empty() || v.triangle_count.empty()
+                                     ? static_cast<uint32_t>(v.triangles.size() / 3)
+                                     : v.triangle_count[v.vertex_count]);
     full_corners = std::max<uint64_t>(full_corners, v.triangles.size());
   }
   full_corners *= c->max_instances_;
@@ -120,6 +128,7 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   const uint32_t n = std::max(c->max_instances_, 1u);
   const uint32_t types = std::max(c->type_count_, 1u);
   c->instanced_levels_ = options.instanced_static_levels;
+  if (Status st = c->layout_level_cache(context, options); !st.ok()) return st;
   // note: scan keys are types, or (type, level) slots when static levels are drawn instanced.
   const uint32_t slots = c->instanced_levels_ ? types * kMaxDiscreteLevels : 1;
   const uint32_t keys = c->instanced_levels_ ? slots : types;
@@ -155,9 +164,17 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       {&c->chunk_table_, (VkDeviceSize{c->corner_capacity_} / kChunk + n) * 4, storage,
        MemoryKind::kDeviceLocal},
       {&c->level_ranges_, VkDeviceSize{slots} * 8, storage, MemoryKind::kHostVisible},
-      {&c->indexed_args_, VkDeviceSize{slots} * sizeof(VkDrawIndexedIndirectCommand), indirect,
-       MemoryKind::kDeviceLocal},
+      {&c->indexed_args_,
+       VkDeviceSize{std::max(slots, c->slot_total_)} * sizeof(VkDrawIndexedIndirectCommand),
+       indirect, MemoryKind::kDeviceLocal},
       {&c->instance_list_, VkDeviceSize{n} * 4, storage, MemoryKind::kDeviceLocal},
+      {&c->key_counts_, VkDeviceSize{c->key_total_} * 4, storage, MemoryKind::kDeviceLocal},
+      {&c->key_states_, VkDeviceSize{c->key_total_} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->slot_states_, VkDeviceSize{c->slot_total_} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->build_list_, VkDeviceSize{c->slot_total_} * 16, storage, MemoryKind::kDeviceLocal},
+      {&c->level_cache_, VkDeviceSize{std::max<uint64_t>(c->cache_indices_, 1)} * 4,
+       storage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
+      {&c->cache_hands_, VkDeviceSize{types} * 4, storage, MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;
@@ -170,12 +187,21 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     Status st = c->mesh_.upload(mesh.data(), mesh.size() * 4);
     if (!st.ok()) return st;
   }
-  for (uint32_t k = 0; k < 7; ++k) {
+  for (uint32_t k = 0; k < kKernels; ++k) {
     Status st = ComputeKernel::create(context, kShaders[k], kBindings, 0, c->kernels_[k]);
     if (!st.ok()) return st;
     c->kernels_[k].bind_buffers(0, bindings);
   }
-  Status st = TimestampQueries::create(context, kTimestampCount, c->queries_);
+  for (const Spec& spec : specs) c->gpu_bytes_ += spec.bytes;
+  c->gpu_bytes_ += c->mesh_.size();
+  // note: an empty cache: no key holds a slot, no slot a key, every hand at 0.
+  Status st = context.submit_and_wait([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, c->key_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
+    vkCmdFillBuffer(cmd, c->slot_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
+    vkCmdFillBuffer(cmd, c->cache_hands_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  });
+  if (!st.ok()) return st;
+  st = TimestampQueries::create(context, kTimestampCount, c->queries_);
   if (!st.ok()) return st;
   out = std::move(c);
   return {};
@@ -215,8 +241,13 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.group_count = groups_for(instance_count_);
   p.near_plane = view.near_plane;
   instanced_ = instanced_levels_ && scene.lod.mode != LodMode::kContinuous;
-  p.instanced = instanced_ ? 1 : 0;
-  p.key_count = instanced_ ? type_count_ * kMaxDiscreteLevels : type_count_;
+  cached_ = instanced_levels_ && scene.lod.mode == LodMode::kContinuous;
+  p.instanced = instanced_ || cached_ ? 1 : 0;
+  p.cached = cached_ ? 1 : 0;
+  // note: use marks compare frame numbers; 0 and kNotDrawn (the initial mark) are skipped.
+  if (++frame_ == kNotDrawn) frame_ = 1;
+  p.frame = frame_;
+  p.key_count = instanced_ ? type_count_ * kMaxDiscreteLevels : cached_ ? 0 : type_count_;
   p.indexed_slots = instanced_levels_ ? type_count_ * kMaxDiscreteLevels : 0;
   if (instanced_) {
     Status st = update_levels(scene, state);
@@ -250,6 +281,13 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
     d.group_offset = type_offsets_[4 * t + 3];
     d.mesh_triangles = triangle_counts_[t];
     d.type_log_weight = lt.triangles ? lod_type_log_weight(scene.lod.alpha, lt.triangles) : 0.0;
+    const LevelCacheLayout& cache = cache_layout_[t];
+    d.key_base = cache.key_base;
+    d.slot_base = cache.slot_base;
+    d.slot_count = cache.slot_count;
+    d.slot_stride = cache.slot_stride;
+    d.cache_base = cache.cache_base;
+    d.cmd_base = cache.slot_base;  // note: one command per slot
     if (lt.min_vertices > lt.max_vertices) return invalid("a type has min > max vertices");
   }
   s = types_.upload(types.data(), types.size() * sizeof(TypeData));
@@ -310,19 +348,20 @@ void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
   };
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   vkCmdFillBuffer(cmd, stats_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, key_counts_.buffer(), 0, VK_WHOLE_SIZE, 0);
   full_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, compute);
   stamp(0);
-  const uint32_t dispatches[6] = {groups, 1, groups, 1, groups, 1};
-  for (uint32_t k = 0; k < 6; ++k) {
+  const uint32_t dispatches[kKernels - 1] = {groups, 1, groups, 1, 1, groups, 1};
+  for (uint32_t k = 0; k < kKernels - 1; ++k) {
     kernels_[k].bind(cmd);
     kernels_[k].dispatch(cmd, dispatches[k]);
     full_barrier(cmd, compute, compute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
     stamp(k + 1);
   }
-  kernels_[6].bind(cmd);
+  kernels_[kKernels - 1].bind(cmd);
   vkCmdDispatchIndirect(cmd, dispatch_args_.buffer(), 0);
   full_barrier(cmd, compute, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
-  stamp(7);
+  stamp(kKernels);
 }
 
 Status CrowdCompute::run(const Scene& scene, const FrameState& state,
@@ -358,6 +397,9 @@ Status CrowdCompute::read_stats(CrowdComputeStats& out) const {
   out.selected_vertices = (uint64_t{d.selected_hi} << 32) | d.selected_lo;
   out.requested_corners = (uint64_t{d.requested_hi} << 32) | d.requested_lo;
   out.weight_sum = d.weight_sum;
+  out.levels_drawn = d.levels_drawn;
+  out.levels_built = d.levels_built;
+  out.coarser_instances = d.coarser;
   return {};
 }
 
@@ -380,7 +422,9 @@ Status CrowdCompute::read_draw_args(std::vector<VkDrawIndirectCommand>& out) con
 }
 
 Status CrowdCompute::read_indexed_args(std::vector<VkDrawIndexedIndirectCommand>& out) const {
-  out.resize(instanced_levels_ ? size_t{type_count_} * kMaxDiscreteLevels : 0);
+  out.resize(!instanced_levels_ ? 0
+             : cached_          ? size_t{slot_total_}
+                                : size_t{type_count_} * kMaxDiscreteLevels);
   return indexed_args_.download(out.data(), out.size() * sizeof(VkDrawIndexedIndirectCommand));
 }
 
@@ -390,8 +434,51 @@ Status CrowdCompute::read_instance_list(std::vector<uint32_t>& out) const {
 }
 
 Status CrowdCompute::read_level_indices(std::vector<uint32_t>& out) const {
-  out.resize(level_indices_.valid() ? level_indices_.size() / 4 : 0);
-  return level_indices_.download(out.data(), out.size() * 4);
+  const GpuBuffer& b = draw_index_buffer();
+  out.resize(b.valid() ? b.size() / 4 : 0);
+  return b.download(out.data(), out.size() * 4);
+}
+
+uint32_t CrowdCompute::first_command(uint32_t type) const {
+  return cached_ ? cache_layout_[type].slot_base : type * kSlotsPerType;
+}
+
+uint32_t CrowdCompute::command_count(uint32_t type) const {
+  return cached_ ? cache_layout_[type].slot_count : kSlotsPerType;
+}
+
+Status CrowdCompute::layout_level_cache(const VulkanContext& context,
+                                        const CrowdComputeOptions& options) {
+  // Every type gets an equal share of the cache; a slot holds the type's finest level, and a
+  // type never has more slots than keys. At least one slot each, within one storage binding.
+  const uint64_t bytes =
+      options.level_cache_bytes ? options.level_cache_bytes : kDefaultLevelCacheBytes;
+  const uint64_t binding = context.limits().maxStorageBufferRange;
+  const uint64_t share = std::min(bytes, binding) / std::max(type_count_, 1u);
+  cache_layout_.assign(type_count_, LevelCacheLayout{});
+  uint64_t keys = 0, slots = 0, indices = 0;
+  for (uint32_t t = 0; t < type_count_; ++t) {
+    LevelCacheLayout& l = cache_layout_[t];
+    const uint32_t key_count = vertex_counts_[t] + 1;
+    l.key_base = static_cast<uint32_t>(keys);
+    l.slot_base = static_cast<uint32_t>(slots);
+    l.slot_stride = 3 * full_triangles_[t];
+    l.cache_base = static_cast<uint32_t>(indices);
+    const uint64_t fit = l.slot_stride ? share / (uint64_t{l.slot_stride} * 4) : key_count;
+    l.slot_count = static_cast<uint32_t>(std::clamp<uint64_t>(fit, 1, key_count));
+    keys += key_count;
+    slots += l.slot_count;
+    indices += uint64_t{l.slot_count} * l.slot_stride;
+  }
+  if (instanced_levels_ && indices * 4 > binding)
+    return invalid("the level cache needs " + std::to_string(indices * 4) +
+                   " bytes for one slot per type, over the device's storage-buffer range of " +
+                   std::to_string(binding));
+  if (!instanced_levels_) keys = slots = indices = 0;  // note: the corner path has no cache
+  key_total_ = static_cast<uint32_t>(std::max<uint64_t>(keys, 1));
+  slot_total_ = static_cast<uint32_t>(std::max<uint64_t>(slots, 1));
+  cache_indices_ = indices;
+  return {};
 }
 
 Status CrowdCompute::read_type_ranges(std::vector<TypeRange>& out) const {

@@ -48,11 +48,11 @@ struct Renderer::Impl {
       draws[t].corner_base = 0;  // note: CrowdCompute writes the type's base as firstVertex
       if (compute->instanced()) {
         draws[t].instanced = true;
-        draws[t].index_buffer = compute->level_index_buffer().buffer();
+        draws[t].index_buffer = compute->draw_index_buffer().buffer();
         draws[t].indexed_args = compute->indexed_args_buffer().buffer();
         draws[t].indexed_offset =
-            VkDeviceSize{t} * CrowdCompute::kSlotsPerType * sizeof(VkDrawIndexedIndirectCommand);
-        draws[t].indexed_count = CrowdCompute::kSlotsPerType;
+            VkDeviceSize{compute->first_command(t)} * sizeof(VkDrawIndexedIndirectCommand);
+        draws[t].indexed_count = compute->command_count(t);
       }
     }
     return draws;

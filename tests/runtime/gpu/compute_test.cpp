@@ -296,47 +296,78 @@ TEST_F(ComputeTest, RecordsIntoTheCallersCommandBuffer) {
   expect_identical(scene, *compute, true);
 }
 
-// Instanced static levels: every instance the CPU draws is in exactly one (type, level) slot
-// whose indices are reconstruct_lod(type, n_i) for the CPU's n_i; the corner path draws nothing.
-void expect_instanced_identical(const Scene& scene, const FrameState& state,
-                                const CrowdCompute& compute) {
-  ASSERT_TRUE(compute.instanced());
+// Instanced draws: every instance the CPU draws is in exactly one draw command of its type,
+// whose indices are reconstruct_lod(type, n_i) for the CPU's n_i; the corner path draws
+// nothing. Static levels list a level's instances in instance order. The level cache may draw
+// an instance at a coarser cached level when a frame needs more levels than the type has
+// slots: then the level has fewer indices, all within the instance's n' skinned vertices.
+// Returns the instances drawn coarser.
+uint32_t expect_instanced_identical(const Scene& scene, const FrameState& state,
+                                    const CrowdCompute& compute) {
+  EXPECT_TRUE(compute.instanced());
   std::vector<VkDrawIndexedIndirectCommand> args;
   std::vector<uint32_t> list, indices, reference;
-  ASSERT_TRUE(compute.read_indexed_args(args).ok());
-  ASSERT_TRUE(compute.read_instance_list(list).ok());
-  ASSERT_TRUE(compute.read_level_indices(indices).ok());
-  ASSERT_EQ(args.size(), scene.types.size() * CrowdCompute::kSlotsPerType);
+  EXPECT_TRUE(compute.read_indexed_args(args).ok());
+  EXPECT_TRUE(compute.read_instance_list(list).ok());
+  EXPECT_TRUE(compute.read_level_indices(indices).ok());
   std::vector<uint32_t> seen(scene.instances.size(), 0);
-  for (uint32_t s = 0; s < args.size(); ++s) {
-    const VkDrawIndexedIndirectCommand& a = args[s];
-    const uint32_t type = s / CrowdCompute::kSlotsPerType;
-    if (a.instanceCount == 0) continue;
-    ASSERT_LE(size_t{a.firstInstance} + a.instanceCount, list.size()) << "slot " << s;
-    ASSERT_LE(size_t{a.firstIndex} + a.indexCount, indices.size()) << "slot " << s;
-    EXPECT_EQ(a.vertexOffset, 0);
-    uint32_t previous = 0;
-    for (uint32_t k = 0; k < a.instanceCount; ++k) {
-      const uint32_t i = list[a.firstInstance + k];
-      ASSERT_LT(i, scene.instances.size());
-      ++seen[i];
-      EXPECT_EQ(scene.instances.type[i], type) << "instance " << i << " in slot " << s;
-      if (k > 0) {
-        EXPECT_GT(i, previous) << "instances of a slot in instance order";
+  uint32_t coarser = 0, commands = 0;
+  for (uint32_t type = 0; type < scene.types.size(); ++type) {
+    const uint32_t first = compute.first_command(type);
+    commands += compute.command_count(type);
+    for (uint32_t s = first; s < first + compute.command_count(type); ++s) {
+      if (s >= args.size()) {
+        ADD_FAILURE() << "command " << s << " beyond " << args.size();
+        return coarser;
       }
-      previous = i;
-      ASSERT_GT(state.vertex_count[i], 0u) << "instance " << i << " drawn but not selected";
-      ASSERT_TRUE(reconstruct_lod(scene, type, state.vertex_count[i], reference).ok());
-      ASSERT_EQ(reference.size(), a.indexCount) << "instance " << i;
-      EXPECT_TRUE(std::equal(reference.begin(), reference.end(), indices.begin() + a.firstIndex))
-          << "instance " << i << ": its level's indices differ from reconstruct_lod";
+      const VkDrawIndexedIndirectCommand& a = args[s];
+      if (a.instanceCount == 0) continue;
+      if (size_t{a.firstInstance} + a.instanceCount > list.size() ||
+          size_t{a.firstIndex} + a.indexCount > indices.size()) {
+        ADD_FAILURE() << "command " << s << " reads beyond its buffers";
+        return coarser;
+      }
+      EXPECT_EQ(a.vertexOffset, 0);
+      const auto level = indices.begin() + a.firstIndex;
+      uint32_t previous = 0;
+      for (uint32_t k = 0; k < a.instanceCount; ++k) {
+        const uint32_t i = list[a.firstInstance + k];
+        if (i >= scene.instances.size()) {
+          ADD_FAILURE() << "command " << s << " lists instance " << i;
+          return coarser;
+        }
+        ++seen[i];
+        EXPECT_EQ(scene.instances.type[i], type) << "instance " << i << " in command " << s;
+        if (k > 0 && !compute.cached()) {
+          EXPECT_GT(i, previous) << "instances of a slot in instance order";
+        }
+        previous = i;
+        if (state.vertex_count[i] == 0) {
+          ADD_FAILURE() << "instance " << i << " drawn but not selected";
+          continue;
+        }
+        EXPECT_TRUE(reconstruct_lod(scene, type, state.vertex_count[i], reference).ok());
+        if (reference.size() == a.indexCount) {
+          EXPECT_TRUE(std::equal(reference.begin(), reference.end(), level))
+              << "instance " << i << ": its level's indices differ from reconstruct_lod";
+          continue;
+        }
+        ++coarser;
+        EXPECT_TRUE(compute.cached()) << "instance " << i << ": " << a.indexCount
+                                      << " indices, reconstruct_lod has " << reference.size();
+        EXPECT_LT(a.indexCount, reference.size()) << "instance " << i << " drawn finer";
+        const uint32_t skinned = *std::max_element(reference.begin(), reference.end());
+        EXPECT_LE(*std::max_element(level, level + a.indexCount), skinned) << "instance " << i;
+      }
     }
   }
+  EXPECT_EQ(args.size(), commands);
   for (size_t i = 0; i < seen.size(); ++i)
     EXPECT_EQ(seen[i], state.vertex_count[i] > 0 ? 1u : 0u) << "instance " << i;
   std::vector<VkDrawIndirectCommand> corner_args;
-  ASSERT_TRUE(compute.read_draw_args(corner_args).ok());
+  EXPECT_TRUE(compute.read_draw_args(corner_args).ok());
   for (const VkDrawIndirectCommand& a : corner_args) EXPECT_EQ(a.vertexCount, 0u);
+  return coarser;
 }
 
 TEST_F(ComputeTest, InstancedStaticLevelsDrawTheCpuMeshes) {
@@ -362,16 +393,61 @@ TEST_F(ComputeTest, InstancedStaticLevelsDrawTheCpuMeshes) {
     EXPECT_EQ(stats.overflow_instances, 0u);
     EXPECT_EQ(stats.drawn_instances, state_.lod.drawn);
   }
-  // A continuous frame goes through the corner buffer and leaves the indexed draws empty.
+  // A continuous frame draws from the level cache: each distinct level once.
   scene.lod.mode = LodMode::kContinuous;
-  scene.lod.budget = 3000;
+  scene.lod.budget = 30000;
   run_frame(scene, 0.4f, *compute);
   if (HasFatalFailure()) return;
-  EXPECT_FALSE(compute->instanced());
-  std::vector<VkDrawIndexedIndirectCommand> args;
-  ASSERT_TRUE(compute->read_indexed_args(args).ok());
-  for (const VkDrawIndexedIndirectCommand& a : args) EXPECT_EQ(a.instanceCount, 0u);
-  expect_identical(scene, *compute, false);
+  EXPECT_TRUE(compute->cached());
+  EXPECT_EQ(expect_instanced_identical(scene, state_, *compute), 0u);
+  CrowdComputeStats stats;
+  ASSERT_TRUE(compute->read_stats(stats).ok());
+  EXPECT_GT(stats.levels_drawn, 1u);
+  EXPECT_EQ(stats.levels_built, stats.levels_drawn) << "a cold cache builds what it draws";
+  EXPECT_LT(stats.levels_drawn, state_.lod.drawn) << "instances share levels";
+}
+
+// The level cache across frames: a level is built once and drawn again from the cache; a
+// moving camera builds only the levels it had not drawn; a cache too small for a frame draws
+// the levels it cannot hold at a coarser cached level, never drops an instance, and every
+// frame draws exactly the CPU's meshes otherwise.
+TEST_F(ComputeTest, LevelCacheKeepsLevelsAcrossFramesAndDegradesWhenFull) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 21, continuous(40000, 0.5f, false)).ok());
+  for (uint64_t cache_bytes : {uint64_t{0}, uint64_t{300000}}) {
+    SCOPED_TRACE("cache bytes " + std::to_string(cache_bytes));
+    CrowdComputeOptions options;
+    options.instanced_static_levels = true;
+    options.level_cache_bytes = cache_bytes;
+    std::unique_ptr<CrowdCompute> compute;
+    ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+    EXPECT_GT(compute->level_cache_bytes(), 0u);
+    EXPECT_LE(compute->level_cache_bytes(), cache_bytes ? cache_bytes : uint64_t{64} << 20);
+    uint32_t coarser = 0, built_again = 0;
+    for (int frame = 0; frame < 4; ++frame) {
+      scene.camera.position[0] = frame < 2 ? 0.0f : 0.8f * static_cast<float>(frame);
+      run_frame(scene, 0.4f, *compute);
+      if (HasFatalFailure()) return;
+      const uint32_t here = expect_instanced_identical(scene, state_, *compute);
+      if (HasFailure()) return;
+      CrowdComputeStats stats;
+      ASSERT_TRUE(compute->read_stats(stats).ok());
+      EXPECT_EQ(stats.coarser_instances, here);
+      EXPECT_EQ(stats.drawn_instances, state_.lod.drawn);
+      EXPECT_EQ(state_.lod.dropped, 0u);
+      coarser += here;
+      if (frame == 1) built_again = stats.levels_built;
+      if (frame == 2) {
+        EXPECT_GT(stats.levels_built, 0u) << "a new view needs new levels";
+      }
+    }
+    if (cache_bytes == 0) {
+      EXPECT_EQ(coarser, 0u);
+      EXPECT_EQ(built_again, 0u) << "the same frame again builds nothing";
+    } else {
+      EXPECT_GT(coarser, 0u) << "a 300 kB cache cannot hold every level";
+    }
+  }
 }
 
 TEST_F(ComputeTest, AnEmptyCrowdDrawsNothing) {

@@ -295,11 +295,15 @@ TEST_F(RendererTest, CrossfadeChangesThePictureOnlyBetweenTheEnds) {
   EXPECT_FALSE(render(scene, 1.3f, nullptr, &fade).rgba == plain.rgba);
 }
 
-TEST_F(RendererTest, InstancedStaticLevelsDrawWhatTheCornerPathDraws) {
+// Static levels (full, discrete) and the level cache (continuous) draw what the corner path
+// draws, up to the order of instances within a draw.
+TEST_F(RendererTest, InstancedDrawsDrawWhatTheCornerPathDraws) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
   crowd_scene(scene);
-  for (runtime::LodMode mode : {runtime::LodMode::kFull, runtime::LodMode::kDiscrete}) {
+  for (runtime::LodMode mode :
+       {runtime::LodMode::kFull, runtime::LodMode::kDiscrete, runtime::LodMode::kContinuous}) {
+    SCOPED_TRACE("mode " + std::to_string(static_cast<int>(mode)));
     scene.lod.mode = mode;
     scene.lod.budget = 20000;
     make_renderer(scene);

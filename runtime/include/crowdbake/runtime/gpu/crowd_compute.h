@@ -86,6 +86,10 @@ struct CrowdComputeOptions {
   // static index buffers (reconstructed once per level) instead of through the corner buffer,
   // so a full-resolution crowd of any size fits (see "Instanced static levels" above).
   bool instanced_static_levels = false;
+  // With instanced_static_levels, continuous frames draw from the level cache (see "Level
+  // cache" above): its size in bytes, split evenly between the types (at least one slot each,
+  // at most the device's maxStorageBufferRange). 0: 64 MiB.
+  uint64_t level_cache_bytes = 0;
 };
 
 // Per-instance result of the passes (instance_lod_buffer(), std430, 32 bytes).
@@ -118,21 +122,26 @@ struct CrowdComputeStats {
   uint64_t selected_vertices = 0;                                // Σ n_i
   uint64_t requested_corners = 0;  // Σ 3·T(n') over drawn instances, fitting or not
   double weight_sum = 0.0;         // Σ w_j^(1/α)
+  // Level-cache frames: draw commands (distinct cached levels drawn), levels reconstructed this
+  // frame (not cached before), instances drawn at a coarser cached level (more distinct levels
+  // than slots).
+  uint32_t levels_drawn = 0, levels_built = 0, coarser_instances = 0;
 };
 
 // GPU time of each pass of one record() (timestamps), in milliseconds.
 struct ComputeTimings {
-  static constexpr uint32_t kPasses = 7;
-  static constexpr const char* kNames[kPasses] = {"cull+weights", "weight sum", "lod+local scan",
-                                                  "type scan",    "place",      "draw args",
-                                                  "reconstruct"};
+  static constexpr uint32_t kPasses = 8;
+  static constexpr const char* kNames[kPasses] = {"cull+weights", "weight sum",  "lod+local scan",
+                                                  "type scan",    "level cache", "place",
+                                                  "draw args",    "reconstruct"};
   std::array<double, kPasses> pass_ms{};
   double total_ms = 0.0;
 };
 
 class CrowdCompute {
  public:
-  // Timestamps record() writes when given queries: first_query .. first_query + 7.
+  static constexpr uint32_t kKernelCount = ComputeTimings::kPasses;
+  // Timestamps record() writes when given queries: first_query .. first_query + kPasses.
   static constexpr uint32_t kTimestampCount = ComputeTimings::kPasses + 1;
 
   // Uploads the scene's per-type static data (triangles, progressive arrays) and sizes the
@@ -168,12 +177,23 @@ class CrowdCompute {
   uint32_t type_count() const { return type_count_; }
   uint32_t instance_count() const { return instance_count_; }
 
-  // Instanced static levels (options.instanced_static_levels, full/discrete mode frames).
-  bool instanced() const { return instanced_; }  // the last upload() chose this path
-  const GpuBuffer& level_index_buffer() const { return level_indices_; }    // uint32 indices
-  const GpuBuffer& indexed_args_buffer() const { return indexed_args_; }    // per slot, stride 20
+  // Instanced draws (options.instanced_static_levels): static levels in full/discrete frames,
+  // the level cache in continuous frames. The last upload() chose:
+  bool instanced() const { return instanced_ || cached_; }                // either instanced path
+  bool cached() const { return cached_; }                                 // the level cache
+  const GpuBuffer& level_index_buffer() const { return level_indices_; }  // uint32 indices
+  const GpuBuffer& level_cache_buffer() const { return level_cache_; }    // uint32 indices
+  const GpuBuffer& draw_index_buffer() const { return cached_ ? level_cache_ : level_indices_; }
+  const GpuBuffer& indexed_args_buffer() const { return indexed_args_; }    // stride 20
   const GpuBuffer& instance_list_buffer() const { return instance_list_; }  // uint32 instances
   static constexpr uint32_t kSlotsPerType = kMaxDiscreteLevels;  // slot = type · 8 + level
+  // A type's VkDrawIndexedIndirectCommands in indexed_args_buffer(): static levels
+  // type · 8 .. + 8; level cache one per slot of the type.
+  uint32_t first_command(uint32_t type) const;
+  uint32_t command_count(uint32_t type) const;
+  // GPU memory of the compute side in bytes, fixed at create (the level cache included).
+  uint64_t gpu_bytes() const { return gpu_bytes_; }
+  uint64_t level_cache_bytes() const { return cache_indices_ * 4; }
 
   // Readback for tests and profiles (after the passes completed).
   Status read_stats(CrowdComputeStats& out) const;
@@ -183,23 +203,32 @@ class CrowdCompute {
   Status read_type_ranges(std::vector<TypeRange>& out) const;            // per key (type or slot)
   Status read_indexed_args(std::vector<VkDrawIndexedIndirectCommand>& out) const;  // per slot
   Status read_instance_list(std::vector<uint32_t>& out) const;  // instance_count()
-  Status read_level_indices(std::vector<uint32_t>& out) const;
+  Status read_level_indices(std::vector<uint32_t>& out) const;  // draw_index_buffer()
 
  private:
   CrowdCompute() = default;
   Status update_levels(const Scene& scene, const FrameState& state);
+  Status layout_level_cache(const VulkanContext& context, const CrowdComputeOptions& options);
+
+  struct LevelCacheLayout {
+    uint32_t key_base = 0, slot_base = 0, slot_count = 0, slot_stride = 0, cache_base = 0;
+  };
 
   VulkanContext* context_ = nullptr;
   uint32_t type_count_ = 0, max_instances_ = 0, instance_count_ = 0, corner_capacity_ = 0;
   std::vector<uint32_t> type_offsets_;  // 4 per type into mesh data: tri, collapse, tcount, group
   std::vector<uint8_t> progressive_;    // per type
-  std::vector<uint32_t> vertex_counts_, triangle_counts_;
+  std::vector<uint32_t> vertex_counts_, triangle_counts_, full_triangles_;
   GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
       draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_, level_ranges_,
-      indexed_args_, instance_list_, level_indices_;
-  bool instanced_levels_ = false, instanced_ = false;
+      indexed_args_, instance_list_, level_indices_, key_counts_, key_states_, slot_states_,
+      build_list_, level_cache_, cache_hands_;
+  bool instanced_levels_ = false, instanced_ = false, cached_ = false;
+  uint32_t frame_ = 0, key_total_ = 1, slot_total_ = 1;
+  uint64_t cache_indices_ = 0, gpu_bytes_ = 0;
+  std::vector<LevelCacheLayout> cache_layout_;
   std::vector<uint32_t> level_vertices_;  // per slot: the level's vertex count (0 = none)
-  std::array<ComputeKernel, 7> kernels_;
+  std::array<ComputeKernel, kKernelCount> kernels_;
   TimestampQueries queries_;  // for run()
 };
 
