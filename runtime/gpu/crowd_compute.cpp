@@ -123,6 +123,8 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       std::min<uint64_t>(context.limits().maxStorageBufferRange / 8, uint64_t{kMaxGroups} * 256);
   uint64_t capacity = options.corner_capacity ? options.corner_capacity : full_corners;
   capacity = std::min(capacity, limit);
+  // note: the instanced paths draw every mode without corners, so there is no corner buffer.
+  if (options.instanced_static_levels) capacity = 0;
   c->corner_capacity_ = static_cast<uint32_t>(capacity);
 
   const uint32_t n = std::max(c->max_instances_, 1u);

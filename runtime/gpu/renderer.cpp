@@ -117,6 +117,7 @@ Status Renderer::create(VulkanContext& context, const Scene& scene, const Render
   settings.shadow_map_size = options.shadow_map_size;
   settings.ground = options.ground;
   settings.joint_palette = options.joint_palette;
+  settings.skin_slots = options.skin_slots;
   if (Status s = CrowdDraw::create(context, scene, settings, impl->draw); !s) return s;
   // note: render()'s own target formats; a host target of other formats builds its own later.
   HostTarget own;

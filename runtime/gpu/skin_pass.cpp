@@ -73,12 +73,16 @@ Status CrowdDraw::Impl::create_skin_pass() {
 
 Status CrowdDraw::Impl::update_skin_pass(const Scene& scene, const FrameState& state,
                                          const CrowdCompute& compute, bool& sets_dirty) {
-  // Skinned-vertex slots (skin_common.glsl): as many as the corner buffer has corners (a LoD
-  // has fewer vertices than corners), capped by the device's storage buffer range; instances
-  // finding no room are counted and not drawn.
-  const uint32_t slots = static_cast<uint32_t>(std::max<uint64_t>(
-      1,
-      std::min<uint64_t>(compute.corner_capacity(), context->limits().maxStorageBufferRange / 16)));
+  // Skinned-vertex slots (skin_common.glsl): DrawSettings::skin_slots, or as many as the corner
+  // buffer has corners (a LoD has fewer vertices than corners) or, on the instanced paths,
+  // as one storage buffer holds; capped by the device's storage buffer range. Instances
+  // finding no room are counted (skinned in the vertex shader on the instanced paths).
+  const uint64_t range = context->limits().maxStorageBufferRange / 16;
+  const uint64_t wanted_slots = settings.skin_slots         ? settings.skin_slots
+                                : compute.corner_capacity() ? compute.corner_capacity()
+                                                            : range;
+  const uint32_t slots =
+      static_cast<uint32_t>(std::max<uint64_t>(1, std::min(wanted_slots, range)));
   if (!skinned.valid() || slots != skin_capacity) {
     if (Status s = replace_storage_buffer(*context, VkDeviceSize{slots} * 16, skinned); !s)
       return s;

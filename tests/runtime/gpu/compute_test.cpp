@@ -375,7 +375,6 @@ TEST_F(ComputeTest, InstancedStaticLevelsDrawTheCpuMeshes) {
   ASSERT_TRUE(test::make_compute_scene(scene, 300, 13, continuous(60000)).ok());
   CrowdComputeOptions options;
   options.instanced_static_levels = true;
-  options.corner_capacity = 3000;  // note: far too small for the full-mode crowd as corners
   std::unique_ptr<CrowdCompute> compute;
   ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
   for (LodMode mode : {LodMode::kFull, LodMode::kDiscrete, LodMode::kFull}) {

@@ -312,10 +312,10 @@ TEST_F(RendererTest, InstancedDrawsDrawWhatTheCornerPathDraws) {
     const Image corners = render(scene, 1.1f, &corner_profile);
     // note: with 20000 slots some instances find none and the vertex shader skins them.
     for (uint32_t capacity : {0u, 20000u}) {
-      SCOPED_TRACE("corner capacity " + std::to_string(capacity));
+      SCOPED_TRACE("skin slots " + std::to_string(capacity));
       RenderOptions options;
       options.compute.instanced_static_levels = true;
-      options.compute.corner_capacity = capacity;
+      options.skin_slots = capacity;
       make_renderer(scene, options);
       if (HasFatalFailure()) return;
       FrameProfile instanced_profile;

@@ -42,6 +42,11 @@ struct DrawSettings {
   // Decode each drawn instance's joint matrices once (palette pass) rather than per vertex
   // influence; off only to compare the two (they draw the same).
   bool joint_palette = true;
+  // Skinned-vertex slots (16 bytes each) shared by the drawn instances; instances finding no
+  // room are skinned in the vertex shader on instanced paths, and not drawn on the corner
+  // path. 0: the corner buffer's corners on the corner path, otherwise as many as one storage
+  // buffer holds (maxStorageBufferRange / 16).
+  uint32_t skin_slots = 0;
 };
 
 // A colour + depth target the colour pass renders into: the Renderer's own offscreen image or

@@ -55,6 +55,7 @@ struct RenderOptions {
   bool ground = true;               // a ground quad under the crowd, receiving shadows
   CrowdComputeOptions compute;      // corner buffer capacity, instance capacity
   bool joint_palette = true;        // DrawSettings::joint_palette
+  uint32_t skin_slots = 0;          // DrawSettings::skin_slots
 };
 
 class Renderer {
