@@ -98,6 +98,7 @@ struct RenderSettings {
   std::string contact_sheet;   // --frames: also tile every frame into this PNG
   uint32_t sheet_columns = 0;  // 0 = ceil(sqrt(frames))
   bool profile = false;        // per-pass timings and counts on stdout
+  std::string stats;           // "" = none; the frames' numbers as JSON (render_profile.h)
   bool shadows = true;
   bool validation = false;  // Vulkan validation layer; any error fails the command
   bool quiet = false;

@@ -216,6 +216,9 @@ int main(int argc, char** argv) {
                          "Contact sheet columns (default ceil(sqrt(frames)))");
   render_cmd->add_flag("--profile", render.profile,
                        "Print per-pass CPU/GPU milliseconds, counts and effect counters");
+  render_cmd->add_option("--stats", render.stats,
+                         "Write the frames' numbers (counts, budget, GPU bytes, per-pass CPU/GPU "
+                         "ms) as JSON to this file");
   render_cmd->add_flag("!--no-shadows", render.shadows, "No shadow map");
   render_cmd->add_flag("--validate", render.validation,
                        "Enable the Vulkan validation layer; any validation error fails the run");

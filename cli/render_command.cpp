@@ -13,6 +13,7 @@
 #include "cli/render_plan.h"
 #include "cli/render_profile.h"
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/output_file.h"
 #include "crowdbake/runtime/effects/crowd_effects.h"
 
 namespace crowdbake::cli {
@@ -116,6 +117,8 @@ int run_render(const RenderSettings& s) {
     options.columns = s.sheet_columns;
     write_png(s.contact_sheet, contact_sheet(sheet_frames, options));
   }
+  if (!s.stats.empty())
+    write_file_atomically(s.stats, stats_json(profiles, plan.times, context->device_name()));
   written.keep();
 
   const double seconds =

@@ -131,6 +131,7 @@ RenderPlan plan_render(const RenderSettings& s) {
     plan.outputs.push_back(s.output);
     plan.times.push_back(static_cast<float>(s.time));
   }
+  if (!s.stats.empty()) check_output_file(s.stats);
 
   const runtime::Status loaded =
       runtime::load_scene(s.scene, plan.scene, render_scene_load_options());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 
 namespace crowdbake::cli {
 
@@ -67,6 +68,48 @@ std::string format_profile(const runtime::gpu::FrameProfile& profile, const std:
                 static_cast<unsigned long long>(profile.triangles));
   out += line;
   return out;
+}
+
+std::string stats_json(const std::vector<runtime::gpu::FrameProfile>& frames,
+                       const std::vector<float>& times, const std::string& device) {
+  nlohmann::ordered_json out;
+  out["device"] = device;
+  out["frames"] = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const runtime::gpu::FrameProfile& f = frames[i];
+    nlohmann::ordered_json j;
+    j["time"] = i < times.size() ? times[i] : 0.0f;
+    j["instances"] = f.instances;
+    j["visible"] = f.visible;
+    j["drawn"] = f.drawn;
+    j["not_drawn"] = f.overflow;
+    j["vertices"] = f.vertices;
+    j["triangles"] = f.triangles;
+    j["budget"] = f.budget;
+    j["budget_exceeded"] = f.budget_exceeded;
+    j["vertex_shader_skinned"] = f.vertex_shader_skinned;
+    j["level_cache"] = {
+        {"levels_drawn", f.levels_drawn}, {"levels_built", f.levels_built}, {"coarser", f.coarser}};
+    const runtime::gpu::GpuMemory& m = f.memory;
+    j["gpu_bytes"] = {{"total", m.total},
+                      {"per_type", m.per_type},
+                      {"level_cache", m.level_cache},
+                      {"per_instance", m.per_instance},
+                      {"instance_capacity", m.instance_capacity},
+                      {"skinning", m.skinning}};
+    nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+    double cpu = 0, gpu = 0;
+    for (const runtime::gpu::PassTiming& p : f.passes) {
+      passes.push_back({{"name", p.name}, {"cpu_ms", p.cpu_ms}, {"gpu_ms", p.gpu_ms}});
+      cpu += p.cpu_ms;
+      gpu += p.gpu_ms;
+    }
+    j["passes"] = std::move(passes);
+    j["cpu_ms"] = cpu;
+    j["gpu_ms"] = gpu;
+    out["frames"].push_back(std::move(j));
+  }
+  return out.dump(2) + "\n";
 }
 
 }  // namespace crowdbake::cli

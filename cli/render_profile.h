@@ -16,4 +16,10 @@ runtime::gpu::FrameProfile mean_profile(const std::vector<runtime::gpu::FramePro
 // The table, one line per pass, a total line, then the counts. `title` heads it.
 std::string format_profile(const runtime::gpu::FrameProfile& profile, const std::string& title);
 
+// `crowdbake render --stats FILE.json`: one object per frame (time, counts, budget, level cache,
+// GPU memory, per-pass CPU/GPU ms) under "frames", with the device's name. For build systems
+// and CI; the keys are documented in docs/gpu-rendering.md.
+std::string stats_json(const std::vector<runtime::gpu::FrameProfile>& frames,
+                       const std::vector<float>& times, const std::string& device);
+
 }  // namespace crowdbake::cli

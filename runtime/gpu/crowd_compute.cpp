@@ -441,6 +441,12 @@ Status CrowdCompute::read_level_indices(std::vector<uint32_t>& out) const {
   return b.download(out.data(), out.size() * 4);
 }
 
+uint64_t CrowdCompute::level_cache_bytes(uint32_t type) const {
+  if (!instanced_levels_) return 0;
+  const LevelCacheLayout& l = cache_layout_[type];
+  return uint64_t{l.slot_count} * l.slot_stride * 4;
+}
+
 uint32_t CrowdCompute::first_command(uint32_t type) const {
   return cached_ ? cache_layout_[type].slot_base : type * kSlotsPerType;
 }

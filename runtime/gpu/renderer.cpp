@@ -40,6 +40,23 @@ struct Renderer::Impl {
   GpuBuffer readback;
   TimestampQueries queries;
 
+  GpuMemory memory() const {
+    GpuMemory out;
+    const CrowdDraw::Memory d = draw->memory();
+    out.per_type = d.per_type;
+    for (uint32_t t = 0; t < out.per_type.size(); ++t)
+      out.per_type[t] += compute->level_cache_bytes(t);
+    out.level_cache = compute->level_cache_bytes();
+    out.per_instance = CrowdCompute::kBytesPerInstance;
+    out.instance_capacity = compute->max_instances();
+    out.skinning = d.skinning;
+    out.total = compute->gpu_bytes() + d.skinning + d.frame;
+    for (uint64_t b : d.per_type) out.total += b;
+    out.total += color.valid() ? uint64_t{color.desc().width} * color.desc().height * 8 : 0;
+    out.total += readback.size();
+    return out;
+  }
+
   std::vector<TypeDraw> type_draws() const {
     std::vector<TypeDraw> draws(compute->type_count());
     for (uint32_t t = 0; t < draws.size(); ++t) {
@@ -207,10 +224,19 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   if (Status s = m.draw->read_skin_stats(slots, no_room); !s) return s;
   // note: without skinning slots an instance is not drawn, except on the instanced path whose
   // vertex shader skins it itself.
+  const uint32_t raw_no_room = no_room;
   if (m.compute->instanced()) no_room = 0;
   profile->overflow = stats.overflow_instances + no_room;
   profile->drawn = stats.drawn_instances - std::min(no_room, stats.drawn_instances);
   profile->vertices = stats.selected_vertices;
+  profile->budget = scene.lod.budget;
+  profile->budget_exceeded =
+      scene.lod.mode != LodMode::kFull && stats.selected_vertices > scene.lod.budget;
+  if (m.compute->instanced()) profile->vertex_shader_skinned = raw_no_room;
+  profile->levels_drawn = stats.levels_drawn;
+  profile->levels_built = stats.levels_built;
+  profile->coarser = stats.coarser_instances;
+  profile->memory = m.memory();
   profile->triangles = stats.drawn_corners / 3;
   if (m.compute->instanced()) {
     std::vector<VkDrawIndexedIndirectCommand> args;

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "cli/cli_runner.h"
@@ -155,6 +157,9 @@ TEST_F(RenderCommand, OutputProblems) {
   expect_error({"render", scene_, "-o", out("d.png")}, 3, "is a folder");
   expect_error({"render", scene_, "-o", out("a.png"), "--contact-sheet", out("s.png")}, 2,
                "--contact-sheet");
+  expect_error({"render", scene_, "-o", out("a.png"), "--stats", out("d.png")}, 3, "is a folder");
+  expect_error({"render", scene_, "-o", out("a.png"), "--stats", out("missing/s.json")}, 3,
+               "does not exist");
 }
 
 TEST_F(RenderCommand, NoVulkanDriverSaysHowToInstallLavapipe) {
@@ -209,6 +214,36 @@ TEST_F(RenderCommand, LodModesChangeTrianglesDrawn) {
   EXPECT_GT(triangles(full.out), triangles(lod.out)) << full.out << lod.out;
   EXPECT_GT(triangles(lod.out), 0) << lod.out;
   EXPECT_GT(triangles(discrete.out), 0) << discrete.out;
+}
+
+// --stats: the frame's numbers as JSON for build systems; every visible instance is drawn even
+// at a budget far below the crowd's minimum (budget_exceeded says so).
+TEST_F(RenderCommand, StatsWritesTheFramesNumbersAsJson) {
+  test::CommandResult r;
+  if (!render({scene_, "-o", out("seq"), "--stats", out("stats.json"), "--frames", "2",
+               "--budget", "100", "--quiet"},
+              r))
+    return;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out("stats.json")));
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
+  ASSERT_EQ(j["frames"].size(), 2u);
+  for (const nlohmann::json& f : j["frames"]) {
+    EXPECT_EQ(f["instances"], 25);
+    EXPECT_GT(f["visible"].get<int>(), 0);
+    EXPECT_EQ(f["drawn"], f["visible"]);
+    EXPECT_EQ(f["budget"], 100);
+    EXPECT_EQ(f["budget_exceeded"], true);
+    EXPECT_GT(f["vertices"].get<long long>(), 100);
+    EXPECT_GT(f["triangles"].get<long long>(), 0);
+    EXPECT_GE(f["level_cache"]["levels_drawn"].get<int>(), 1);
+    EXPECT_GT(f["gpu_bytes"]["total"].get<long long>(),
+              f["gpu_bytes"]["level_cache"].get<long long>());
+    EXPECT_EQ(f["gpu_bytes"]["per_type"].size(), 1u);
+    EXPECT_GT(f["passes"].size(), 8u);
+    EXPECT_GT(f["gpu_ms"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(j["frames"][1]["level_cache"]["levels_built"], 0) << "the second frame reuses";
 }
 
 TEST_F(RenderCommand, SequenceAndContactSheet) {

@@ -193,6 +193,11 @@ class CrowdCompute {
   uint32_t command_count(uint32_t type) const;
   // GPU memory of the compute side in bytes, fixed at create (the level cache included).
   uint64_t gpu_bytes() const { return gpu_bytes_; }
+  // Of which per instance (records, weights, LoD results, lists), times max_instances.
+  static constexpr uint64_t kBytesPerInstance = sizeof(GpuInstance) + 8 + 32 + 32 + 4 + 4;
+  uint32_t max_instances() const { return max_instances_; }
+  // The level cache's bytes of one type.
+  uint64_t level_cache_bytes(uint32_t type) const;
   uint64_t level_cache_bytes() const { return cache_indices_ * 4; }
 
   // Readback for tests and profiles (after the passes completed).

@@ -150,6 +150,15 @@ class CrowdDraw {
   // After the skinning pass ran: slots used and drawn instances that found no room (not drawn).
   Status read_skin_stats(uint32_t& slots_used, uint32_t& no_room) const;
 
+  // GPU memory of the drawing side in bytes, as allocated now: per type (vertices, animation,
+  // pose buffer, constants, partition mask), the skinning buffers (skinned-vertex slots,
+  // palette, per-instance lists) and the rest (frame constants, swatches, shadow map).
+  struct Memory {
+    std::vector<uint64_t> per_type;
+    uint64_t skinning = 0, frame = 0;
+  };
+  Memory memory() const;
+
   // The pose buffers alone (update() calls it): uploads each type's EffectFrame::pose_buffers
   // entry, growing the buffer when needed; types without poses keep what they had.
   Status upload_poses(const EffectFrame* effects);

@@ -39,14 +39,29 @@ struct PassTiming {
   double cpu_ms = 0, gpu_ms = 0;
 };
 
+// GPU memory the renderer holds, in bytes (buffers and images as allocated).
+struct GpuMemory {
+  std::vector<uint64_t> per_type;  // a type's geometry, animation, poses, mask, cache share
+  uint64_t level_cache = 0;        // all types' cached levels (included in per_type)
+  uint64_t per_instance = 0;       // records, LoD results and lists, per instance sized for
+  uint32_t instance_capacity = 0;  // instances the buffers are sized for
+  uint64_t skinning = 0;           // skinned-vertex slots, palette, skinning lists
+  uint64_t total = 0;              // everything, the above and the rest (targets, shadow map)
+};
+
 struct FrameProfile {
   std::vector<PassTiming> passes;
-  uint32_t instances = 0;  // in the scene
-  uint32_t visible = 0;    // after frustum culling
-  uint32_t drawn = 0;      // drawn (selected and fitting the corner buffer)
-  uint32_t overflow = 0;   // selected but not drawn: the corner buffer was full
-  uint64_t vertices = 0;   // Σ n_i: LoD vertices selected over the drawn instances
-  uint64_t triangles = 0;  // triangles drawn (per pass; the shadow pass draws the same ones)
+  uint32_t instances = 0;        // in the scene
+  uint32_t visible = 0;          // after frustum culling
+  uint32_t drawn = 0;            // drawn (selected and fitting the corner buffer)
+  uint32_t overflow = 0;         // selected but not drawn: the corner buffer was full
+  uint64_t vertices = 0;         // Σ n_i: LoD vertices selected over the drawn instances
+  uint64_t triangles = 0;        // triangles drawn (per pass; the shadow pass draws the same ones)
+  uint32_t budget = 0;           // the scene's N
+  bool budget_exceeded = false;  // Σ n_i > N (continuous, discrete)
+  uint32_t vertex_shader_skinned = 0;  // instanced paths: drawn without skinned slots
+  uint32_t levels_drawn = 0, levels_built = 0, coarser = 0;  // CrowdComputeStats, level cache
+  GpuMemory memory;
 };
 
 struct RenderOptions {
