@@ -333,7 +333,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
     const runtime::Pack& p = scene.types[0].pack;
     result.pack_vertices = p.max_vertices();
     result.pack_triangles = p.counts().triangles;
-    auto renderer = make_renderer(*context, scene, s.shadows, "bench stand");
+    auto renderer = make_renderer(*context, scene, s.shadows, s.msaa, "bench stand");
     std::vector<RenderBenchRow> rows;
 
     // Full resolution: the reference. Huge frames are timed once (the warm-up of the
@@ -387,7 +387,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
         "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
         "reference); discrete N = %u selects %.0f\n",
         budget, target, equal, achieved);
-    auto renderer = make_renderer(*context, scene, s.shadows, "bench dolly");
+    auto renderer = make_renderer(*context, scene, s.shadows, s.msaa, "bench dolly");
     result.pop_instances = s.pop_size;
     result.pop_frames = s.pop_frames;
     const PopSequence full = render_sequence(*context, *renderer, scene, runtime::LodMode::kFull, 0,

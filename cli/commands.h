@@ -98,6 +98,7 @@ struct RenderSettings {
   std::string contact_sheet;   // --frames: also tile every frame into this PNG
   uint32_t sheet_columns = 0;  // 0 = ceil(sqrt(frames))
   bool profile = false;        // per-pass timings and counts on stdout
+  uint32_t msaa = 4;           // samples per pixel (1 = no antialiasing)
   std::string stats;           // "" = none; the frames' numbers as JSON (render_profile.h)
   bool shadows = true;
   bool validation = false;  // Vulkan validation layer; any error fails the command
@@ -127,6 +128,7 @@ struct BenchRenderSettings {
   std::string plot_script = "scripts/plot-render.gp";
   std::string frames_dir;  // "" = none; else the dolly's frames (PNG) go there
   bool shadows = true;
+  uint32_t msaa = 4;  // samples per pixel of every image, the full-resolution reference too
   bool quick = false;  // CI smoke test: tiny sizes, resolution and sequence
 };
 

@@ -138,6 +138,8 @@ int main(int argc, char** argv) {
   bench_render_cmd->add_option("--frames-dir", bench_render.frames_dir,
                                "Write the dolly's frames as PNGs into this folder");
   bench_render_cmd->add_flag("!--no-shadows", bench_render.shadows, "No shadow map");
+  bench_render_cmd->add_option("--msaa", bench_render.msaa,
+                               "Samples per pixel of every image (default 4; 1 = off)");
   bench_render_cmd->add_flag("--quick", bench_render.quick,
                              "Tiny sizes, resolution and dolly (CI smoke test)");
 
@@ -219,6 +221,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--stats", render.stats,
                          "Write the frames' numbers (counts, budget, GPU bytes, per-pass CPU/GPU "
                          "ms) as JSON to this file");
+  render_cmd->add_option("--msaa", render.msaa,
+                         "Samples per pixel, antialiasing (default 4; 1 = off; the device must "
+                         "support the count)");
   render_cmd->add_flag("!--no-shadows", render.shadows, "No shadow map");
   render_cmd->add_flag("--validate", render.validation,
                        "Enable the Vulkan validation layer; any validation error fails the run");

@@ -72,7 +72,7 @@ int run_render(const RenderSettings& s) {
   const bool progress = !s.quiet && ::isatty(STDERR_FILENO);
 
   auto context = open_vulkan(s.validation);
-  auto renderer = make_renderer(*context, scene, s.shadows, s.scene);
+  auto renderer = make_renderer(*context, scene, s.shadows, s.msaa, s.scene);
   std::unique_ptr<effects::CrowdEffects> fx;
   const runtime::Status created = effects::CrowdEffects::create(scene, fx);
   if (!created.ok()) throw input_error(s.scene, created.message());

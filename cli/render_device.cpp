@@ -15,12 +15,24 @@ std::unique_ptr<runtime::gpu::VulkanContext> open_vulkan(bool validation) {
 
 std::unique_ptr<runtime::gpu::Renderer> make_renderer(runtime::gpu::VulkanContext& context,
                                                       const runtime::Scene& scene, bool shadows,
+                                                      uint32_t msaa,
                                                       const std::string& scene_name) {
   runtime::gpu::RenderOptions options;
   options.shadows = shadows;
-  // note: full and discrete frames draw a few static meshes per type instanced, so a
-  // full-resolution crowd of any size fits (the corner buffer holds ~5.6 M triangles);
-  // continuous frames use the corner buffer either way.
+  options.msaa_samples = msaa;
+  const VkPhysicalDeviceLimits& limits = context.limits();
+  const VkSampleCountFlags supported =
+      limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+  if (msaa == 0 || (msaa & (msaa - 1)) != 0 || (supported & msaa) == 0) {
+    std::string counts;
+    for (uint32_t n = 1; n <= 64; n *= 2)
+      if (supported & n) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
+    throw Error(Error::Kind::kUsage, "--msaa",
+                std::to_string(msaa) + " samples per pixel are not supported by " +
+                    context.device_name() + " (it supports " + counts + ")");
+  }
+  // note: every mode draws instanced: full and discrete frames a few static meshes per type,
+  // continuous frames the level cache; so a crowd of any size is drawn whole.
   options.compute.instanced_static_levels = true;
   std::unique_ptr<runtime::gpu::Renderer> renderer;
   const runtime::Status status = runtime::gpu::Renderer::create(context, scene, options, renderer);

@@ -18,7 +18,7 @@ std::unique_ptr<runtime::gpu::VulkanContext> open_vulkan(bool validation);
 // packs cannot be uploaded.
 std::unique_ptr<runtime::gpu::Renderer> make_renderer(runtime::gpu::VulkanContext& context,
                                                       const runtime::Scene& scene, bool shadows,
-                                                      const std::string& scene_name);
+                                                      uint32_t msaa, const std::string& scene_name);
 
 // Moves the renderer's pixels into an RgbaImage (same layout: row 0 at the top).
 RgbaImage to_rgba(runtime::gpu::Image&& image);

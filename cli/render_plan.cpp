@@ -47,6 +47,9 @@ void check_folder_writable(const std::string& folder, const std::string& output)
 
 void check_settings(const RenderSettings& s) {
   if (s.output.empty()) throw usage("-o", "an output is required");
+  if (s.msaa == 0 || s.msaa > 64 || (s.msaa & (s.msaa - 1)) != 0)
+    throw usage("--msaa", "must be 1, 2, 4, 8, 16, 32 or 64 samples per pixel, got " +
+                              std::to_string(s.msaa));
   if (!std::isfinite(s.time) || s.time < 0)
     throw usage("--time", "must be a number of seconds >= 0, got " + std::to_string(s.time));
   if (s.frames_given && (s.frames < 1 || s.frames > 100000))

@@ -1,26 +1,39 @@
 // The colour pass: the graphics pipelines (crowd, ground, instanced levels; the shadow pass's
 // depth-only ones too), the render passes and framebuffers per host target, and the recording
 // of one draw per character type plus the ground.
+#include <string>
 #include <tuple>
 
 #include "crowd_draw_impl.h"
 #include "vk_helpers.h"
 
 namespace crowdbake::runtime::gpu {
+namespace {
+
+std::string sample_counts(VkSampleCountFlags flags) {
+  std::string out;
+  for (uint32_t n = 1; n <= 64; n *= 2)
+    if (flags & n) out += (out.empty() ? "" : ", ") + std::to_string(n);
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
 
 Status CrowdDraw::Impl::create_pipelines(VkRenderPass pass, bool shadow,
-                                         VkPipeline (&pipelines)[kEncodings], uint32_t mode) {
+                                         VkPipeline (&pipelines)[kEncodings], uint32_t mode,
+                                         VkSampleCountFlagBits samples) {
   for (const TypeResources& t : types)
     if (pipelines[t.encoding] == VK_NULL_HANDLE)
-      if (Status s =
-              create_graphics_pipeline(pass, shadow, t.encoding, pipelines[t.encoding], mode);
+      if (Status s = create_graphics_pipeline(pass, shadow, t.encoding, pipelines[t.encoding], mode,
+                                              samples);
           !s)
         return s;
   return {};
 }
 
 Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
-                                                 VkPipeline& out, uint32_t mode) {
+                                                 VkPipeline& out, uint32_t mode,
+                                                 VkSampleCountFlagBits samples) {
   // Specialization constants: 0 = the animation encoding, 1 = what is drawn (kMode*).
   const Specialization specialization({0, 1}, {encoding, mode});
   VkPipelineShaderStageCreateInfo stages[2] = {};
@@ -55,7 +68,7 @@ Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow,
   }
   VkPipelineMultisampleStateCreateInfo multisample{};
   multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  multisample.rasterizationSamples = samples;
   VkPipelineDepthStencilStateCreateInfo depth{};
   depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
   depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
@@ -95,15 +108,31 @@ Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow,
 
 Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*& out) {
   const auto key = std::make_tuple(target.color_format, target.depth_format,
-                                   target.color_final_layout, target.clear);
+                                   target.color_final_layout, target.clear, target.samples);
   auto found = color_pipelines.find(key);
   if (found != color_pipelines.end()) {
     out = &found->second;
     return {};
   }
-  VkAttachmentDescription attachments[2] = {};
+  const bool msaa = target.samples != VK_SAMPLE_COUNT_1_BIT;
+  if (msaa) {
+    const VkPhysicalDeviceLimits& limits = context->limits();
+    const VkSampleCountFlags supported =
+        limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+    if ((supported & target.samples) == 0)
+      return {StatusCode::kInvalidArgument,
+              "render target: " + std::to_string(target.samples) +
+                  " samples per pixel (MSAA) are not supported by the device (it supports " +
+                  sample_counts(supported) + ")"};
+    if (!target.clear)
+      return {StatusCode::kInvalidArgument,
+              "render target: a multisampled target is cleared (HostTarget::clear)"};
+  }
+  // note: with MSAA, attachments 0 and 1 are the multisampled colour and depth, and 2 the
+  // single-sampled image they resolve into, which takes the colour's final layout.
+  VkAttachmentDescription attachments[3] = {};
   attachments[0].format = target.color_format;
-  attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
+  attachments[0].samples = target.samples;
   attachments[0].loadOp = target.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
@@ -119,12 +148,21 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   attachments[1].initialLayout =
       target.clear ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  if (msaa) {
+    attachments[2] = attachments[0];
+    attachments[2].samples = VK_SAMPLE_COUNT_1_BIT;
+    attachments[2].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    attachments[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  }
   const VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   const VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference resolve_ref{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = 1;
   subpass.pColorAttachments = &color_ref;
+  subpass.pResolveAttachments = msaa ? &resolve_ref : nullptr;
   subpass.pDepthStencilAttachment = &depth_ref;
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
@@ -147,12 +185,16 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
   ColorPipeline p;
-  if (Status s = create_render_pass(context->device(), attachments, subpass, deps, p.render_pass);
+  p.samples = target.samples;
+  if (Status s = create_render_pass(context->device(),
+                                    Span<const VkAttachmentDescription>(attachments, msaa ? 3 : 2),
+                                    subpass, deps, p.render_pass);
       !s)
     return s;
-  Status s = create_pipelines(p.render_pass, false, p.pipelines);
+  Status s = create_pipelines(p.render_pass, false, p.pipelines, kModeCrowd, p.samples);
   if (s.ok() && settings.ground && !types.empty())
-    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, kModeGround);
+    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, kModeGround,
+                                 p.samples);
   if (!s) {
     destroy_pipelines(context->device(), p.pipelines);
     vkDestroyPipeline(context->device(), p.ground, nullptr);
@@ -165,15 +207,17 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
 
 Status CrowdDraw::Impl::framebuffer(const HostTarget& target, VkRenderPass pass,
                                     VkFramebuffer& out) {
-  const auto key =
-      std::make_tuple(pass, target.color_view, target.depth_view, target.width, target.height);
+  const auto key = std::make_tuple(pass, target.color_view, target.depth_view, target.resolve_view,
+                                   target.width, target.height);
   if (auto found = framebuffers.find(key); found != framebuffers.end()) {
     out = found->second;
     return {};
   }
-  const VkImageView views[2] = {target.color_view, target.depth_view};
+  const VkImageView views[3] = {target.color_view, target.depth_view, target.resolve_view};
+  const size_t view_count = target.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
   if (Status s =
-          create_framebuffer(context->device(), pass, views, target.width, target.height, out);
+          create_framebuffer(context->device(), pass, Span<const VkImageView>(views, view_count),
+                             target.width, target.height, out);
       !s)
     return s;
   framebuffers.emplace(key, out);
@@ -203,7 +247,8 @@ void CrowdDraw::Impl::record_type_draw(VkCommandBuffer cmd, const TypeDraw& draw
 
 Status CrowdDraw::Impl::record_type_draws(VkCommandBuffer cmd, Span<const TypeDraw> draws,
                                           VkRenderPass pass, VkPipeline (&pipelines)[kEncodings],
-                                          VkPipeline (&instanced)[kEncodings]) {
+                                          VkPipeline (&instanced)[kEncodings],
+                                          VkSampleCountFlagBits samples) {
   VkPipeline bound = VK_NULL_HANDLE;
   for (size_t t = 0; t < draws.size() && t < types.size(); ++t) {
     const uint32_t e = types[t].encoding;
@@ -211,7 +256,8 @@ Status CrowdDraw::Impl::record_type_draws(VkCommandBuffer cmd, Span<const TypeDr
     if (chosen == VK_NULL_HANDLE) {
       if (pass == VK_NULL_HANDLE) continue;
       if (Status s = create_graphics_pipeline(pass, false, e, chosen,
-                                              skin_fallback ? kModeInstanced : kModeInstancedSlots);
+                                              skin_fallback ? kModeInstanced : kModeInstancedSlots,
+                                              samples);
           !s)
         return s;
     }
@@ -238,6 +284,9 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
       target.width == 0 || target.height == 0)
     return {StatusCode::kInvalidArgument,
             "render target: colour view, depth view and size are required"};
+  if (target.samples != VK_SAMPLE_COUNT_1_BIT && target.resolve_view == VK_NULL_HANDLE)
+    return {StatusCode::kInvalidArgument,
+            "render target: a multisampled target needs a resolve view"};
   ColorPipeline* pipeline = nullptr;
   if (Status s = m.color_pipeline(target, pipeline); !s) return s;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
@@ -251,7 +300,7 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
                             &m.frame_set, 0, nullptr);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     if (Status s = m.record_type_draws(cmd, draws, pipeline->render_pass, pipeline->pipelines,
-                                       pipeline->instanced[m.skin_fallback]);
+                                       pipeline->instanced[m.skin_fallback], pipeline->samples);
         !s)
       return s;
     if (m.constants.ground_min[3] != 0.0f && pipeline->ground != VK_NULL_HANDLE) {

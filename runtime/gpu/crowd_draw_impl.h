@@ -48,6 +48,7 @@ constexpr uint32_t kEncodings = 3;  // AnimationEncoding values: one pipeline ea
 
 struct ColorPipeline {
   VkRenderPass render_pass = VK_NULL_HANDLE;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkPipeline pipelines[kEncodings] = {};  // only the encodings the scene's types use
   // Instanced static levels, made when a frame first draws them: [0] every instance has
   // skinned slots, [1] the vertex shader skins instances without (slower on lavapipe).
@@ -102,8 +103,11 @@ struct CrowdDraw::Impl {
   uint32_t palette_stride = 1;  // joints per instance in the palette (max over types)
   uint32_t list_stride = 0, skin_capacity = 0, instance_count = 0;
 
-  std::map<std::tuple<VkFormat, VkFormat, VkImageLayout, bool>, ColorPipeline> color_pipelines;
-  std::map<std::tuple<VkRenderPass, VkImageView, VkImageView, uint32_t, uint32_t>, VkFramebuffer>
+  std::map<std::tuple<VkFormat, VkFormat, VkImageLayout, bool, VkSampleCountFlagBits>,
+           ColorPipeline>
+      color_pipelines;
+  std::map<std::tuple<VkRenderPass, VkImageView, VkImageView, VkImageView, uint32_t, uint32_t>,
+           VkFramebuffer>
       framebuffers;
 
   ~Impl();
@@ -125,18 +129,20 @@ struct CrowdDraw::Impl {
 
   // color_pass.cpp
   Status create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
-                                  VkPipeline& out, uint32_t mode = kModeCrowd);
+                                  VkPipeline& out, uint32_t mode = kModeCrowd,
+                                  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
   // Creates `pipelines[e]` for every encoding e a type uses.
   Status create_pipelines(VkRenderPass pass, bool shadow, VkPipeline (&pipelines)[kEncodings],
-                          uint32_t mode = kModeCrowd);
+                          uint32_t mode = kModeCrowd,
+                          VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
   Status color_pipeline(const HostTarget& target, ColorPipeline*& out);
   Status framebuffer(const HostTarget& target, VkRenderPass pass, VkFramebuffer& out);
   // Binds each type's set and pipeline (from `pipelines`, or `instanced` for instanced draws)
   // and records its draw; the frame set is bound already. A missing instanced pipeline is made
   // for `pass` (kModeInstanced*), or, with pass null, the type is skipped.
   Status record_type_draws(VkCommandBuffer cmd, Span<const TypeDraw> draws, VkRenderPass pass,
-                           VkPipeline (&pipelines)[kEncodings],
-                           VkPipeline (&instanced)[kEncodings]);
+                           VkPipeline (&pipelines)[kEncodings], VkPipeline (&instanced)[kEncodings],
+                           VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
   // One type's draw (pipeline and sets bound): the corner path or the instanced levels.
   void record_type_draw(VkCommandBuffer cmd, const TypeDraw& draw) const;
 

@@ -165,7 +165,7 @@ Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage&
   info.extent = {desc.width, desc.height, 1};
   info.mipLevels = 1;
   info.arrayLayers = desc.layers;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.samples = desc.samples;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = desc.usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;

@@ -35,8 +35,9 @@ struct Renderer::Impl {
   std::vector<GpuInstance> instances;
   bool prepared = false;
 
-  // The offscreen target of render() and its readback buffer, sized to the camera.
-  GpuImage color, depth;
+  // The offscreen target of render() and its readback buffer, sized to the camera; with MSAA
+  // `color` is the resolved image and `samples` the multisampled one.
+  GpuImage color, depth, samples;
   GpuBuffer readback;
   TimestampQueries queries;
 
@@ -75,6 +76,24 @@ struct Renderer::Impl {
     return draws;
   }
 
+  VkSampleCountFlagBits sample_count() const {
+    return static_cast<VkSampleCountFlagBits>(options.msaa_samples);
+  }
+
+  // render()'s own target: the colour image, or with MSAA the multisampled image resolved
+  // into it.
+  HostTarget own_target(uint32_t width, uint32_t height) const {
+    HostTarget target;
+    target.color_view = samples.valid() ? samples.view() : color.view();
+    target.resolve_view = samples.valid() ? color.view() : VK_NULL_HANDLE;
+    target.samples = sample_count();
+    target.depth_view = depth.view();
+    target.width = width;
+    target.height = height;
+    target.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    return target;
+  }
+
   Status ensure_target(uint32_t width, uint32_t height) {
     if (color.valid() && color.desc().width == width && color.desc().height == height) return {};
     ImageDesc c;
@@ -86,9 +105,15 @@ struct Renderer::Impl {
     d.format = VK_FORMAT_D32_SFLOAT;
     d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-    GpuImage new_color, new_depth;
+    d.samples = sample_count();
+    ImageDesc m = c;
+    m.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    m.samples = sample_count();
+    GpuImage new_color, new_depth, new_samples;
     if (Status s = GpuImage::create(*context, c, new_color); !s) return s;
     if (Status s = GpuImage::create(*context, d, new_depth); !s) return s;
+    if (m.samples != VK_SAMPLE_COUNT_1_BIT)
+      if (Status s = GpuImage::create(*context, m, new_samples); !s) return s;
     GpuBuffer new_readback;
     if (Status s = GpuBuffer::create(*context, VkDeviceSize{width} * height * 4,
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::kHostVisible,
@@ -97,6 +122,7 @@ struct Renderer::Impl {
       return s;
     color = std::move(new_color);
     depth = std::move(new_depth);
+    samples = std::move(new_samples);
     readback = std::move(new_readback);
     return {};
   }
@@ -137,8 +163,13 @@ Status Renderer::create(VulkanContext& context, const Scene& scene, const Render
   settings.skin_slots = options.skin_slots;
   if (Status s = CrowdDraw::create(context, scene, settings, impl->draw); !s) return s;
   // note: render()'s own target formats; a host target of other formats builds its own later.
+  const uint32_t n = options.msaa_samples;
+  if (n == 0 || (n & (n - 1)) != 0 || n > 64)
+    return {StatusCode::kInvalidArgument,
+            "RenderOptions::msaa_samples: " + std::to_string(n) + " is not 1, 2, 4, ... 64"};
   HostTarget own;
   own.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  own.samples = impl->sample_count();
   if (Status s = impl->draw->prepare_target(own); !s) return s;
   // note: without timestamp support (timestampValidBits 0) profiles carry CPU times only.
   if (context.limits().timestampComputeAndGraphics)
@@ -155,12 +186,7 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   const uint32_t width = m.state.view.width, height = m.state.view.height;
   if (Status s = m.ensure_target(width, height); !s) return s;
 
-  HostTarget target;
-  target.color_view = m.color.view();
-  target.depth_view = m.depth.view();
-  target.width = width;
-  target.height = height;
-  target.color_final_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  const HostTarget target = m.own_target(width, height);
   const std::vector<TypeDraw> draws = m.type_draws();
   const TimestampQueries* queries = m.queries.count() ? &m.queries : nullptr;
   Status recorded;

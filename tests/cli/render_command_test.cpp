@@ -158,6 +158,7 @@ TEST_F(RenderCommand, OutputProblems) {
   expect_error({"render", scene_, "-o", out("a.png"), "--contact-sheet", out("s.png")}, 2,
                "--contact-sheet");
   expect_error({"render", scene_, "-o", out("a.png"), "--stats", out("d.png")}, 3, "is a folder");
+  expect_error({"render", scene_, "-o", out("a.png"), "--msaa", "3"}, 2, "--msaa");
   expect_error({"render", scene_, "-o", out("a.png"), "--stats", out("missing/s.json")}, 3,
                "does not exist");
 }
@@ -220,8 +221,8 @@ TEST_F(RenderCommand, LodModesChangeTrianglesDrawn) {
 // at a budget far below the crowd's minimum (budget_exceeded says so).
 TEST_F(RenderCommand, StatsWritesTheFramesNumbersAsJson) {
   test::CommandResult r;
-  if (!render({scene_, "-o", out("seq"), "--stats", out("stats.json"), "--frames", "2",
-               "--budget", "100", "--quiet"},
+  if (!render({scene_, "-o", out("seq"), "--stats", out("stats.json"), "--frames", "2", "--budget",
+               "100", "--quiet"},
               r))
     return;
   EXPECT_TRUE(r.out.empty()) << r.out;

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -327,6 +328,43 @@ TEST_F(RendererTest, InstancedDrawsDrawWhatTheCornerPathDraws) {
       EXPECT_LT(diff.mean_abs, 0.2);
       EXPECT_LT(diff.differing, 0.002);
     }
+  }
+}
+
+// 4x MSAA: the same picture with its edges averaged — deterministic, close to the one-sample
+// image, with more distinct colours (partly covered pixels); a count the device lacks, or not
+// a power of two, is refused.
+TEST_F(RendererTest, MultisamplingSmoothsEdgesOnly) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  make_crowd_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image single = render(scene, 1.2f);
+  RenderOptions options;
+  options.msaa_samples = 4;
+  make_renderer(scene, options);
+  if (HasFatalFailure()) return;
+  const Image msaa = render(scene, 1.2f);
+  EXPECT_TRUE(render(scene, 1.2f).rgba == msaa.rgba) << "deterministic";
+  ASSERT_EQ(msaa.rgba.size(), single.rgba.size());
+  const ImageDiff diff = compare(msaa, single);
+  EXPECT_GT(diff.mean_abs, 0.0);
+  EXPECT_LT(diff.mean_abs, 4.0);
+  EXPECT_LT(diff.differing, 0.05) << "only edge pixels change much";
+  auto colours = [](const Image& image) {
+    std::set<uint32_t> seen;
+    for (size_t p = 0; p + 3 < image.rgba.size(); p += 4)
+      seen.insert(uint32_t{image.rgba[p]} | uint32_t{image.rgba[p + 1]} << 8 |
+                  uint32_t{image.rgba[p + 2]} << 16);
+    return seen.size();
+  };
+  EXPECT_GT(colours(msaa), colours(single));
+  std::unique_ptr<Renderer> refused;
+  for (uint32_t bad : {3u, 0u, 128u}) {
+    options.msaa_samples = bad;
+    EXPECT_EQ(Renderer::create(context(), scene, options, refused).code(),
+              runtime::StatusCode::kInvalidArgument)
+        << bad;
   }
 }
 

@@ -65,6 +65,12 @@ struct HostTarget {
   // colour image must then be in COLOR_ATTACHMENT_OPTIMAL and the depth image in
   // DEPTH_STENCIL_ATTACHMENT_OPTIMAL, and the depth is kept.
   bool clear = true;
+  // Multisampling: color_view and depth_view are images of this many samples, resolved at the
+  // end of the pass into resolve_view (single-sampled, color_format, ending in
+  // color_final_layout). Needs clear = true and a count the device supports for colour and
+  // depth (lavapipe: 1 and 4).
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkImageView resolve_view = VK_NULL_HANDLE;
 };
 
 // How one character type is drawn (CrowdCompute's outputs): through the corner buffer with one

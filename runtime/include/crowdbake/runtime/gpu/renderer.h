@@ -71,6 +71,9 @@ struct RenderOptions {
   CrowdComputeOptions compute;      // corner buffer capacity, instance capacity
   bool joint_palette = true;        // DrawSettings::joint_palette
   uint32_t skin_slots = 0;          // DrawSettings::skin_slots
+  // Samples per pixel of render()'s own target (MSAA, resolved before the readback): 1, or a
+  // count the device supports for colour and depth (lavapipe: 4).
+  uint32_t msaa_samples = 1;
 };
 
 class Renderer {
