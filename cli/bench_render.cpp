@@ -53,6 +53,8 @@ const char* mode_name(runtime::LodMode mode) {
   switch (mode) {
     case runtime::LodMode::kContinuous:
       return "continuous";
+    case runtime::LodMode::kError:
+      return "error";
     case runtime::LodMode::kDiscrete:
       return "discrete";
     case runtime::LodMode::kFull:

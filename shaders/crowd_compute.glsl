@@ -19,6 +19,8 @@ const uint kNotDrawn = 0xFFFFFFFFu;
 const uint kModeContinuous = 0u;
 const uint kModeDiscrete = 1u;
 const uint kModeFull = 2u;
+const uint kModeError = 3u;
+const uint kLadderSteps = 32u;  // kErrorLadderSteps
 
 struct TypeData {
   vec4 bounds;  // bounding sphere of the type (centre, radius), model space
@@ -32,7 +34,8 @@ struct TypeData {
   // key_base + n' for n' in 0..vertex_count; its slots slot_base .. + slot_count, each
   // slot_stride indices from cache_base; its draw commands cmd_base .. + slot_count.
   uint key_base, slot_base, slot_count, slot_stride;
-  uint cache_base, cmd_base, pad3, pad4;
+  uint cache_base, cmd_base;
+  uint error_offset, error_count;  // level errors in mesh_data: vertices, then max (float bits)
 };
 
 struct InstanceLod {
@@ -63,7 +66,7 @@ struct Stats {
   uint promoted, dropped, overflow, fitting;
   uint drawn_corners, selected_lo, selected_hi, requested_lo;
   uint requested_hi, chunks, levels_drawn, levels_built;  // chunks: reconstruction workgroups
-  uint coarser, pad0;  // coarser: instances drawn at a coarser cached level (cache full)
+  uint coarser, error_step;  // coarser: instances drawn at a coarser cached level (cache full)
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
@@ -85,6 +88,8 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint drop_below_min_t;  // 1: the MinT rule drops instances (LodSettings::drop_below_min_t)
   uint cached;  // 1: a continuous frame drawn instanced from the level cache
   uint frame;   // frame number of the level cache's use marks (never 0)
+  float max_pixel_error;  // error mode: P
+  uint pad3, pad4, pad5;
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };
@@ -120,8 +125,44 @@ layout(std430, set = 0, binding = 20) buffer SlotStates { uvec2 slot_states[]; }
 layout(std430, set = 0, binding = 21) buffer BuildList { uvec4 build_list[]; };
 layout(std430, set = 0, binding = 22) buffer LevelCache { uint level_cache[]; };
 layout(std430, set = 0, binding = 23) buffer CacheHands { uint cache_hands[]; };
+// Error mode: Σ n_i at each ladder step, as (lo, hi) 32-bit halves, cleared every frame.
+layout(std430, set = 0, binding = 24) buffer LadderSums { uvec2 ladder_sums[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
+
+// note: 64-bit sums as (lo, hi) pairs with carries, so no shaderInt64 is needed.
+#define ADD64(lo, hi, value)                      \
+  {                                               \
+    const uint old_ = atomicAdd(lo, value);       \
+    if (old_ + (value) < old_) atomicAdd(hi, 1u); \
+  }
+
+// Error mode, as lod_select_job.cpp: λ_j = 2^(j/3) (lod_error_ladder) and n_i(t)
+// (lod_vertices_for_error), operation by operation.
+double lod_error_ladder(uint step) {
+  const double thirds[3] = double[3](1.0lf, 1.2599210498948732lf, 1.5874010519681994lf);
+  return ldexp(thirds[step % 3u], int(step / 3u));
+}
+
+uint lod_vertices_for_error(TypeData t, double threshold) {
+  uint n = t.max_vertices;
+  if (t.error_count == 0u ||
+      threshold >= double(uintBitsToFloat(mesh_data[t.error_offset + t.error_count]))) {
+    n = t.error_count != 0u ? mesh_data[t.error_offset] : t.max_vertices;
+  } else {
+    for (uint k = 1u; k < t.error_count; ++k) {
+      const double hi = double(uintBitsToFloat(mesh_data[t.error_offset + t.error_count + k - 1u]));
+      const double lo = double(uintBitsToFloat(mesh_data[t.error_offset + t.error_count + k]));
+      if (!(threshold >= lo)) continue;
+      const uint v0 = mesh_data[t.error_offset + k - 1u], v1 = mesh_data[t.error_offset + k];
+      precise double span = double(v1 - v0);
+      precise double at = double(v0) + span * ((hi - threshold) / (hi - lo));
+      n = uint(min(ceil(at), double(v1)));
+      break;
+    }
+  }
+  return clamp(n, t.min_vertices, t.max_vertices);
+}
 
 // Triangles of the usable count n' (ReconstructJob: the pack's prefix T(n')).
 uint level_triangles(TypeData t, uint usable) {

@@ -22,13 +22,6 @@ uint usable_vertices(TypeData t, uint n) {
   return start < n ? start : n;
 }
 
-// note: 64-bit sums as (lo, hi) pairs with carries, so no shaderInt64 is needed.
-#define ADD64(lo, hi, value)                    \
-  {                                             \
-    const uint old_ = atomicAdd(lo, value);     \
-    if (old_ + (value) < old_) atomicAdd(hi, 1u); \
-  }
-
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   const uint lid = gl_LocalInvocationID.x;
@@ -39,6 +32,15 @@ void main() {
   }
   barrier();
 
+  if (i == 0u && params.mode == kModeError) {
+    uint step = kLadderSteps - 1u;
+    for (uint j = 0u; j < kLadderSteps; ++j)
+      if (ladder_sums[j].y == 0u && double(ladder_sums[j].x) <= params.budget) {
+        step = j;
+        break;
+      }
+    stats.error_step = step;
+  }
   uint type = 0xFFFFFFFFu;
   uint selected = 0u, usable = 0u, corner_count = 0u;
   if (i < params.instance_count) {
@@ -49,6 +51,19 @@ void main() {
       atomicAdd(counts[0], 1u);
       if (params.mode == kModeFull) {
         selected = t.max_vertices;
+      } else if (params.mode == kModeError) {
+        // The smallest ladder step whose Σ n_i fits the budget (lod_weights summed them).
+        uint step = kLadderSteps - 1u;
+        for (uint j = 0u; j < kLadderSteps; ++j) {
+          const uvec2 sum = ladder_sums[j];
+          if (sum.y == 0u && double(sum.x) <= params.budget) {
+            step = j;
+            break;
+          }
+        }
+        precise double t_step = lod_error_ladder(step) * weights[i];
+        selected = lod_vertices_for_error(t, t_step);
+        atomicAdd(counts[selected == t.max_vertices ? 2 : 3], 1u);
       } else {
         const double sum = stats.weight_sum;
         precise double vc = sum > 0.0lf ? params.budget * weights[i] / sum : 0.0lf;

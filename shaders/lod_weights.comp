@@ -10,6 +10,7 @@ layout(local_size_x = 256) in;
 
 shared double lanes[256];
 shared double runs[16];
+shared uint ladder_lo[kLadderSteps], ladder_hi[kLadderSteps];  // error mode
 
 // CullJob's test, operation by operation (sphere_visible in cull_job.cpp).
 bool sphere_visible(vec3 c, float radius) {
@@ -24,6 +25,12 @@ bool sphere_visible(vec3 c, float radius) {
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   const uint lid = gl_LocalInvocationID.x;
+  const bool error_mode = params.mode == kModeError;
+  if (error_mode && lid < kLadderSteps) {
+    ladder_lo[lid] = 0u;
+    ladder_hi[lid] = 0u;
+  }
+  if (error_mode) barrier();
   double w = 0.0lf;
   if (i < params.instance_count) {
     const GpuInstance g = instances[i];
@@ -36,14 +43,38 @@ void main() {
     precise float r = t.bounds.w * g.color.w;
     const vec3 c = vec3(cx, cy, cz);
     const bool visible = sphere_visible(c, r);
-    if (visible && t.triangles > 0u) {
+    if (visible && error_mode) {
+      // τ_i (lod_error_threshold) kept in weights[i]; Σ n_i at every step of the ladder.
+      double area, distance;
+      lod_area_distance(c, r, params.eye_focal.xyz, params.eye_focal.w, params.near_plane,
+                        params.screen, area, distance);
+      precise double below = double(params.eye_focal.w) * double(r);
+      precise double tau = below > 0.0lf
+                               ? (double(params.max_pixel_error) * distance * double(t.bounds.w)) /
+                                     below
+                               : 1.0lf / 0.0lf;
+      weights[i] = tau;
+      for (uint j = 0u; j < kLadderSteps; ++j) {
+        precise double t_step = lod_error_ladder(j) * tau;
+        const uint n = lod_vertices_for_error(t, t_step);
+        ADD64(ladder_lo[j], ladder_hi[j], n);
+      }
+    } else if (visible && t.triangles > 0u) {
       double area, distance;
       lod_area_distance(c, r, params.eye_focal.xyz, params.eye_focal.w, params.near_plane,
                         params.screen, area, distance);
       w = lod_weight_root(area, distance, params.alpha, t.type_log_weight);
     }
-    weights[i] = w;
+    if (!error_mode) weights[i] = w;
+    if (error_mode && !visible) weights[i] = 0.0lf;
     lods[i].visible = visible ? 1u : 0u;
+  }
+  if (error_mode) {
+    barrier();
+    if (lid < kLadderSteps) {
+      ADD64(ladder_sums[lid].x, ladder_sums[lid].y, ladder_lo[lid]);
+      atomicAdd(ladder_sums[lid].y, ladder_hi[lid]);
+    }
   }
   lanes[lid] = w;
   barrier();

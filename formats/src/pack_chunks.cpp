@@ -249,6 +249,35 @@ bool decode_progressive(ByteReader& in, PackProgressive& out) {
   return in.expect_end() && checked(in, check_progressive(out));
 }
 
+// --- LERR ------------------------------------------------------------------------------
+// A count, then per sample its vertex count (u32), max and RMS error (f32).
+
+void encode_level_errors(const PackLevelErrors& e, ByteWriter& out) {
+  out.u32(static_cast<uint32_t>(e.vertices.size()));
+  for (size_t k = 0; k < e.vertices.size(); ++k) {
+    out.u32(e.vertices[k]);
+    out.f32(e.max_error[k]);
+    out.f32(e.rms_error[k]);
+  }
+}
+
+bool decode_level_errors(ByteReader& in, PackLevelErrors& out) {
+  uint32_t count = 0;
+  if (!in.u32(count, "sample count")) return false;
+  if (count > kMaxVertices)
+    return in.fail("sample count " + std::to_string(count) + " exceeds the vertex limit");
+  if (!in.count_fits(count, 12, "level error samples")) return false;
+  out.vertices.resize(count);
+  out.max_error.resize(count);
+  out.rms_error.resize(count);
+  for (uint32_t k = 0; k < count; ++k) {
+    in.u32(out.vertices[k], "vertices");
+    in.f32(out.max_error[k], "max_error");
+    in.f32(out.rms_error[k], "rms_error");
+  }
+  return in.expect_end() && checked(in, check_level_errors(out));
+}
+
 // --- GEOM ------------------------------------------------------------------------------
 
 void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, ByteWriter& out) {

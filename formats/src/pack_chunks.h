@@ -36,6 +36,8 @@ bool decode_bounds(ByteReader& in, PackBounds& out);
 
 void encode_progressive(const PackProgressive& progressive, ByteWriter& out);
 bool decode_progressive(ByteReader& in, PackProgressive& out);
+void encode_level_errors(const PackLevelErrors& errors, ByteWriter& out);
+bool decode_level_errors(ByteReader& in, PackLevelErrors& out);
 
 void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options,
                      ByteWriter& out);

@@ -39,11 +39,13 @@ std::string hex(uint32_t v) {
 struct KnownChunk {
   uint32_t tag;
   uint32_t version;
+  bool required = true;
 };
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion}, {kTagClip, kClipVersion},
-    {kTagMatl, kMatlVersion}, {kTagBnds, kBndsVersion}, {kTagProg, kProgVersion},
-    {kTagGeom, kGeomVersion}, {kTagAnim, kAnimVersion}, {kTagPart, kPartVersion},
+    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion},        {kTagClip, kClipVersion},
+    {kTagMatl, kMatlVersion}, {kTagBnds, kBndsVersion},        {kTagProg, kProgVersion},
+    {kTagLerr, kLerrVersion, false}, {kTagGeom, kGeomVersion}, {kTagAnim, kAnimVersion},
+    {kTagPart, kPartVersion},
 };
 
 const KnownChunk* find_known(uint32_t tag) {
@@ -184,6 +186,9 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
     case kTagProg:
       ok = pack_io::decode_progressive(in, out.progressive);
       break;
+    case kTagLerr:
+      ok = pack_io::decode_level_errors(in, out.level_errors);
+      break;
     case kTagGeom:
       ok = pack_io::decode_geometry(in, out.geometry);
       break;
@@ -275,7 +280,7 @@ PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
   for (const KnownChunk& k : kKnownChunks) {
     const auto it = std::find_if(chunks.begin(), chunks.end(),
                                  [&](const PackChunk& c) { return c.tag == k.tag; });
-    if (it == chunks.end()) return error("missing chunk " + tag_name(k.tag));
+    if (it == chunks.end() && k.required) return error("missing chunk " + tag_name(k.tag));
   }
   for (const PackChunk& c : chunks) {
     status = decode_chunk(c, data + c.offset, out, &counts);

@@ -89,6 +89,25 @@ std::string check_bounds(const PackBounds& b) {
   return "";
 }
 
+std::string check_level_errors(const PackLevelErrors& e) {
+  const size_t n = e.vertices.size();
+  if (e.max_error.size() != n || e.rms_error.size() != n)
+    return "vertex counts and errors differ in length";
+  for (size_t k = 0; k < n; ++k) {
+    const std::string at = "sample " + std::to_string(k) + ": ";
+    if (e.vertices[k] == 0 || e.vertices[k] > kMaxVertices)
+      return at + "vertex count " + std::to_string(e.vertices[k]) + " out of range";
+    if (k > 0 && !(e.vertices[k] > e.vertices[k - 1]))
+      return at + "vertex counts must strictly increase";
+    if (!(std::isfinite(e.max_error[k]) && e.max_error[k] >= 0.0f) ||
+        !(std::isfinite(e.rms_error[k]) && e.rms_error[k] >= 0.0f))
+      return at + "errors must be finite and >= 0";
+    if (k > 0 && e.max_error[k] > e.max_error[k - 1])
+      return at + "max_error grows with the vertex count";
+  }
+  return "";
+}
+
 std::string check_progressive(const PackProgressive& p) {
   const size_t v = p.collapse_to.size();
   std::ostringstream out;
@@ -216,6 +235,9 @@ std::string check_cross_references(const PackContents& c) {
              std::to_string(g.triangle_material[t]) + ", there are " +
              std::to_string(c.materials.size());
   const PackProgressive& p = c.progressive;
+  if (!c.level_errors.vertices.empty() && c.level_errors.vertices.back() > g.vertex_count())
+    return "LERR: a sample has " + std::to_string(c.level_errors.vertices.back()) +
+           " vertices, GEOM has " + std::to_string(g.vertex_count());
   if (!p.collapse_to.empty()) {
     if (p.collapse_to.size() != g.vertex_count())
       out << "PROG: " << p.collapse_to.size() << " vertices, GEOM has " << g.vertex_count();

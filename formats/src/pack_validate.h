@@ -14,6 +14,7 @@ std::string check_clips(const std::vector<PackClip>& clips);
 std::string check_materials(const std::vector<PackMaterial>& materials);
 std::string check_bounds(const PackBounds& bounds);
 std::string check_progressive(const PackProgressive& progressive);
+std::string check_level_errors(const PackLevelErrors& errors);
 std::string check_geometry(const PackGeometry& geometry);
 std::string check_animation(const AnimationTexture& animation);
 std::string check_partition(const PartitionMask& partition);

@@ -60,6 +60,7 @@ PackStatus validate_pack_contents(const PackContents& c) {
       {"MATL", check_materials(c.materials)},
       {"BNDS", check_bounds(c.bounds)},
       {"PROG", check_progressive(c.progressive)},
+      {"LERR", check_level_errors(c.level_errors)},
       {"GEOM", check_geometry(c.geometry)},
       {"ANIM", check_animation(c.animation)},
       {"PART", check_partition(c.partition)},
@@ -87,6 +88,8 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_materials(contents.materials, add(kTagMatl, kMatlVersion));
   pack_io::encode_bounds(contents.bounds, add(kTagBnds, kBndsVersion));
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
+  if (!contents.level_errors.vertices.empty())
+    pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
   pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
   pack_io::encode_animation(contents.animation, add(kTagAnim, kAnimVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));

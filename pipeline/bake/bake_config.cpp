@@ -57,8 +57,12 @@ class ConfigReader {
         partition(body);
       else if (section == "geometry")
         geometry(body);
+      else if (section == "level_errors")
+        level_errors(body);
       else
-        fail(section, "unknown section (expected simplify, animation, partition or geometry)");
+        fail(section,
+             "unknown section (expected simplify, level_errors, animation, partition or "
+             "geometry)");
     }
   }
 
@@ -134,6 +138,21 @@ class ConfigReader {
     }
   }
 
+  void level_errors(const json& body) {
+    LevelErrorOptions& e = out_.level_errors;
+    for (const auto& [k, v] : body.items()) {
+      const std::string key = "level_errors." + k;
+      if (k == "samples") {
+        e.samples = static_cast<uint32_t>(number(key, v, 0, 64));
+        if (e.samples == 1) fail(key, "must be 0 (none) or 2..64");
+      } else if (k == "fps") {
+        e.fps = number(key, v, 0.1, 240);
+      } else {
+        fail(key, "unknown key");
+      }
+    }
+  }
+
   void partition(const json& body) {
     PartitionOptions& p = out_.partition;
     for (const auto& [k, v] : body.items()) {
@@ -189,6 +208,8 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["simplify"]["pose_source"] = name_of(kSources, s.simplify.pose_source);
   j["simplify"]["check_flips_in_all_poses"] = s.simplify.check_flips_in_all_poses;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();
+  j["level_errors"]["samples"] = s.level_errors.samples;
+  j["level_errors"]["fps"] = s.level_errors.fps;
   j["animation"]["fps"] = s.animation.fps;
   j["animation"]["encoding"] = name_of(kEncodings, s.animation.encoding);
   j["animation"]["root_motion"] = s.animation.extract_root_motion;

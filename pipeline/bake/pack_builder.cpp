@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "crowdbake/formats/animation_codec.h"
+#include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/animation_bake.h"
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
@@ -133,7 +134,56 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack, doub
   radius = static_cast<float>(far);
 }
 
+// LERR: each sampled level against the full mesh over the clips, in model units; the full
+// mesh itself is exact. A coarser level is never reported better than a finer one (the
+// running maximum from fine to coarse), so the runtime's table is monotone.
+PackLevelErrors measure_level_errors(const SkinnedAsset& asset, const ProgressiveMesh& pm,
+                                     const LevelErrorOptions& options, int threads) {
+  PackLevelErrors out;
+  const uint32_t vertex_count = static_cast<uint32_t>(pm.collapse_to.size());
+  out.vertices = level_error_samples(pm.min_vertices, vertex_count, options.samples);
+  if (out.vertices.empty()) return out;
+  std::vector<SkinnedAsset> lods;
+  for (size_t k = 0; k + 1 < out.vertices.size(); ++k)
+    lods.push_back(extract_lod(asset, pm, out.vertices[k]));
+  std::vector<const SkinnedAsset*> pointers;
+  for (const SkinnedAsset& l : lods) pointers.push_back(&l);
+  AnimatedErrorOptions measure;
+  measure.fps = options.fps;
+  measure.threads = threads;
+  const std::vector<AnimatedError> errors = animated_error(asset, pointers, measure);
+  out.max_error.assign(out.vertices.size(), 0.0f);
+  out.rms_error.assign(out.vertices.size(), 0.0f);
+  for (size_t k = 0; k < errors.size(); ++k) {
+    const AnimatedError& e = errors[k];
+    out.max_error[k] = static_cast<float>(e.max * e.diagonal);
+    out.rms_error[k] = static_cast<float>(e.mean_rms * e.diagonal);
+  }
+  for (size_t k = errors.size(); k-- > 0;) {
+    out.max_error[k] = std::max(out.max_error[k], out.max_error[k + 1]);
+    out.rms_error[k] = std::max(out.rms_error[k], out.rms_error[k + 1]);
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex_count,
+                                          uint32_t samples) {
+  std::vector<uint32_t> out;
+  if (samples < 2 || vertex_count == 0 || min_vertices >= vertex_count) return out;
+  const uint32_t lo = std::max(min_vertices, 1u);
+  const double ratio = static_cast<double>(vertex_count) / lo;
+  for (uint32_t k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) / (samples - 1);
+    const uint32_t n = k + 1 == samples
+                           ? vertex_count
+                           : static_cast<uint32_t>(std::lround(lo * std::pow(ratio, t)));
+    if (out.empty() || n > out.back()) out.push_back(std::min(n, vertex_count));
+  }
+  if (out.back() != vertex_count) out.push_back(vertex_count);
+  return out;
+}
 
 PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
                         BakeReport& report) {
@@ -148,6 +198,9 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
                          report.simplify.warnings.end());
   pack.progressive = {pm.collapse_to, pm.triangle_count, pm.group_start, pm.min_vertices};
   clock.done("simplify");
+  pack.level_errors =
+      measure_level_errors(asset, pm, settings.level_errors, settings.simplify.threads);
+  clock.done("level errors");
 
   AnimationBake animation = bake_animation(asset, settings.animation);
   pack.animation = std::move(animation.texture);

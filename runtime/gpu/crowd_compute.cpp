@@ -27,8 +27,10 @@ struct Params {
   uint32_t instanced, key_count, indexed_slots;
   uint32_t drop_below_min_t;
   uint32_t cached, frame;
+  float max_pixel_error;
+  uint32_t pad[3];
 };
-static_assert(sizeof(Params) == 192 && offsetof(Params, screen) == 112 &&
+static_assert(sizeof(Params) == 208 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
               "Params must match crowd_compute.glsl");
 
@@ -41,7 +43,7 @@ struct TypeData {
   double type_log_weight;
   double pad2;
   uint32_t key_base, slot_base, slot_count, slot_stride;
-  uint32_t cache_base, cmd_base, pad3, pad4;
+  uint32_t cache_base, cmd_base, error_offset, error_count;
 };
 static_assert(sizeof(TypeData) == 144 && offsetof(TypeData, levels) == 64 &&
                   offsetof(TypeData, type_log_weight) == 96 && offsetof(TypeData, key_base) == 112,
@@ -53,7 +55,7 @@ struct StatsData {
   uint32_t promoted, dropped, overflow, fitting;
   uint32_t drawn_corners, selected_lo, selected_hi, requested_lo;
   uint32_t requested_hi, chunks, levels_drawn, levels_built;
-  uint32_t coarser, pad0;
+  uint32_t coarser, error_step;
 };
 static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
 static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
@@ -62,7 +64,7 @@ constexpr uint32_t kKernels = CrowdCompute::kKernelCount;
 constexpr const char* kShaders[kKernels] = {
     "lod_weights.comp", "lod_sum.comp",         "lod_assign.comp", "scan_types.comp",
     "level_cache.comp", "place_instances.comp", "draw_args.comp",  "reconstruct.comp"};
-constexpr uint32_t kBindings = 24;
+constexpr uint32_t kBindings = 25;
 constexpr uint64_t kDefaultLevelCacheBytes = uint64_t{64} << 20;
 constexpr uint32_t kChunk = 256;  // crowd_compute.glsl: kChunk
 
@@ -110,6 +112,16 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     mesh.insert(mesh.end(), v.triangle_count.begin(), v.triangle_count.end());
     c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
     mesh.insert(mesh.end(), v.group_start.begin(), v.group_start.end());
+    // note: then the level errors: vertex counts, then max errors as float bits.
+    const PackLevelErrors& errors = pack.contents().level_errors;
+    c->error_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    c->error_counts_.push_back(static_cast<uint32_t>(errors.vertices.size()));
+    mesh.insert(mesh.end(), errors.vertices.begin(), errors.vertices.end());
+    for (float e : errors.max_error) {
+      uint32_t bits;
+      std::memcpy(&bits, &e, 4);
+      mesh.push_back(bits);
+    }
     c->progressive_.push_back(v.collapse_to.empty() ? 0 : 1);
     c->vertex_counts_.push_back(v.vertex_count);
     c->triangle_counts_.push_back(static_cast<uint32_t>(v.triangles.size() / 3));
@@ -177,6 +189,7 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
       {&c->level_cache_, VkDeviceSize{std::max<uint64_t>(c->cache_indices_, 1)} * 4,
        storage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
       {&c->cache_hands_, VkDeviceSize{types} * 4, storage, MemoryKind::kDeviceLocal},
+      {&c->ladder_sums_, VkDeviceSize{kErrorLadderSteps} * 8, storage, MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;
@@ -235,15 +248,19 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.alpha = scene.lod.alpha;
   p.budget = scene.lod.budget;
   p.min_t = scene.lod.min_t;
+  p.max_pixel_error = scene.lod.max_pixel_error;
+  // note: the frame's mode (update_frame falls back to budget mode without level errors).
+  const LodMode mode = state.lod_mode;
   p.drop_below_min_t = scene.lod.drop_below_min_t ? 1 : 0;
   p.instance_count = instance_count_;
   p.type_count = type_count_;
-  p.mode = static_cast<uint32_t>(scene.lod.mode);
+  p.mode = static_cast<uint32_t>(mode);
   p.corner_capacity = corner_capacity_;
   p.group_count = groups_for(instance_count_);
   p.near_plane = view.near_plane;
-  instanced_ = instanced_levels_ && scene.lod.mode != LodMode::kContinuous;
-  cached_ = instanced_levels_ && scene.lod.mode == LodMode::kContinuous;
+  const bool continuous = mode == LodMode::kContinuous || mode == LodMode::kError;
+  instanced_ = instanced_levels_ && !continuous;
+  cached_ = instanced_levels_ && continuous;
   p.instanced = instanced_ || cached_ ? 1 : 0;
   p.cached = cached_ ? 1 : 0;
   // note: use marks compare frame numbers; 0 and kNotDrawn (the initial mark) are skipped.
@@ -290,6 +307,8 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
     d.slot_stride = cache.slot_stride;
     d.cache_base = cache.cache_base;
     d.cmd_base = cache.slot_base;  // note: one command per slot
+    d.error_offset = error_offsets_[t];
+    d.error_count = mode == LodMode::kError ? error_counts_[t] : 0;
     if (lt.min_vertices > lt.max_vertices) return invalid("a type has min > max vertices");
   }
   s = types_.upload(types.data(), types.size() * sizeof(TypeData));
@@ -351,6 +370,7 @@ void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   vkCmdFillBuffer(cmd, stats_.buffer(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, key_counts_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, ladder_sums_.buffer(), 0, VK_WHOLE_SIZE, 0);
   full_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, compute);
   stamp(0);
   const uint32_t dispatches[kKernels - 1] = {groups, 1, groups, 1, 1, groups, 1};
@@ -402,6 +422,7 @@ Status CrowdCompute::read_stats(CrowdComputeStats& out) const {
   out.levels_drawn = d.levels_drawn;
   out.levels_built = d.levels_built;
   out.coarser_instances = d.coarser;
+  out.error_step = d.error_step;
   return {};
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace crowdbake::runtime {
 namespace {
@@ -20,6 +21,8 @@ bool check_lod_settings(const LodSettings& s, std::string* why) {
   if (!(s.alpha > 1.0f) || !std::isfinite(s.alpha))
     return fail(why, "alpha must be a finite number > 1 (beta = alpha - 1 must be positive)");
   if (!(s.min_t >= 0.0f && s.min_t <= 1.0f)) return fail(why, "min_t must be in [0, 1]");
+  if (!(s.max_pixel_error > 0.0f) || !std::isfinite(s.max_pixel_error))
+    return fail(why, "max_pixel_error must be a finite number of pixels > 0");
   if (s.discrete_level_count < 1 || s.discrete_level_count > kMaxDiscreteLevels)
     return fail(why, "discrete levels: 1 to 8 levels");
   for (uint32_t k = 0; k < s.discrete_level_count; ++k) {
@@ -110,6 +113,38 @@ double lod_weight_root(double area, double distance, double alpha, double type_l
   return std::isfinite(root) ? root : 0.0;
 }
 
+double lod_error_ladder(uint32_t step) {
+  // note: 2^(j/3) as an exact power of two times one of three constants (the shader's too).
+  constexpr double kThirds[3] = {1.0, 1.2599210498948732, 1.5874010519681994};
+  return std::ldexp(kThirds[step % 3], static_cast<int>(step / 3));
+}
+
+double lod_error_threshold(double distance, float world_radius, float type_radius,
+                           float focal_pixels, float max_pixel_error) {
+  const double below = double{focal_pixels} * double{world_radius};
+  if (!(below > 0.0)) return std::numeric_limits<double>::infinity();
+  return (double{max_pixel_error} * distance * double{type_radius}) / below;
+}
+
+uint32_t lod_vertices_for_error(const LodType& type, double t) {
+  const Span<const uint32_t> v = type.error_vertices;
+  const Span<const float> e = type.error_max;
+  uint32_t n = type.max_vertices;
+  if (v.size() == 0 || t >= double{e[0]}) {
+    n = v.size() ? v[0] : type.max_vertices;
+  } else {
+    for (size_t k = 1; k < v.size(); ++k) {
+      const double hi = e[k - 1], lo = e[k];
+      if (!(t >= lo)) continue;
+      const double span = static_cast<double>(v[k] - v[k - 1]);
+      const double at = static_cast<double>(v[k - 1]) + span * ((hi - t) / (hi - lo));
+      n = static_cast<uint32_t>(std::min(std::ceil(at), static_cast<double>(v[k])));
+      break;
+    }
+  }
+  return std::clamp(n, type.min_vertices, type.max_vertices);
+}
+
 double lod_weight_sum(Span<const double> weights) {
   constexpr size_t kRun = 16;
   const size_t n = weights.size();
@@ -148,6 +183,46 @@ bool LodSelectJob::Run() const {
   if (!Validate()) return false;
   LodStats s;
   const size_t n = type.size();
+  if (settings.mode == LodMode::kError) {
+    // Pass 1: τ_i (kept in `weights`) and Σ n_i at every step of the ladder.
+    uint64_t sums[kErrorLadderSteps] = {};
+    double ladder[kErrorLadderSteps];
+    for (uint32_t j = 0; j < kErrorLadderSteps; ++j) ladder[j] = lod_error_ladder(j);
+    for (size_t i = 0; i < n; ++i) {
+      weights[i] = 0.0;
+      if (!visible[i]) continue;
+      ++s.visible;
+      const LodType& t = types[type[i]];
+      double area = 0.0, distance = 0.0;
+      lod_area_distance(*view, &spheres[4 * i], &area, &distance);
+      weights[i] = lod_error_threshold(distance, spheres[4 * i + 3], t.radius, view->focal_pixels,
+                                       settings.max_pixel_error);
+      for (uint32_t j = 0; j < kErrorLadderSteps; ++j)
+        sums[j] += lod_vertices_for_error(t, ladder[j] * weights[i]);
+    }
+    uint32_t step = kErrorLadderSteps - 1;
+    for (uint32_t j = 0; j < kErrorLadderSteps; ++j)
+      if (sums[j] <= settings.budget) {
+        step = j;
+        break;
+      }
+    s.error_step = step;
+    // Pass 2: each visible instance at that step.
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t selected = 0;
+      if (visible[i]) {
+        const LodType& t = types[type[i]];
+        selected = lod_vertices_for_error(t, ladder[step] * weights[i]);
+        ++(selected == t.max_vertices ? s.at_max : s.in_range);
+      }
+      vertex_count[i] = selected;
+      s.drawn += selected > 0;
+      s.selected_vertices += selected;
+    }
+    s.budget_exceeded = s.selected_vertices > settings.budget;
+    if (stats) *stats = s;
+    return true;
+  }
 
   // Pass 1: w_i^(1/α) of every visible instance and their sum (in the GPU's order).
   const double alpha = settings.alpha;

@@ -141,6 +141,9 @@ struct Pack::Impl {
     for (uint32_t tag : kTableTags)
       if (tag != pack_format::kTagHead)
         if (Status s = read_chunk(tag); !s) return s;
+    // note: LERR is optional (packs of 1.0 have none); it is a small table when present.
+    if (find(pack_format::kTagLerr))
+      if (Status s = read_chunk(pack_format::kTagLerr); !s) return s;
     return check_tables();
   }
 

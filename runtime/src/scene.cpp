@@ -105,6 +105,10 @@ LodType make_lod_type(const Pack& pack, const LodSettings& settings) {
   t.min_vertices = pack.min_vertices();
   t.max_vertices = pack.max_vertices();
   t.triangles = pack.counts().triangles;
+  const PackLevelErrors& errors = pack.contents().level_errors;
+  t.error_vertices = Span<const uint32_t>(errors.vertices.data(), errors.vertices.size());
+  t.error_max = Span<const float>(errors.max_error.data(), errors.max_error.size());
+  t.radius = pack.bounds_radius();
   ProgressiveView view = progressive_view(pack.contents());
   view.vertex_count = pack.max_vertices();
   t.level_count = std::min(settings.discrete_level_count, kMaxDiscreteLevels);

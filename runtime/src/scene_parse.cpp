@@ -249,7 +249,12 @@ struct RawGenerator {
 struct RawScene {
   Camera camera;
   std::vector<CameraKey> path;
-  LodSettings lod;
+  // note: scenes select by error unless they name a mode (version-1 scenes name "continuous").
+  LodSettings lod = [] {
+    LodSettings l;
+    l.mode = LodMode::kError;
+    return l;
+  }();
   AnimationSettings animation;
   std::vector<RawType> types;
   std::vector<RawInstance> instances;
@@ -349,18 +354,22 @@ void parse_camera(const json& v, RawScene& s) {
 void parse_lod(const json& v, RawScene& s) {
   const std::string path = "lod";
   check_object(v, path,
-               {"mode", "budget", "alpha", "min_t", "drop_below_min_t", "discrete_levels"});
+               {"mode", "budget", "alpha", "min_t", "drop_below_min_t", "max_pixel_error",
+                "discrete_levels"});
   LodSettings& l = s.lod;
   if (const json* p = find(v, "mode")) {
     const std::string mode = string(*p, path + ".mode");
-    if (mode == "continuous")
+    if (mode == "continuous" || mode == "budget")
       l.mode = LodMode::kContinuous;
+    else if (mode == "error")
+      l.mode = LodMode::kError;
     else if (mode == "discrete")
       l.mode = LodMode::kDiscrete;
     else if (mode == "full")
       l.mode = LodMode::kFull;
     else
-      fail(path + ".mode", "unknown mode \"" + mode + "\" (expected continuous, discrete or full)");
+      fail(path + ".mode",
+           "unknown mode \"" + mode + "\" (expected error, budget, continuous, discrete or full)");
   }
   if (const json* p = find(v, "budget"))
     l.budget = static_cast<uint32_t>(integer(*p, path + ".budget", 1, UINT32_MAX));
@@ -374,6 +383,12 @@ void parse_lod(const json& v, RawScene& s) {
     const double t = number(*p, path + ".min_t");
     if (!(t >= 0.0 && t <= 1.0)) fail(path + ".min_t", "must be in [0, 1], got " + show(t));
     l.min_t = static_cast<float>(t);
+  }
+  if (const json* p = find(v, "max_pixel_error")) {
+    const double e = number(*p, path + ".max_pixel_error");
+    if (!(e > 0.0) || !std::isfinite(e) || e > 1e6)
+      fail(path + ".max_pixel_error", "must be a number of pixels > 0, got " + show(e));
+    l.max_pixel_error = static_cast<float>(e);
   }
   if (const json* p = find(v, "drop_below_min_t"))
     l.drop_below_min_t = boolean(*p, path + ".drop_below_min_t");

@@ -72,6 +72,17 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
 
   LodSelectJob lod;
   lod.settings = scene.lod;
+  state.lod_note.clear();
+  if (scene.lod.mode == LodMode::kError)
+    for (size_t t = 0; t < scene.types.size(); ++t)
+      if (state.lod_types[t].error_vertices.size() == 0) {
+        lod.settings.mode = LodMode::kContinuous;
+        state.lod_note = scene.types[t].pack.source_name() +
+                         ": no level errors (a pack of format 1.0; re-bake it), so LoD is "
+                         "selected by budget (lod.mode \"budget\")";
+        break;
+      }
+  state.lod_mode = lod.settings.mode;
   lod.view = &state.view;
   lod.types = state.lod_types;
   lod.type = in.type;

@@ -157,7 +157,7 @@ TEST_F(PackCommands, InspectTextShowsVersionChunksCountsLodClipsAndBytes) {
   const test::CommandResult r = run_crowdbake({"inspect", pack.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
-  EXPECT_NE(r.out.find("pack 1.0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pack 1." + std::to_string(kPackVersionMinor)), std::string::npos) << r.out;
   for (const char* tag : {"HEAD", "SKEL", "CLIP", "PROG", "GEOM", "ANIM", "PART"})
     EXPECT_NE(r.out.find(tag), std::string::npos) << tag << "\n" << r.out;
   EXPECT_NE(r.out.find("2 joints, 64 vertices, 112 triangles, 1 clips"), std::string::npos)

@@ -389,5 +389,99 @@ TEST(LodSelectJob, JobValidity) {
   EXPECT_FALSE(bad.Validate());
 }
 
+// Error mode: a type whose level errors are 0.5 at 100 vertices, 0.25 at 400 and exact at
+// 1000; radius 1, drawn at scale 1 (world radius 1), focal 50 px. (Binary fractions, so the
+// interpolation is exact and its ceil predictable.)
+struct ErrorTable {
+  std::vector<uint32_t> vertices{100, 400, 1000};
+  std::vector<float> errors{0.5f, 0.25f, 0.0f};
+  LodType type() const {
+    LodType t = lod_type(100, 1000, 2000);
+    t.error_vertices = Span<const uint32_t>(vertices.data(), vertices.size());
+    t.error_max = Span<const float>(errors.data(), errors.size());
+    t.radius = 1.0f;
+    return t;
+  }
+};
+
+LodSettings error_settings(uint32_t budget, float pixels = 1.0f) {
+  LodSettings s;
+  s.mode = LodMode::kError;
+  s.budget = budget;
+  s.max_pixel_error = pixels;
+  return s;
+}
+
+TEST(LodSelectJob, ErrorModeTakesTheSmallestLevelWithinThePixelError) {
+  const ErrorTable table;
+  const LodType t = table.type();
+  // τ = P · D · R / (f · r): 1 px at 12.5 units is 0.25 model units.
+  EXPECT_DOUBLE_EQ(lod_error_threshold(12.5, 1.0f, 1.0f, 50.0f, 1.0f), 0.25);
+  EXPECT_DOUBLE_EQ(lod_error_threshold(12.5, 2.0f, 1.0f, 50.0f, 1.0f), 0.125);  // drawn twice as big
+  EXPECT_EQ(lod_vertices_for_error(t, 0.75), 100u);  // coarser than the coarsest sample
+  EXPECT_EQ(lod_vertices_for_error(t, 0.5), 100u);
+  EXPECT_EQ(lod_vertices_for_error(t, 0.375), 250u);  // 100 + 300 · (0.125 / 0.25)
+  EXPECT_EQ(lod_vertices_for_error(t, 0.25), 400u);
+  EXPECT_EQ(lod_vertices_for_error(t, 0.125), 700u);  // 400 + 600 · (0.125 / 0.25)
+  EXPECT_EQ(lod_vertices_for_error(t, 1e-9), 1000u);
+  // The ladder: 2^(j/3).
+  EXPECT_EQ(lod_error_ladder(0), 1.0);
+  EXPECT_EQ(lod_error_ladder(3), 2.0);
+  EXPECT_NEAR(lod_error_ladder(4), std::cbrt(2.0) * 2.0, 1e-15);
+
+  Crowd c;
+  c.types = {t};
+  c.add(0, 18.75f, 1.0f);  // τ 0.375 → 250 vertices
+  c.add(0, 50.0f, 1.0f);   // τ 1.0 → 100
+  c.add(0, 5.0f, 1.0f, false);
+  ASSERT_TRUE(c.run(error_settings(100000)));
+  EXPECT_EQ(c.vertex_count[0], 250u);
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  EXPECT_EQ(c.vertex_count[2], 0u);
+  EXPECT_EQ(c.stats.error_step, 0u);
+  EXPECT_FALSE(c.stats.budget_exceeded);
+  // Half a pixel: τ 0.1875 → 400 + 600 · (0.0625 / 0.25) = 550; the far one τ 0.5 → 100.
+  ASSERT_TRUE(c.run(error_settings(100000, 0.5f)));
+  EXPECT_EQ(c.vertex_count[0], 550u);
+  EXPECT_EQ(c.vertex_count[1], 100u);
+}
+
+// The budget caps the sum by raising every instance's error by one factor, never by dropping.
+TEST(LodSelectJob, ErrorModeBudgetRaisesEveryErrorEvenly) {
+  const ErrorTable table;
+  Crowd c;
+  c.types = {table.type()};
+  for (int k = 0; k < 10; ++k) c.add(0, 2.0f + static_cast<float>(k), 1.0f);
+  ASSERT_TRUE(c.run(error_settings(100000)));
+  const uint64_t free_sum = c.stats.selected_vertices;
+  EXPECT_EQ(c.stats.error_step, 0u);
+  ASSERT_TRUE(c.run(error_settings(static_cast<uint32_t>(free_sum / 2))));
+  EXPECT_GT(c.stats.error_step, 0u);
+  EXPECT_LE(c.stats.selected_vertices, free_sum / 2);
+  EXPECT_EQ(c.stats.drawn, 10u);
+  // Each instance at the chosen step, and the step before would not have fitted.
+  uint64_t before = 0;
+  for (size_t i = 0; i < 10; ++i) {
+    const double step = lod_error_ladder(c.stats.error_step) * c.weights[i];
+    EXPECT_EQ(c.vertex_count[i], lod_vertices_for_error(c.types[0], step)) << i;
+    before += lod_vertices_for_error(c.types[0],
+                                     lod_error_ladder(c.stats.error_step - 1) * c.weights[i]);
+  }
+  EXPECT_GT(before, free_sum / 2);
+  // A budget below everyone's minimum: all at the coarsest level, reported.
+  ASSERT_TRUE(c.run(error_settings(50)));
+  EXPECT_EQ(c.stats.drawn, 10u);
+  EXPECT_TRUE(c.stats.budget_exceeded);
+  for (uint32_t n : c.vertex_count) EXPECT_EQ(n, 100u);
+}
+
+TEST(LodSelectJob, ErrorModeRejectsABadPixelError) {
+  for (float bad : {0.0f, -1.0f, std::nanf(""), INFINITY}) {
+    std::string why;
+    EXPECT_FALSE(check_lod_settings(error_settings(1000, bad), &why)) << bad;
+    EXPECT_NE(why.find("max_pixel_error"), std::string::npos) << why;
+  }
+}
+
 }  // namespace
 }  // namespace crowdbake::runtime

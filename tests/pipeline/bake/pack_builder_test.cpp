@@ -82,6 +82,20 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   EXPECT_EQ(back.progressive.group_start, pm.group_start);
   EXPECT_EQ(back.progressive.min_vertices, pm.min_vertices);
   EXPECT_EQ(back.geometry.triangles, pm.triangles);
+  // Level errors: sampled from the coarsest level to the full mesh (exact), never better when
+  // coarser, read back exactly.
+  const PackLevelErrors& e = back.level_errors;
+  EXPECT_EQ(e.vertices, pack.level_errors.vertices);
+  EXPECT_EQ(e.max_error, pack.level_errors.max_error);
+  if (pm.min_vertices < pm.collapse_to.size()) {
+    ASSERT_GE(e.vertices.size(), 2u);
+    EXPECT_EQ(e.vertices.front(), std::max(pm.min_vertices, 1u));
+    EXPECT_EQ(e.vertices.back(), pm.collapse_to.size());
+    EXPECT_EQ(e.max_error.back(), 0.0f);
+    EXPECT_GT(e.max_error.front(), 0.0f) << "the coarsest level differs from the full mesh";
+    for (size_t k = 1; k < e.vertices.size(); ++k)
+      EXPECT_LE(e.max_error[k], e.max_error[k - 1]) << k;
+  }
   // The partition mask and the skeleton's structure exactly.
   EXPECT_EQ(back.partition.texels, pack.partition.texels);
   EXPECT_EQ(back.partition.width, pack.partition.width);

@@ -198,6 +198,51 @@ TEST_F(ComputeTest, IdenticalOverASweepOfSettings) {
       }
 }
 
+uint32_t expect_instanced_identical(const Scene& scene, const FrameState& state,
+                                    const CrowdCompute& compute);
+
+// Error-driven selection: the same n_i as the CPU, over pixel errors and budgets that make the
+// ladder pick different steps (and none fit), on the corner path and from the level cache.
+TEST_F(ComputeTest, ErrorModeIsIdenticalToTheCpu) {
+  Scene scene;
+  LodSettings lod = continuous(100000);
+  lod.mode = LodMode::kError;
+  ASSERT_TRUE(test::make_compute_scene(scene, 300, 5, lod).ok());
+  ASSERT_GT(scene.types[0].pack.contents().level_errors.vertices.size(), 1u);
+  CrowdComputeOptions cached;
+  cached.instanced_static_levels = true;
+  for (const CrowdComputeOptions& options : {CrowdComputeOptions{}, cached}) {
+    std::unique_ptr<CrowdCompute> compute;
+    ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+    std::vector<uint32_t> steps;
+    for (float pixels : {0.25f, 1.0f, 4.0f})
+      for (uint32_t budget : {10u, 20000u, 4000000u}) {
+        scene.lod.max_pixel_error = pixels;
+        scene.lod.budget = budget;
+        SCOPED_TRACE("pixels " + std::to_string(pixels) + " budget " + std::to_string(budget) +
+                     (options.instanced_static_levels ? " cached" : " corners"));
+        run_frame(scene, 0.3f, *compute);
+        if (HasFatalFailure()) return;
+        EXPECT_EQ(state_.lod_mode, LodMode::kError);
+        if (options.instanced_static_levels) {
+          EXPECT_EQ(expect_instanced_identical(scene, state_, *compute), 0u);
+        } else {
+          expect_identical(scene, *compute, true);
+        }
+        if (HasFailure()) return;
+        CrowdComputeStats stats;
+        ASSERT_TRUE(compute->read_stats(stats).ok());
+        EXPECT_EQ(stats.error_step, state_.lod.error_step);
+        EXPECT_EQ(stats.drawn, state_.lod.visible) << "nobody is dropped";
+        steps.push_back(state_.lod.error_step);
+      }
+    std::sort(steps.begin(), steps.end());
+    EXPECT_EQ(steps.front(), 0u);
+    EXPECT_EQ(steps.back(), kErrorLadderSteps - 1) << "a 10-vertex budget fits no step";
+    EXPECT_GT(std::unique(steps.begin(), steps.end()) - steps.begin(), 2);
+  }
+}
+
 TEST_F(ComputeTest, DiscreteModeIsIdenticalToTheCpu) {
   Scene scene;
   LodSettings lod = continuous(60000);

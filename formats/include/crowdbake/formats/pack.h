@@ -97,6 +97,16 @@ struct PackProgressive {
   uint32_t min_vertices = 0;
 };
 
+// Geometric error of the progressive mesh's levels (LERR, optional): at each sampled vertex
+// count, the surface distance between that level and the full mesh over sampled poses of the
+// clips, in model units. Vertex counts strictly increase; errors never increase with them (a
+// finer level is never reported worse than a coarser one). Empty: none measured.
+struct PackLevelErrors {
+  std::vector<uint32_t> vertices;
+  std::vector<float> max_error;  // largest distance of any sample (sampled Hausdorff)
+  std::vector<float> rms_error;  // area-weighted RMS
+};
+
 struct PackBounds {
   std::array<float, 3> min{0, 0, 0}, max{0, 0, 0};  // bind pose
   float radius = 0.0f;  // bounding sphere over every baked frame, around the bind-box centre
@@ -110,6 +120,7 @@ struct PackContents {
   std::vector<PackMaterial> materials;
   PackGeometry geometry;
   PackProgressive progressive;
+  PackLevelErrors level_errors;
   AnimationTexture animation;
   PartitionMask partition;
   PackBounds bounds;

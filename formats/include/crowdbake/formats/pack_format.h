@@ -11,7 +11,7 @@
 namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-constexpr uint16_t kPackVersionMinor = 0;  // compatible additions (new optional chunks)
+constexpr uint16_t kPackVersionMinor = 1;  // compatible additions (new optional chunks)
 
 namespace pack_format {
 
@@ -36,6 +36,7 @@ constexpr uint32_t kTagClip = make_tag('C', 'L', 'I', 'P');  // clip table, root
 constexpr uint32_t kTagMatl = make_tag('M', 'A', 'T', 'L');  // materials
 constexpr uint32_t kTagBnds = make_tag('B', 'N', 'D', 'S');  // bounds
 constexpr uint32_t kTagProg = make_tag('P', 'R', 'O', 'G');  // ProgressiveMesh arrays
+constexpr uint32_t kTagLerr = make_tag('L', 'E', 'R', 'R');  // level errors (1.1, optional)
 constexpr uint32_t kTagGeom = make_tag('G', 'E', 'O', 'M');  // vertices and triangles
 constexpr uint32_t kTagAnim = make_tag('A', 'N', 'I', 'M');  // animation texture
 constexpr uint32_t kTagPart = make_tag('P', 'A', 'R', 'T');  // partition mask
@@ -48,6 +49,7 @@ constexpr uint32_t kClipVersion = 1;
 constexpr uint32_t kMatlVersion = 1;
 constexpr uint32_t kBndsVersion = 1;
 constexpr uint32_t kProgVersion = 1;
+constexpr uint32_t kLerrVersion = 1;
 constexpr uint32_t kGeomVersion = 1;
 constexpr uint32_t kAnimVersion = 1;
 constexpr uint32_t kPartVersion = 1;

@@ -14,8 +14,22 @@
 
 namespace crowdbake {
 
+// The per-level geometric error stored in the pack (LERR), which error-driven LoD selection
+// reads: `samples` vertex counts spaced geometrically from the coarsest level to the full
+// mesh, each measured against the full mesh with animated_error (every clip at `fps`).
+struct LevelErrorOptions {
+  uint32_t samples = 10;  // 0: none (the runtime then selects by budget only); else 2..64
+  double fps = 1.0;
+};
+
+// The vertex counts measure_level_errors samples: geometric from min_vertices to the full
+// count (both included), strictly increasing; empty without progressive levels.
+std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex_count,
+                                          uint32_t samples);
+
 struct BakeSettings {
   SimplifyOptions simplify;
+  LevelErrorOptions level_errors;
   AnimationBakeOptions animation;
   PartitionOptions partition;
   PackWriteOptions pack;
@@ -40,6 +54,7 @@ struct BakeReport {
   SimplifyReport simplify;
   std::string partition_heights;     // where the neck and waist heights came from
   double animation_max_error = 0.0;  // decoded texture vs direct evaluation, / bbox diagonal
+  // note: per-level errors are in the pack (PackContents::level_errors).
   double animation_mean_error = 0.0;
 };
 

@@ -29,6 +29,10 @@ struct FrameState {
   uint32_t visible_count = 0;
   LodStats lod;
   std::vector<LodType> lod_types;  // per type
+  // The mode this frame was selected in: the scene's, except error mode with a type whose pack
+  // has no level errors (LERR), which falls back to budget mode (kContinuous) and says why.
+  LodMode lod_mode = LodMode::kContinuous;
+  std::string lod_note;            // empty unless a fallback happened
   std::vector<TypeBounds> bounds;  // per type
 };
 

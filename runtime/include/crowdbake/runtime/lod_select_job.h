@@ -59,10 +59,29 @@
 namespace crowdbake::runtime {
 
 enum class LodMode : uint32_t {
-  kContinuous = 0,  // the budgeted selection above
+  kContinuous = 0,  // the budgeted selection above (scene mode "budget" or "continuous")
   kDiscrete = 1,    // the same, snapped down to a few fixed levels
   kFull = 2,        // every visible instance at full resolution
+  kError = 3,       // error-driven: see "Error-driven mode" below
 };
+
+// Error-driven mode (LodMode::kError). The pack's level errors (PackLevelErrors: vertex counts
+// v_k, max surface distance e_k in model units, e_k non-increasing) give each instance the
+// smallest vertex count whose error, seen at the instance's distance, is at most
+// max_pixel_error pixels. The model-space error that projects to P pixels at distance D_i
+// (lod_area_distance) for an instance drawn at scale r_i / R (its world sphere radius over the
+// type's) is
+//     τ_i = (P · D_i · R) / (focal_pixels · r_i),
+// and n_i(t) = lod_vertices_for_error(t): v_0 when t ≥ e_0, else on the first segment with
+// e_{k−1} > t ≥ e_k, ceil(v_{k−1} + (v_k − v_{k−1}) · (e_{k−1} − t) / (e_{k−1} − e_k)) (the
+// error taken as linear in n between samples), clamped to [min_i, max_i].
+// The budget N is a cap: with λ_j = lod_error_ladder(j) = 2^(j/3), j = 0..31, the frame uses
+// the smallest j with Σ_i n_i(λ_j · τ_i) ≤ N (every instance's error raised by the same factor,
+// nobody dropped); when even j = 31 spends more, it uses j = 31 and reports budget_exceeded.
+// Sums are integers, so CPU and GPU agree exactly; τ_i is the same double arithmetic on both.
+// A type without level errors cannot be selected this way: update_frame then selects the
+// frame in budget mode (kContinuous) and says so (FrameState::lod_note).
+constexpr uint32_t kErrorLadderSteps = 32;
 
 constexpr uint32_t kMaxDiscreteLevels = 8;
 
@@ -75,6 +94,7 @@ struct LodSettings {
   // instance is drawn, at min_i when its share is below it (LodStats::budget_exceeded says
   // when the selection then spends more than N).
   bool drop_below_min_t = false;
+  float max_pixel_error = 1.0f;  // error mode: P, pixels, > 0 and finite
   // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
   std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
   uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels
@@ -93,6 +113,10 @@ struct LodType {
   // Discrete levels in vertices, finest first (discrete mode only).
   std::array<uint32_t, kMaxDiscreteLevels> levels{};
   uint32_t level_count = 0;
+  // Error mode: the pack's level errors (empty: none) and the type's bounding radius R.
+  Span<const uint32_t> error_vertices;
+  Span<const float> error_max;
+  float radius = 0.0f;
 };
 
 // Counts of one selection (for profiling and tests).
@@ -106,6 +130,7 @@ struct LodStats {
   double weight_sum = 0.0;         // Σ w_j^(1/α) (pass 1's reduction)
   uint64_t selected_vertices = 0;  // Σ n_i
   bool budget_exceeded = false;    // Σ n_i > N (promotions to min_i spent more than N)
+  uint32_t error_step = 0;         // error mode: the ladder step j the budget cap chose
 };
 
 struct LodSelectJob {
@@ -133,6 +158,12 @@ struct LodSelectJob {
   // Validates, then runs both passes. Allocates nothing.
   bool Run() const;
 };
+
+// Error mode (see "Error-driven mode"): λ_j, τ_i and n_i(t).
+double lod_error_ladder(uint32_t step);
+double lod_error_threshold(double distance, float world_radius, float type_radius,
+                           float focal_pixels, float max_pixel_error);
+uint32_t lod_vertices_for_error(const LodType& type, double t);
 
 // A_i and D_i of one sphere as the job defines them (see the file comment).
 void lod_area_distance(const View& view, const float sphere[4], double* area, double* distance);

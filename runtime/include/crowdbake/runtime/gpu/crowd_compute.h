@@ -126,6 +126,7 @@ struct CrowdComputeStats {
   // frame (not cached before), instances drawn at a coarser cached level (more distinct levels
   // than slots).
   uint32_t levels_drawn = 0, levels_built = 0, coarser_instances = 0;
+  uint32_t error_step = 0;  // error mode: the ladder step (LodStats::error_step)
 };
 
 // GPU time of each pass of one record() (timestamps), in milliseconds.
@@ -223,11 +224,12 @@ class CrowdCompute {
   uint32_t type_count_ = 0, max_instances_ = 0, instance_count_ = 0, corner_capacity_ = 0;
   std::vector<uint32_t> type_offsets_;  // 4 per type into mesh data: tri, collapse, tcount, group
   std::vector<uint8_t> progressive_;    // per type
-  std::vector<uint32_t> vertex_counts_, triangle_counts_, full_triangles_;
+  std::vector<uint32_t> vertex_counts_, triangle_counts_, full_triangles_, error_offsets_,
+      error_counts_;
   GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
       draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_, level_ranges_,
       indexed_args_, instance_list_, level_indices_, key_counts_, key_states_, slot_states_,
-      build_list_, level_cache_, cache_hands_;
+      build_list_, level_cache_, cache_hands_, ladder_sums_;
   bool instanced_levels_ = false, instanced_ = false, cached_ = false;
   uint32_t frame_ = 0, key_total_ = 1, slot_total_ = 1;
   uint64_t cache_indices_ = 0, gpu_bytes_ = 0;
