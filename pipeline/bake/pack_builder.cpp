@@ -156,8 +156,14 @@ PackLevelErrors measure_level_errors(const SkinnedAsset& asset, const Progressiv
   out.rms_error.assign(out.vertices.size(), 0.0f);
   for (size_t k = 0; k < errors.size(); ++k) {
     const AnimatedError& e = errors[k];
-    out.max_error[k] = static_cast<float>(e.max * e.diagonal);
-    out.rms_error[k] = static_cast<float>(e.mean_rms * e.diagonal);
+    // note: a level with no triangles is infinitely far from the mesh; the diagonal is as far
+    // as anything inside the character gets, and keeps the table finite.
+    const auto finite = [&](double v) {
+      const double d = e.diagonal * v;
+      return static_cast<float>(std::isfinite(d) ? d : e.diagonal);
+    };
+    out.max_error[k] = finite(e.max);
+    out.rms_error[k] = finite(e.mean_rms);
   }
   for (size_t k = errors.size(); k-- > 0;) {
     out.max_error[k] = std::max(out.max_error[k], out.max_error[k + 1]);

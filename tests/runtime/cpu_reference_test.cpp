@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "crowdbake/runtime/frame.h"
@@ -18,7 +20,8 @@ namespace {
 
 // A stand of spectators (20 rows x 30 seats) seen from the pitch, plus one behind the camera.
 Status stadium(Scene& scene, uint32_t parts = kPackAll,
-               const std::string& lod = R"({"budget": 300000, "min_t": 1})") {
+               const std::string& lod = R"({"budget": 300000, "min_t": 1})",
+               const std::string& spectator_pack = "") {
   test::TempDir dir;
   const std::string json = std::string(R"({
     "camera": {"path": [{"time": 0, "position": [8, 6, 25], "target": [8, 4, -5]},
@@ -26,7 +29,9 @@ Status stadium(Scene& scene, uint32_t parts = kPackAll,
                "resolution": [1280, 720], "fov_degrees": 50},
     "lod": )") + lod + R"(,
     "character_types": [{"name": "spectator", "pack": ")" +
-                           test::BakedPacks::get().spectator() + R"("},
+                           (spectator_pack.empty() ? test::BakedPacks::get().spectator()
+                                                   : spectator_pack) +
+                           R"("},
                         {"name": "kid", "pack": ")" +
                            test::BakedPacks::get().spectator_f32() + R"("}],
     "instances": [{"type": "kid", "position": [8, 0, 40], "clip": "walk"}],
@@ -115,10 +120,10 @@ TEST(UpdateFrame, ModesAndBudgets) {
   uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0, never_drop = 0;
   const char* drop = R"("min_t": 1, "drop_below_min_t": true)";
   const std::string lods[] = {
-      std::string("{\"budget\": 300000, ") + drop + "}",
+      std::string("{\"mode\": \"budget\", \"budget\": 300000, ") + drop + "}",
       std::string("{\"budget\": 300000, \"mode\": \"discrete\", ") + drop + "}",
-      R"({"mode": "full"})", std::string("{\"budget\": 20000, ") + drop + "}",
-      R"({"budget": 20000})"};
+      R"({"mode": "full"})", std::string("{\"mode\": \"budget\", \"budget\": 20000, ") + drop + "}",
+      R"({"mode": "budget", "budget": 20000})"};
   uint64_t* outs[] = {&continuous, &discrete, &full, &small_budget, &never_drop};
   uint32_t visible = 0, drawn_by_default = 0;
   for (size_t run = 0; run < 5; ++run) {
@@ -154,6 +159,53 @@ TEST(UpdateFrame, ModesAndBudgets) {
   EXPECT_GT(visible, 0u);
   EXPECT_EQ(drawn_by_default, visible);
   EXPECT_GT(never_drop, 20000u);
+}
+
+// Error mode, the default: within the pixel error everyone is drawn and a tighter error costs
+// more vertices; a pack without level errors falls back to budget mode and says so.
+TEST(UpdateFrame, ErrorModeAndItsFallbackWithoutLevelErrors) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  uint64_t coarse = 0, fine = 0;
+  for (const auto& [lod, out] :
+       {std::pair<const char*, uint64_t*>{R"({"max_pixel_error": 4})", &coarse},
+        {R"({"max_pixel_error": 0.5})", &fine}}) {
+    Scene scene;
+    ASSERT_TRUE(stadium(scene, kPackTables, lod));
+    EXPECT_EQ(scene.lod.mode, LodMode::kError);
+    FrameState state;
+    ASSERT_TRUE(update_frame(scene, 1.0f, state));
+    EXPECT_EQ(state.lod_mode, LodMode::kError);
+    EXPECT_TRUE(state.lod_note.empty()) << state.lod_note;
+    EXPECT_EQ(state.lod.drawn, state.lod.visible);
+    *out = state.lod.selected_vertices;
+  }
+  EXPECT_LT(coarse, fine);
+
+  // The same pack without its LERR chunk (as a 1.0 pack has none).
+  PackContents contents;
+  {
+    std::ifstream in(test::BakedPacks::get().spectator(), std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok);
+  }
+  ASSERT_FALSE(contents.level_errors.vertices.empty());
+  contents.level_errors = {};
+  test::TempDir dir;
+  const std::string old_pack = (dir.path() / "old.crowdpack").string();
+  {
+    const std::vector<uint8_t> bytes = write_pack(contents, {});
+    std::ofstream(old_pack, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+  }
+  Scene scene;
+  ASSERT_TRUE(stadium(scene, kPackTables, R"({"budget": 20000})", old_pack));
+  FrameState state;
+  ASSERT_TRUE(update_frame(scene, 1.0f, state));
+  EXPECT_EQ(state.lod_mode, LodMode::kContinuous);
+  EXPECT_NE(state.lod_note.find("no level errors"), std::string::npos) << state.lod_note;
+  EXPECT_EQ(state.lod.drawn, state.lod.visible);
 }
 
 TEST(UpdateFrame, RejectsBadInput) {

@@ -125,7 +125,7 @@ TEST(SceneEffects, RendererSideEffectsTurnedOffApplyAtLoad) {
                                     generator),
                         off)
                   .ok());
-  EXPECT_EQ(on.lod.mode, LodMode::kContinuous);
+  EXPECT_EQ(on.lod.mode, LodMode::kError);  // the default of a scene naming no mode
   EXPECT_EQ(off.lod.mode, LodMode::kFull);
   bool varied = false;
   for (size_t i = 0; i < on.instances.size(); ++i) {
