@@ -30,6 +30,7 @@ namespace gpu = runtime::gpu;
 namespace {
 
 constexpr float kTableTime = 1.0f;  // scene time of the table's frames (clips mid-motion)
+constexpr uint32_t kDefaultErrorCap = 1000000;  // LodSettings::budget's default: the cap N
 constexpr float kPopFps = 30.0f;
 
 double median(std::vector<double> v) {
@@ -110,9 +111,19 @@ RgbaImage measure(gpu::VulkanContext& context, gpu::Renderer& renderer, runtime:
   row.overflow = last.profile.overflow;
   row.vertices = last.profile.vertices;
   row.triangles = last.profile.triangles;
+  row.error_step = last.profile.error_step;
   if (row.overflow > 0)
     row.note = std::to_string(row.overflow) + " instances not drawn: corner buffer full";
   return std::move(last.image);
+}
+
+// A LoD row's image error and speed-up against the full-resolution row and image.
+void score(RenderBenchRow& row, const RgbaImage& image, const RgbaImage& reference,
+           const RgbaImage& reference_4x, const RenderBenchRow& full) {
+  row.psnr = psnr(image, reference);
+  row.mean_abs_diff = mean_abs_diff(image, reference);
+  row.psnr_4x = psnr(shrink4(image), reference_4x);
+  row.speedup = full.frame_ms / row.frame_ms;
 }
 
 // The popping dolly: one camera per frame, rendered at one scene time (animation frozen), so
@@ -269,6 +280,9 @@ void check_settings(const BenchRenderSettings& s) {
   for (uint32_t b : s.budgets)
     if (b < 1) throw usage("--budgets", "budgets must be at least 1");
   if (s.frames < 1 || s.frames > 1000) throw usage("--frames", "must be in 1..1000");
+  for (float p : s.pixel_errors)
+    if (!(p > 0.0f) || !std::isfinite(p))
+      throw usage("--pixel-errors", "pixel errors must be numbers > 0");
   if (s.pop_size > 0 && (s.pop_frames < 2 || s.pop_frames > 1000))
     throw usage("--pop-frames", "must be in 2..1000");
 }
@@ -280,6 +294,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
   if (s.quick) {
     s.sizes = {60};
     s.budgets = {3000, 12000};
+    s.pixel_errors = {1.0f};
     s.frames = 1;
     s.resolution = "256x144";
     s.pop_size = 60;
@@ -361,13 +376,23 @@ int run_bench_render(const BenchRenderSettings& settings) {
         if (uint64_t{budget} >= uint64_t{n} * result.pack_vertices) continue;  // = full
         RenderBenchRow row;
         const RgbaImage image = measure(*context, *renderer, scene, mode, budget, 1, s.frames, row);
-        row.psnr = psnr(image, reference);
-        row.mean_abs_diff = mean_abs_diff(image, reference);
-        row.psnr_4x = psnr(shrink4(image), reference_4x);
-        row.speedup = full.frame_ms / row.frame_ms;
+        score(row, image, reference, reference_4x, full);
         rows.push_back(row);
         print_render_rows({row}, false);
       }
+    // Error-driven selection (the default mode) at a few pixel errors, the default cap N.
+    for (float pixels : s.pixel_errors) {
+      RenderBenchRow row;
+      scene.lod.max_pixel_error = pixels;
+      const RgbaImage image = measure(*context, *renderer, scene, runtime::LodMode::kError,
+                                      kDefaultErrorCap, 1, s.frames, row);
+      char note[64];
+      std::snprintf(note, sizeof note, "max_pixel_error %g px, step %u", pixels, row.error_step);
+      row.note = note + (row.note.empty() ? "" : "; " + row.note);
+      score(row, image, reference, reference_4x, full);
+      rows.push_back(row);
+      print_render_rows({row}, false);
+    }
     result.rows.insert(result.rows.end(), rows.begin(), rows.end());
   }
 

@@ -19,7 +19,8 @@ struct RenderBenchRow {
   // PSNR of both images shrunk 4× (area average): what is left when single-pixel silhouette
   // flips (aliasing) are averaged the way a display or antialiasing would.
   double psnr_4x = 0;
-  double speedup = 0;  // full's frame time / this one's (NaN: no reference)
+  double speedup = 0;       // full's frame time / this one's (NaN: no reference)
+  uint32_t error_step = 0;  // error mode: the ladder step the budget cap chose
   std::string note;
 };
 

@@ -129,6 +129,7 @@ struct BenchRenderSettings {
   std::string frames_dir;  // "" = none; else the dolly's frames (PNG) go there
   bool shadows = true;
   uint32_t msaa = 4;  // samples per pixel of every image, the full-resolution reference too
+  std::vector<float> pixel_errors{0.5f, 1.0f, 2.0f};  // error-mode rows (max_pixel_error)
   bool quick = false;  // CI smoke test: tiny sizes, resolution and sequence
 };
 

@@ -113,6 +113,10 @@ int main(int argc, char** argv) {
       ->add_option("--budgets", bench_render.budgets,
                    "LoD budgets N in vertices (default 100000,300000,1000000,3000000,6000000)")
       ->delimiter(',');
+  bench_render_cmd
+      ->add_option("--pixel-errors", bench_render.pixel_errors,
+                   "Error-driven rows: lod.max_pixel_error values in pixels (default 0.5,1,2)")
+      ->delimiter(',');
   bench_render_cmd->add_option("--frames", bench_render.frames,
                                "Timed frames per configuration after one warm-up (default 3)");
   bench_render_cmd->add_option("--resolution", bench_render.resolution,

@@ -41,6 +41,8 @@ do for [i = 0:n - 1] {
        '' index i using 3:(is('discrete') ? $4 : NaN) with linespoints pt 5 ps 1.0 lc rgb "#d62728" title "discrete LoD (4 levels)", \
        '' index i using 3:(is('continuous') ? $6 : NaN) with linespoints pt 6 ps 1.0 dt 2 lc rgb "#1f77b4" title "continuous, 4x-shrunk images", \
        '' index i using 3:(is('discrete') ? $6 : NaN) with linespoints pt 4 ps 0.9 dt 2 lc rgb "#d62728" title "discrete, 4x-shrunk images", \
+       '' index i using 3:(is('error') ? $4 : NaN) with linespoints pt 13 ps 1.3 lc rgb "#2ca02c" title "error-driven (0.5, 1, 2 px)", \
+       '' index i using 3:(is('error') ? $6 : NaN) with linespoints pt 12 ps 1.1 dt 2 lc rgb "#2ca02c" title "error-driven, 4x-shrunk images", \
        '' index i using 3:(is('full') ? $4 : NaN) with points pt 9 ps 1.6 lc rgb "#555555" title "full resolution (reference)", \
        '' index i using 3:4:(is('continuous') ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
        35 with lines dt 3 lc rgb "#2ca02c" title "35 dB target"

@@ -262,6 +262,7 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   profile->levels_drawn = stats.levels_drawn;
   profile->levels_built = stats.levels_built;
   profile->coarser = stats.coarser_instances;
+  profile->error_step = m.state.lod_mode == LodMode::kError ? stats.error_step : 0;
   profile->memory = m.memory();
   profile->triangles = stats.drawn_corners / 3;
   if (m.compute->instanced()) {

@@ -61,6 +61,7 @@ struct FrameProfile {
   bool budget_exceeded = false;  // Σ n_i > N (continuous, discrete)
   uint32_t vertex_shader_skinned = 0;  // instanced paths: drawn without skinned slots
   uint32_t levels_drawn = 0, levels_built = 0, coarser = 0;  // CrowdComputeStats, level cache
+  uint32_t error_step = 0;  // error mode: the ladder step the budget cap chose (0: none)
   GpuMemory memory;
 };
 
