@@ -110,6 +110,9 @@ int run_render(const RenderSettings& s) {
       std::printf("frame %4zu  t %8.3f s  visible %7u  drawn %7u  triangles %10s  gpu %9.3f ms\n",
                   i, plan.times[i], profile.visible, profile.drawn, millions(tris).c_str(), gpu);
     }
+    // note: once per run, as the fallback holds for every frame.
+    if (i == 0 && !s.quiet && !profile.lod_note.empty())
+      std::fprintf(stderr, "note: %s\n", profile.lod_note.c_str());
     profiles.push_back(std::move(profile));
   }
   if (!s.contact_sheet.empty()) {

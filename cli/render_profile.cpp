@@ -87,6 +87,9 @@ std::string stats_json(const std::vector<runtime::gpu::FrameProfile>& frames,
     j["triangles"] = f.triangles;
     j["budget"] = f.budget;
     j["budget_exceeded"] = f.budget_exceeded;
+    j["lod_mode"] = f.lod_mode;
+    j["error_step"] = f.error_step;
+    if (!f.lod_note.empty()) j["lod_note"] = f.lod_note;
     j["vertex_shader_skinned"] = f.vertex_shader_skinned;
     j["level_cache"] = {
         {"levels_drawn", f.levels_drawn}, {"levels_built", f.levels_built}, {"coarser", f.coarser}};

@@ -263,6 +263,9 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   profile->levels_built = stats.levels_built;
   profile->coarser = stats.coarser_instances;
   profile->error_step = m.state.lod_mode == LodMode::kError ? stats.error_step : 0;
+  const char* modes[] = {"budget", "discrete", "full", "error"};
+  profile->lod_mode = modes[static_cast<uint32_t>(m.state.lod_mode) % 4];
+  profile->lod_note = m.state.lod_note;
   profile->memory = m.memory();
   profile->triangles = stats.drawn_corners / 3;
   if (m.compute->instanced()) {

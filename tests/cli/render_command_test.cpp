@@ -9,11 +9,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <regex>
 
 #include "cli/cli_runner.h"
 #include "cli/image_png.h"
+#include "crowdbake/formats/pack.h"
 #include "runtime/runtime_test_support.h"
 
 namespace crowdbake {
@@ -245,6 +247,36 @@ TEST_F(RenderCommand, StatsWritesTheFramesNumbersAsJson) {
     EXPECT_GT(f["gpu_ms"].get<double>(), 0.0);
   }
   EXPECT_EQ(j["frames"][1]["level_cache"]["levels_built"], 0) << "the second frame reuses";
+}
+
+// A pack without level errors (format 1.0 has none) renders in budget mode, with a note.
+TEST_F(RenderCommand, PackWithoutLevelErrorsRendersByBudgetWithANote) {
+  PackContents contents;
+  {
+    std::ifstream in(pack_, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok);
+  }
+  contents.level_errors = {};
+  const std::vector<uint8_t> bytes = write_pack(contents, {});
+  const std::string old_pack = out("old.crowdpack");
+  std::ofstream(old_pack, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+  const std::string scene = write_scene("old.json", scene_json(old_pack));
+  test::CommandResult r;
+  if (!render({scene, "-o", out("old.png"), "--stats", out("old.json.stats")}, r)) return;
+  EXPECT_NE(r.err.find("note: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no level errors"), std::string::npos) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out("old.json.stats")));
+  EXPECT_EQ(j["frames"][0]["lod_mode"], "budget");
+  EXPECT_EQ(j["frames"][0]["drawn"], j["frames"][0]["visible"]);
+  // The same scene with the original pack selects by error, quietly.
+  if (!render({scene_, "-o", out("new.png"), "--stats", out("new.json.stats")}, r)) return;
+  EXPECT_EQ(r.err.find("note: "), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(out("new.json.stats")))["frames"][0]["lod_mode"],
+            "error");
 }
 
 TEST_F(RenderCommand, SequenceAndContactSheet) {

@@ -45,8 +45,27 @@
 // (instance, vertex of that type's pack) directly (per-type bases are in type_ranges_buffer()
 // too). The buffers are rewritten by every record(): draw before the next frame's passes.
 //
+// Level cache (instanced_static_levels, continuous and error-mode frames): the reconstruction
+// of level n' never changes, so instances of one type that select the same usable count n'
+// share one index range. Keys are (type, n'); a type has `slots` index ranges of its finest
+// level's size (level_cache_bytes split between the types). level_cache.comp gives every key
+// drawn this frame a slot — kept from earlier frames when it has one, otherwise the next slot,
+// clockwise from the type's hand, that this frame does not use — queues the new ones, and
+// writes one VkDrawIndexedIndirectCommand per key with a slot; reconstruct.comp builds the
+// queued levels (one workgroup each), place_instances lists each instance under its key (its
+// rank within the key taken by an atomic in lod_assign: order within a key is not fixed).
+// When a frame draws more distinct levels of a type than it has slots, the keys left over are
+// drawn with the nearest coarser key that has one (stats.coarser_instances): an instance's
+// skinned slots hold its own n' vertices, which cover any coarser level. Memory: the cache
+// and per-key tables, independent of the instance count; the draw is slots commands per type
+// (zero counts where unused). Per type draw
+//   vkCmdBindIndexBuffer(cmd, draw_index_buffer().buffer(), 0, VK_INDEX_TYPE_UINT32);
+//   vkCmdDrawIndexedIndirect(cmd, indexed_args_buffer().buffer(), first_command(t) * 20,
+//                            command_count(t), 20)
+// exactly as for static levels below.
+//
 // Instanced static levels (CrowdComputeOptions::instanced_static_levels; full and discrete
-// modes only — continuous frames still use the corner buffer): full and discrete LoD draw a
+// modes): full and discrete LoD draw a
 // few fixed meshes per type, so their index lists are reconstructed once on the CPU
 // (reconstruct_lod, exactly the CPU reference) into level_index_buffer(), and the passes only
 // sort the drawn instances by (type, level) slot, slot = type · 8 + level (full mode: level 0

@@ -62,6 +62,8 @@ struct FrameProfile {
   uint32_t vertex_shader_skinned = 0;  // instanced paths: drawn without skinned slots
   uint32_t levels_drawn = 0, levels_built = 0, coarser = 0;  // CrowdComputeStats, level cache
   uint32_t error_step = 0;  // error mode: the ladder step the budget cap chose (0: none)
+  std::string lod_mode;     // the mode the frame was selected in (FrameState::lod_mode)
+  std::string lod_note;     // FrameState::lod_note: why it differs from the scene's
   GpuMemory memory;
 };
 
