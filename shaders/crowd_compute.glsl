@@ -171,16 +171,21 @@ uint level_triangles(TypeData t, uint usable) {
 
 // Corner `corner` of level n' (`usable`): the pack's triangle corner walked down the collapse
 // chain (`while v >= n'`), as ReconstructJob does.
-uint level_corner(TypeData t, uint usable, uint corner) {
-  uint v = mesh_data[t.tri_offset + corner];
-  if (t.progressive != 0u) {
+uint walk_corner(uint tri_offset, uint collapse_offset, bool progressive, uint usable,
+                 uint corner) {
+  uint v = mesh_data[tri_offset + corner];
+  if (progressive) {
     while (v >= usable) {
-      const uint next = mesh_data[t.collapse_offset + v];
+      const uint next = mesh_data[collapse_offset + v];
       if (next >= v) break;
       v = next;
     }
   }
   return v;
+}
+
+uint level_corner(TypeData t, uint usable, uint corner) {
+  return walk_corner(t.tri_offset, t.collapse_offset, t.progressive != 0u, usable, corner);
 }
 
 // The scan key of a drawn instance: its type, or with instanced static levels its slot

@@ -35,14 +35,6 @@ void main() {
   for (uint step = 0u; step < kChunk; step += 64u) {
     const uint corner = base + step;
     if (corner >= where.w) return;
-    uint v = mesh_data[mesh.x + corner];
-    if (mesh.w != 0u) {
-      while (v >= mesh.z) {
-        const uint next = mesh_data[mesh.y + v];
-        if (next >= v) break;
-        v = next;
-      }
-    }
-    corners[where.y + corner] = uvec2(where.x, v);
+    corners[where.y + corner] = uvec2(where.x, walk_corner(mesh.x, mesh.y, mesh.w != 0u, mesh.z, corner));
   }
 }
