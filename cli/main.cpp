@@ -212,8 +212,9 @@ int main(int argc, char** argv) {
   auto* fps_opt = render_cmd->add_option("--fps", render.fps, "Sequence frame rate (default 30)");
   auto* budget_opt = render_cmd->add_option(
       "--budget", render.budget, "LoD budget N: vertices for all visible instances (>= 1)");
-  render_cmd->add_option("--lod", render.lod,
-                         "LoD mode: continuous, discrete or full (default: the scene's)");
+  render_cmd->add_option(
+      "--lod", render.lod,
+      "LoD mode: error, budget (= continuous), discrete or full (default: the scene's)");
   render_cmd->add_option("--resolution", render.resolution,
                          "Image size WIDTHxHEIGHT, e.g. 1280x720");
   render_cmd->add_option("--contact-sheet", render.contact_sheet,

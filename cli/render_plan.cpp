@@ -60,8 +60,10 @@ void check_settings(const RenderSettings& s) {
   if (s.budget_given && (s.budget < 1 || s.budget > int64_t{0xFFFFFFFF}))
     throw usage("--budget",
                 "must be a vertex count in 1..4294967295, got " + std::to_string(s.budget));
-  if (!s.lod.empty() && s.lod != "continuous" && s.lod != "discrete" && s.lod != "full")
-    throw usage("--lod", "must be continuous, discrete or full, got '" + s.lod + "'");
+  if (!s.lod.empty() && s.lod != "error" && s.lod != "budget" && s.lod != "continuous" &&
+      s.lod != "discrete" && s.lod != "full")
+    throw usage("--lod",
+                "must be error, budget (= continuous), discrete or full, got '" + s.lod + "'");
   if (!s.contact_sheet.empty() && !s.frames_given)
     throw usage("--contact-sheet", "only applies with --frames");
   if (!s.contact_sheet.empty() && !ends_with_png(s.contact_sheet))
@@ -142,7 +144,8 @@ RenderPlan plan_render(const RenderSettings& s) {
 
   runtime::Scene& scene = plan.scene;
   if (s.budget_given) scene.lod.budget = static_cast<uint32_t>(s.budget);
-  if (s.lod == "continuous") scene.lod.mode = runtime::LodMode::kContinuous;
+  if (s.lod == "error") scene.lod.mode = runtime::LodMode::kError;
+  if (s.lod == "continuous" || s.lod == "budget") scene.lod.mode = runtime::LodMode::kContinuous;
   if (s.lod == "discrete") scene.lod.mode = runtime::LodMode::kDiscrete;
   if (s.lod == "full") scene.lod.mode = runtime::LodMode::kFull;
   if (width > 0) {

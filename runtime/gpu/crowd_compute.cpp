@@ -208,7 +208,6 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     c->kernels_[k].bind_buffers(0, bindings);
   }
   for (const Spec& spec : specs) c->gpu_bytes_ += spec.bytes;
-  c->gpu_bytes_ += c->mesh_.size();
   // note: an empty cache: no key holds a slot, no slot a key, every hand at 0.
   Status st = context.submit_and_wait([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, c->key_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);

@@ -53,7 +53,12 @@ struct Renderer::Impl {
     out.skinning = d.skinning;
     out.total = compute->gpu_bytes() + d.skinning + d.frame;
     for (uint64_t b : d.per_type) out.total += b;
-    out.total += color.valid() ? uint64_t{color.desc().width} * color.desc().height * 8 : 0;
+    // note: the target: RGBA8 colour, D32 depth and, with MSAA, the multisampled colour.
+    if (color.valid()) {
+      const uint64_t pixels = uint64_t{color.desc().width} * color.desc().height;
+      const uint64_t n = options.msaa_samples;
+      out.total += pixels * 4 + pixels * 4 * n + (samples.valid() ? pixels * 4 * n : 0);
+    }
     out.total += readback.size();
     return out;
   }
