@@ -170,6 +170,7 @@ bool LodSelectJob::Validate() const {
     return false;
   for (const LodType& t : types) {
     if (t.min_vertices > t.max_vertices) return false;
+    if (t.error_vertices.size() != t.error_max.size()) return false;
     if (settings.mode == LodMode::kDiscrete &&
         (t.level_count == 0 || t.level_count > kMaxDiscreteLevels))
       return false;

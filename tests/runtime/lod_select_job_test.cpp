@@ -475,6 +475,15 @@ TEST(LodSelectJob, ErrorModeBudgetRaisesEveryErrorEvenly) {
   for (uint32_t n : c.vertex_count) EXPECT_EQ(n, 100u);
 }
 
+TEST(LodSelectJob, ErrorModeRejectsUnequalErrorTables) {
+  const ErrorTable table;
+  Crowd c;
+  c.types = {table.type()};
+  c.types[0].error_max = Span<const float>(table.errors.data(), 2);  // 3 vertex counts, 2 errors
+  c.add(0, 10.0f, 1.0f);
+  EXPECT_FALSE(c.run(error_settings(1000)));
+}
+
 TEST(LodSelectJob, ErrorModeRejectsABadPixelError) {
   for (float bad : {0.0f, -1.0f, std::nanf(""), INFINITY}) {
     std::string why;

@@ -153,7 +153,8 @@ struct LodSelectJob {
 
   // False when: view is null; the settings fail check_lod_settings; spheres is not 4n,
   // visible / weights / vertex_count not n (n = type.size()); a type index is out of
-  // `types`; a type has min_vertices > max_vertices, or (discrete mode) no levels.
+  // `types`; a type has min_vertices > max_vertices, error tables of unequal lengths, or
+  // (discrete mode) no levels.
   bool Validate() const;
   // Validates, then runs both passes. Allocates nothing.
   bool Run() const;
