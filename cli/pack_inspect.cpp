@@ -92,6 +92,11 @@ ordered_json to_json(const PackFile& pack) {
               {"max_vertices", lod.max_vertices},
               {"min_triangles", lod.min_triangles},
               {"max_triangles", lod.max_triangles}};
+  const PackLevelErrors& e = c.level_errors;
+  j["level_errors"] = ordered_json::array();
+  for (size_t k = 0; k < e.vertices.size(); ++k)
+    j["level_errors"].push_back(
+        {{"vertices", e.vertices[k]}, {"max", e.max_error[k]}, {"rms", e.rms_error[k]}});
   j["clips"] = ordered_json::array();
   for (const PackClip& clip : c.clips)
     j["clips"].push_back({{"name", clip.name},
@@ -171,6 +176,14 @@ void print_text(const PackFile& pack) {
   const LodRange lod = lod_range(c);
   std::printf("  lod        %u..%u vertices, %u..%u triangles\n", lod.min_vertices,
               lod.max_vertices, lod.min_triangles, lod.max_triangles);
+  // note: the error table error-driven LoD reads (model units), or why there is none.
+  const PackLevelErrors& e = c.level_errors;
+  if (e.vertices.empty())
+    std::printf("  errors     none (LERR absent: LoD is selected by budget)\n");
+  for (size_t k = 0; k < e.vertices.size(); ++k)
+    std::printf("  %-10s %8u vertices: max %.4g, rms %.4g model units\n", k == 0 ? "errors" : "",
+                e.vertices[k], static_cast<double>(e.max_error[k]),
+                static_cast<double>(e.rms_error[k]));
   std::printf("  clips      %-28s  %6s  %6s  %9s  %-7s  %s\n", "name", "frames", "fps", "duration",
               "looping", "root motion");
   for (const PackClip& clip : c.clips)

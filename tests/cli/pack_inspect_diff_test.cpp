@@ -170,6 +170,7 @@ TEST_F(PackCommands, InspectTextShowsVersionChunksCountsLodClipsAndBytes) {
   EXPECT_NE(r.out.find("64 x 64 mask"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("encoding=quantized"), std::string::npos) << "bake settings\n" << r.out;
   EXPECT_NE(r.out.find("per vertex"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("model units"), std::string::npos) << "the level errors\n" << r.out;
 }
 
 TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
@@ -200,6 +201,13 @@ TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
   EXPECT_EQ(j["lod"]["max_vertices"], 64);
   EXPECT_EQ(j["lod"]["min_triangles"], c.progressive.triangle_count[c.progressive.min_vertices]);
   EXPECT_EQ(j["lod"]["max_triangles"], 112);
+  // The level errors error-driven LoD reads, sample by sample.
+  ASSERT_GE(c.level_errors.vertices.size(), 2u);
+  ASSERT_EQ(j["level_errors"].size(), c.level_errors.vertices.size());
+  for (size_t k = 0; k < c.level_errors.vertices.size(); ++k) {
+    EXPECT_EQ(j["level_errors"][k]["vertices"], c.level_errors.vertices[k]);
+    EXPECT_EQ(j["level_errors"][k]["max"].get<float>(), c.level_errors.max_error[k]);
+  }
   ASSERT_EQ(j["clips"].size(), 1u);
   EXPECT_EQ(j["clips"][0]["name"], "sway");
   EXPECT_EQ(j["clips"][0]["frames"], c.clips[0].frame_count);
