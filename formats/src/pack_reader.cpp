@@ -42,8 +42,8 @@ struct KnownChunk {
   bool required = true;
 };
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion},        {kTagClip, kClipVersion},
-    {kTagMatl, kMatlVersion}, {kTagBnds, kBndsVersion},        {kTagProg, kProgVersion},
+    {kTagHead, kHeadVersion},        {kTagSkel, kSkelVersion}, {kTagClip, kClipVersion},
+    {kTagMatl, kMatlVersion},        {kTagBnds, kBndsVersion}, {kTagProg, kProgVersion},
     {kTagLerr, kLerrVersion, false}, {kTagGeom, kGeomVersion}, {kTagAnim, kAnimVersion},
     {kTagPart, kPartVersion},
 };

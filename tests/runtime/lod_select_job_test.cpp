@@ -417,7 +417,8 @@ TEST(LodSelectJob, ErrorModeTakesTheSmallestLevelWithinThePixelError) {
   const LodType t = table.type();
   // τ = P · D · R / (f · r): 1 px at 12.5 units is 0.25 model units.
   EXPECT_DOUBLE_EQ(lod_error_threshold(12.5, 1.0f, 1.0f, 50.0f, 1.0f), 0.25);
-  EXPECT_DOUBLE_EQ(lod_error_threshold(12.5, 2.0f, 1.0f, 50.0f, 1.0f), 0.125);  // drawn twice as big
+  EXPECT_DOUBLE_EQ(lod_error_threshold(12.5, 2.0f, 1.0f, 50.0f, 1.0f),
+                   0.125);                           // drawn twice as big
   EXPECT_EQ(lod_vertices_for_error(t, 0.75), 100u);  // coarser than the coarsest sample
   EXPECT_EQ(lod_vertices_for_error(t, 0.5), 100u);
   EXPECT_EQ(lod_vertices_for_error(t, 0.375), 250u);  // 100 + 300 · (0.125 / 0.25)
@@ -464,8 +465,8 @@ TEST(LodSelectJob, ErrorModeBudgetRaisesEveryErrorEvenly) {
   for (size_t i = 0; i < 10; ++i) {
     const double step = lod_error_ladder(c.stats.error_step) * c.weights[i];
     EXPECT_EQ(c.vertex_count[i], lod_vertices_for_error(c.types[0], step)) << i;
-    before += lod_vertices_for_error(c.types[0],
-                                     lod_error_ladder(c.stats.error_step - 1) * c.weights[i]);
+    before +=
+        lod_vertices_for_error(c.types[0], lod_error_ladder(c.stats.error_step - 1) * c.weights[i]);
   }
   EXPECT_GT(before, free_sum / 2);
   // A budget below everyone's minimum: all at the coarsest level, reported.

@@ -319,8 +319,8 @@ TEST(Scene, DocumentedExampleLoads) {
   SceneFiles files;
   files.add_spectator();
   Scene scene;
-  const Status s =
-      files.load(doc.substr(start + 8, end - start - 8), scene, SceneLoadOptions{kPackTables, nullptr});
+  const Status s = files.load(doc.substr(start + 8, end - start - 8), scene,
+                              SceneLoadOptions{kPackTables, nullptr});
   ASSERT_TRUE(s) << s.message();
   EXPECT_GT(scene.instances.size(), 201u + 4000u);  // 4800 seats, 8% empty
   EXPECT_LT(scene.instances.size(), 201u + 4800u);
