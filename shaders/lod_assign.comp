@@ -32,14 +32,15 @@ void main() {
   }
   barrier();
 
-  if (i == 0u && params.mode == kModeError) {
-    uint step = kLadderSteps - 1u;
+  // Error mode: the smallest ladder step whose Σ n_i fits the budget (lod_weights summed them).
+  uint step = kLadderSteps - 1u;
+  if (params.mode == kModeError) {
     for (uint j = 0u; j < kLadderSteps; ++j)
       if (ladder_sums[j].y == 0u && double(ladder_sums[j].x) <= params.budget) {
         step = j;
         break;
       }
-    stats.error_step = step;
+    if (i == 0u) stats.error_step = step;
   }
   uint type = 0xFFFFFFFFu;
   uint selected = 0u, usable = 0u, corner_count = 0u;
@@ -52,15 +53,6 @@ void main() {
       if (params.mode == kModeFull) {
         selected = t.max_vertices;
       } else if (params.mode == kModeError) {
-        // The smallest ladder step whose Σ n_i fits the budget (lod_weights summed them).
-        uint step = kLadderSteps - 1u;
-        for (uint j = 0u; j < kLadderSteps; ++j) {
-          const uvec2 sum = ladder_sums[j];
-          if (sum.y == 0u && double(sum.x) <= params.budget) {
-            step = j;
-            break;
-          }
-        }
         precise double t_step = lod_error_ladder(step) * weights[i];
         selected = lod_vertices_for_error(t, t_step);
         atomicAdd(counts[selected == t.max_vertices ? 2 : 3], 1u);

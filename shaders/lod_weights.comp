@@ -53,7 +53,7 @@ void main() {
                                ? (double(params.max_pixel_error) * distance * double(t.bounds.w)) /
                                      below
                                : 1.0lf / 0.0lf;
-      weights[i] = tau;
+      w = tau;
       for (uint j = 0u; j < kLadderSteps; ++j) {
         precise double t_step = lod_error_ladder(j) * tau;
         const uint n = lod_vertices_for_error(t, t_step);
@@ -65,8 +65,7 @@ void main() {
                         params.screen, area, distance);
       w = lod_weight_root(area, distance, params.alpha, t.type_log_weight);
     }
-    if (!error_mode) weights[i] = w;
-    if (error_mode && !visible) weights[i] = 0.0lf;
+    weights[i] = w;
     lods[i].visible = visible ? 1u : 0u;
   }
   if (error_mode) {
@@ -76,7 +75,7 @@ void main() {
       atomicAdd(ladder_sums[lid].y, ladder_hi[lid]);
     }
   }
-  lanes[lid] = w;
+  lanes[lid] = error_mode ? 0.0lf : w;  // note: error mode sums nothing here
   barrier();
   if (lid < 16u) {
     precise double run = 0.0lf;

@@ -185,9 +185,8 @@ std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex
     const uint32_t n = k + 1 == samples
                            ? vertex_count
                            : static_cast<uint32_t>(std::lround(lo * std::pow(ratio, t)));
-    if (out.empty() || n > out.back()) out.push_back(std::min(n, vertex_count));
+    if (out.empty() || n > out.back()) out.push_back(n);
   }
-  if (out.back() != vertex_count) out.push_back(vertex_count);
   return out;
 }
 

@@ -234,4 +234,28 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
       .apply(context->device());
 }
 
+namespace {
+
+uint64_t image_bytes(const GpuImage& image) {
+  if (!image.valid()) return 0;
+  const ImageDesc& d = image.desc();
+  const uint64_t texel = d.format == VK_FORMAT_R8_UINT ? 1 : 4;  // R8 masks; RGBA8 and D32
+  return uint64_t{d.width} * d.height * d.layers * texel;
+}
+
+}  // namespace
+
+CrowdDraw::Memory CrowdDraw::memory() const {
+  const Impl& m = *impl_;
+  Memory out;
+  for (const TypeResources& t : m.types)
+    out.per_type.push_back(t.constants.size() + t.vertices.size() + t.animation.size() +
+                           t.poses.size() + image_bytes(t.mask));
+  for (const GpuBuffer* b :
+       {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})
+    out.skinning += b->size();
+  out.frame = m.frame_buffer.size() + image_bytes(m.swatches) + image_bytes(m.shadow_map);
+  return out;
+}
+
 }  // namespace crowdbake::runtime::gpu
