@@ -14,112 +14,43 @@
 #include <fstream>
 #include <sstream>
 
+#include "crowdbake/pipeline/child_process.h"
+
 namespace crowdbake::cli {
 namespace {
-
-// A field of /proc/self/status in kB ("VmRSS", "VmHWM"); -1 when unreadable.
-long status_kb(const char* field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::string key = std::string(field) + ":";
-  while (std::getline(in, line))
-    if (line.compare(0, key.size(), key) == 0) return std::atol(line.c_str() + key.size());
-  return -1;
-}
-
-bool write_all(int fd, const void* data, size_t size) {
-  const char* p = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = write(fd, p, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n, size -= static_cast<size_t>(n);
-  }
-  return true;
-}
-
-std::string read_all(int fd) {
-  std::string out;
-  char buffer[1 << 16];
-  for (;;) {
-    const ssize_t n = read(fd, buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    out.append(buffer, static_cast<size_t>(n));
-  }
-  return out;
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-ChildResult run_here(const std::function<std::string()>& job) {
-  ChildResult r;
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    r.payload = job();
-    r.ok = true;
-  } catch (const std::exception& e) {
-    r.error = e.what();
-  }
-  r.seconds = seconds_since(start);
-  return r;
-}
-
 }  // namespace
 
 ChildResult run_in_child(const std::function<std::string()>& job) {
-  int fds[2];
-  if (pipe(fds) != 0) return run_here(job);
-  std::fflush(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(fds[0]), close(fds[1]);
-    return run_here(job);
-  }
-  if (pid == 0) {
-    close(fds[0]);
-    // note: "5" resets the peak-RSS mark to the current RSS (Linux ≥ 4.0).
-    if (FILE* f = std::fopen("/proc/self/clear_refs", "w")) std::fputs("5", f), std::fclose(f);
-    const long base_kb = status_kb("VmRSS");
-    ChildResult r = run_here(job);
-    const long peak_kb = status_kb("VmHWM");
-    r.peak_rss_mb = base_kb >= 0 && peak_kb >= base_kb ? (peak_kb - base_kb) / 1024.0 : -1.0;
-    const std::string& body = r.ok ? r.payload : r.error;
-    const char ok = r.ok ? 1 : 0;
-    const uint64_t size = body.size();
-    const bool sent =
-        write_all(fds[1], &ok, 1) && write_all(fds[1], &r.seconds, sizeof r.seconds) &&
-        write_all(fds[1], &r.peak_rss_mb, sizeof r.peak_rss_mb) &&
-        write_all(fds[1], &size, sizeof size) && write_all(fds[1], body.data(), body.size());
-    close(fds[1]);
-    _exit(sent ? 0 : 1);
-  }
-  close(fds[1]);
-  const std::string bytes = read_all(fds[0]);
-  close(fds[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  ChildLimits limits;
+  limits.stdout_to_stderr = false;
+  const ChildOutcome child = crowdbake::run_in_child(job, limits);
   ChildResult r;
-  const size_t header = 1 + 2 * sizeof(double) + sizeof(uint64_t);
-  if (bytes.size() < header || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    r.error = WIFSIGNALED(status)
-                  ? "benchmark child killed by signal " + std::to_string(WTERMSIG(status))
-                  : "benchmark child failed";
-    return r;
+  r.ok = child.ok();
+  r.seconds = child.seconds;
+  r.peak_rss_mb = child.peak_rss_mb;
+  switch (child.end) {
+    case ChildOutcome::End::kReturned:
+      r.payload = child.payload;
+      break;
+    case ChildOutcome::End::kThrew:
+      r.error = child.payload;
+      break;
+    case ChildOutcome::End::kOutOfMemory:
+      r.error = "benchmark child ran out of memory";
+      break;
+    case ChildOutcome::End::kSignal:
+      r.error = "benchmark child killed by " + describe_signal(child.signal);
+      break;
+    case ChildOutcome::End::kTimeout:
+    case ChildOutcome::End::kLost:
+      r.error = "benchmark child failed";
+      break;
   }
-  uint64_t size = 0;
-  std::memcpy(&r.seconds, bytes.data() + 1, sizeof(double));
-  std::memcpy(&r.peak_rss_mb, bytes.data() + 1 + sizeof(double), sizeof(double));
-  std::memcpy(&size, bytes.data() + 1 + 2 * sizeof(double), sizeof size);
-  if (bytes.size() != header + size) {
-    r.error = "benchmark child sent a truncated result";
-    return r;
-  }
-  r.ok = bytes[0] == 1;
-  (r.ok ? r.payload : r.error) = bytes.substr(header);
   return r;
 }
 

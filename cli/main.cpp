@@ -23,6 +23,18 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
               {"gltf", crowdbake::ImporterKind::kGltf},
               {"assimp", crowdbake::ImporterKind::kAssimp}},
           CLI::ignore_case));
+  command
+      .add_option("--import-timeout", options.limits.timeout_seconds,
+                  "Seconds one import may take before it is stopped (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      .add_option("--import-memory", options.limits.memory_mib,
+                  "Address space in MiB the importing process may use (0: no limit)")
+      ->capture_default_str();
+  command.add_flag("!--import-in-process", options.limits.isolate,
+                   "Import in crowdbake's own process (no limits; a crash in the importer "
+                   "ends crowdbake): for debugging importers");
 }
 
 }  // namespace

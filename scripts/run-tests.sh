@@ -1,6 +1,6 @@
 #!/bin/sh
 # The README's test command: installs dependencies, builds, runs every test, then fuzzes
-# the pack reader for a short while (libFuzzer under ASAN/UBSAN, scripts/fuzz-pack-reader.sh).
+# every fuzz target for a short while (libFuzzer under ASAN/UBSAN, scripts/fuzz.sh).
 set -eu
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -10,4 +10,6 @@ BUILD="${CROWDBAKE_BUILD_DIR:-build}"
 # not a skip (a user's build without the packages still skips them).
 export CROWDBAKE_REQUIRE_VULKAN="${CROWDBAKE_REQUIRE_VULKAN:-1}"
 ctest --test-dir "$BUILD" --output-on-failure -j "${CROWDBAKE_JOBS:-$(nproc)}"
-./scripts/fuzz-pack-reader.sh "${CROWDBAKE_FUZZ_SECONDS:-30}"
+for target in $(./scripts/fuzz.sh --list); do
+  ./scripts/fuzz.sh "$target" "${CROWDBAKE_FUZZ_SECONDS:-15}"
+done

@@ -18,7 +18,9 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <new>
 #include <set>
 
 #include "crowdbake/pipeline/error.h"
@@ -46,6 +48,9 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path,
   // mesh from Assimp, which would import as a "character".
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  // note: Assimp turns an allocation failure (an absurd declared count against the import
+  // memory limit) into an error string; rethrown, it is reported as the memory limit.
+  if (!scene && std::strstr(importer.GetErrorString(), "bad_alloc")) throw std::bad_alloc();
   if (!scene)
     throw input_error(path, std::string("Assimp cannot read the file (") +
                                 importer.GetErrorString() +

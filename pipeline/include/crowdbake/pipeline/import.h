@@ -2,6 +2,7 @@
 // (FBX, Collada, ...) through Assimp. Both fill the same SkinnedAsset.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "crowdbake/pipeline/skinned_asset.h"
@@ -10,11 +11,21 @@ namespace crowdbake {
 
 enum class ImporterKind { kAuto, kGltf, kAssimp };
 
+// Third-party importers run in a child process (docs/robustness.md): a crash, abort, hang
+// or runaway allocation inside one becomes a crowdbake::Error naming the file and the
+// importer instead of ending the caller. Either limit ended in the child is an error too.
+struct ImportLimits {
+  bool isolate = true;
+  double timeout_seconds = 120.0;  // wall time of one import; 0: none
+  size_t memory_mib = 4096;        // address space of the importing process; 0: none
+};
+
 struct ImportOptions {
   ImporterKind importer = ImporterKind::kAuto;  // kAuto: glTF by content, else Assimp
   // A file may hold several characters (groups of skins with no joint in common).
   // -1 picks the one with the most skinned vertices; the choice is reported as a warning.
   int character = -1;
+  ImportLimits limits;
 };
 
 // Reads a character. Throws crowdbake::Error naming the file, the problem and the fix.
