@@ -22,7 +22,7 @@ class WireWriter {
   void array(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     pod<uint64_t>(v.size());
-    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   std::string take() { return std::move(out_); }
 
@@ -53,7 +53,8 @@ class WireReader {
     uint64_t n = 0;
     if (!pod(n) || left() / sizeof(T) < n) return false;
     v.resize(n);
-    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+    // note: an empty vector's data() may be null, which memcpy must never see.
+    if (n > 0) std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
     return true;
   }

@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
+#include "crowdbake/formats/pack_format.h"
 #include "crowdbake/pipeline/error.h"
 
 namespace crowdbake {
@@ -114,6 +115,20 @@ void validate_asset(const SkinnedAsset& asset) {
     if (!finite(joint.inverse_bind)) fail(who + " has a NaN or infinite inverse bind matrix");
   }
   if (asset.primitives.empty()) fail("the character has no mesh");
+  // The pack's limits (pack_format.h), checked here so an oversized character is refused
+  // before anything is simplified or baked.
+  if (asset.vertex_count() > pack_format::kMaxVertices)
+    fail(std::to_string(asset.vertex_count()) + " vertices exceed the limit of " +
+         std::to_string(pack_format::kMaxVertices) + "; decimate the character first");
+  if (asset.triangle_count() > pack_format::kMaxTriangles)
+    fail(std::to_string(asset.triangle_count()) + " triangles exceed the limit of " +
+         std::to_string(pack_format::kMaxTriangles) + "; decimate the character first");
+  if (asset.clips.size() > pack_format::kMaxClips)
+    fail(std::to_string(asset.clips.size()) + " clips exceed the limit of " +
+         std::to_string(pack_format::kMaxClips));
+  if (asset.materials.size() > pack_format::kMaxMaterials)
+    fail(std::to_string(asset.materials.size()) + " materials exceed the limit of " +
+         std::to_string(pack_format::kMaxMaterials));
   for (const Primitive& p : asset.primitives) {
     const std::string who = "mesh '" + p.name + "'";
     const size_t n = p.positions.size();

@@ -44,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       fuzz::write_input(std::string("in") + kExtensions[data[0] % n], data + 1, size - 1);
   ImportOptions options;
   options.importer = ImporterKind::kAssimp;
-  options.limits.timeout_seconds = 5.0;
+  options.limits.timeout_seconds = 1.0;
   try {
     (void)import_asset(path, options);
   } catch (const Error& e) {

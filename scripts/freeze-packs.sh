@@ -1,0 +1,29 @@
+#!/bin/sh
+# Freezes a pack set for the format version this build writes: bakes the generated
+# characters (never third-party assets) into tests/data/packs/v<major>.<minor>/ and writes
+# their decoded-content digests (digests.json). Run it once per shipped format version and
+# commit the folder; tests/formats/frozen_pack_test.cpp reads every set with today's reader.
+#   scripts/freeze-packs.sh        (after scripts/build.sh)
+set -eu
+cd "$(dirname "$0")/.."
+BUILD="${CROWDBAKE_BUILD_DIR:-build}"
+CB="$BUILD/cli/crowdbake"
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+"$BUILD/samples/spectator/make_spectator" -o "$WORK/spectator.glb" --detail 0 -q
+"$BUILD/samples/limb_chain/make_limb_chain" -o "$WORK/limb.glb" --triangles 400 --joints 4 >/dev/null
+SMALL='"level_errors": {"samples": 4, "fps": 0.5}, "partition": {"size": 64}'
+echo "{$SMALL, \"animation\": {\"fps\": 10}}" >"$WORK/draco.json"
+echo "{$SMALL, \"animation\": {\"fps\": 10, \"encoding\": \"float16\"}, \"geometry\": {\"codec\": \"meshopt\"}}" >"$WORK/meshopt.json"
+echo "{$SMALL, \"animation\": {\"fps\": 5, \"encoding\": \"float32\"}, \"geometry\": {\"codec\": \"raw\"}}" >"$WORK/raw.json"
+"$CB" bake "$WORK/spectator.glb" -o "$WORK/spectator_draco.crowdpack" --config "$WORK/draco.json" --quiet
+"$CB" bake "$WORK/limb.glb" -o "$WORK/limb_meshopt_float16.crowdpack" --config "$WORK/meshopt.json" --quiet
+"$CB" bake "$WORK/limb.glb" -o "$WORK/limb_raw_float32.crowdpack" --config "$WORK/raw.json" --quiet
+VERSION="$(od -A n -t u2 -j 8 -N 4 "$WORK/limb_raw_float32.crowdpack" |
+  awk '{print $1 "." $2}')"
+[ -n "$VERSION" ] || { echo "freeze-packs: could not read the format version" >&2; exit 1; }
+OUT="tests/data/packs/v$VERSION"
+mkdir -p "$OUT"
+cp "$WORK"/*.crowdpack "$OUT"/
+(cd "$OUT" && "$OLDPWD/$BUILD/tests/formats/write_pack_digests" *.crowdpack) >"$OUT/digests.json"
+echo "froze $(ls "$OUT"/*.crowdpack | wc -l) packs in $OUT"
