@@ -122,6 +122,9 @@ ChildOutcome run_job(const std::function<std::string()>& job) {
 [[noreturn]] void child_main(int fd, const std::function<std::string()>& job,
                              const ChildLimits& limits) {
   if (limits.stdout_to_stderr) dup2(2, 1);
+  // A crash in the child is reported by the parent; it must not leave a core file behind.
+  const struct rlimit no_core{0, 0};
+  setrlimit(RLIMIT_CORE, &no_core);
 #ifndef CROWDBAKE_ASAN
   if (limits.memory_mib > 0) {
     const rlim_t bytes = static_cast<rlim_t>(limits.memory_mib) << 20;
