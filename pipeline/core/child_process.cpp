@@ -123,7 +123,7 @@ ChildOutcome run_job(const std::function<std::string()>& job) {
                              const ChildLimits& limits) {
   if (limits.stdout_to_stderr) dup2(2, 1);
   // A crash in the child is reported by the parent; it must not leave a core file behind.
-  const struct rlimit no_core{0, 0};
+  const struct rlimit no_core { 0, 0 };
   setrlimit(RLIMIT_CORE, &no_core);
 #ifndef CROWDBAKE_ASAN
   if (limits.memory_mib > 0) {
