@@ -9,7 +9,7 @@
 # pack reader ignore checksum mismatches so mutations reach the chunk decoders.
 set -eu
 cd "$(dirname "$0")/.."
-TARGETS="pack_reader pack_load gltf_import assimp_import scene bake_config pose_ranges"
+TARGETS="pack_reader pack_load gltf_import assimp_import assimp_scene scene bake_config pose_ranges"
 if [ "${1:-}" = "--list" ]; then
   for t in $TARGETS; do echo "$t"; done
   exit 0

@@ -25,6 +25,7 @@
 
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
+#include "import/assimp_convert.h"
 #include "import/assimp_scene.h"
 #include "import/influences.h"
 #include "import/name_list.h"
@@ -36,48 +37,6 @@ namespace {
 using ai::NodeTable;
 
 std::string mesh_name(const aiMesh& mesh) { return mesh.mName.C_Str(); }
-
-// Read without triangulation first so polygons can be counted, then triangulate in place.
-const aiScene* read_scene(Assimp::Importer& importer, const std::string& path,
-                          std::vector<int>& polygons_per_mesh) {
-  std::error_code ignored;
-  if (!std::filesystem::exists(path, ignored))
-    throw input_error(path, "file not found; check the path");
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
-  // note: without this, a file with a skeleton and no mesh gets a generated stick-figure
-  // mesh from Assimp, which would import as a "character".
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
-  // note: Assimp turns an allocation failure (an absurd declared count against the import
-  // memory limit) into an error string; rethrown, it is reported as the memory limit.
-  if (!scene && std::strstr(importer.GetErrorString(), "bad_alloc")) throw std::bad_alloc();
-  if (!scene)
-    throw input_error(path, std::string("Assimp cannot read the file (") +
-                                importer.GetErrorString() +
-                                "); it may be corrupt or in a format Assimp does not support");
-  if (scene->mNumMeshes == 0 || !scene->mMeshes)
-    throw input_error(path,
-                      "no meshes: the file holds no geometry; export the character's mesh "
-                      "together with its armature");
-  polygons_per_mesh.assign(scene->mNumMeshes, 0);
-  bool missing_normals = false;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    if (!mesh)
-      throw input_error(path, "mesh " + std::to_string(m) + " is missing; the file is corrupt");
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f)
-      if (mesh->mFaces[f].mNumIndices > 3) ++polygons_per_mesh[m];
-    missing_normals = missing_normals || !mesh->HasNormals();
-  }
-  scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
-  // note: smooth normals only where the file has none; GenSmoothNormals leaves other
-  // meshes and every vertex count alone.
-  if (scene && missing_normals) scene = importer.ApplyPostProcessing(aiProcess_GenSmoothNormals);
-  if (!scene)
-    throw input_error(path, std::string("Assimp failed to triangulate the meshes (") +
-                                importer.GetErrorString() + "); the file may be corrupt");
-  return scene;
-}
 
 size_t pick_character(const ai::SceneCharacters& found, const NodeTable& table,
                       const ImportOptions& options, const std::string& path,
@@ -430,11 +389,44 @@ Material convert_material(const aiScene& scene, const aiMaterial& in) {
 
 }  // namespace
 
-SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options) {
-  Assimp::Importer importer;
-  std::vector<int> polygons_per_mesh;
-  const aiScene& scene = *read_scene(importer, path, polygons_per_mesh);
+namespace ai {
 
+const aiScene& prepare_scene(Assimp::Importer& importer, const aiScene* scene,
+                             const std::string& path, std::vector<int>& polygons_per_mesh) {
+  // note: Assimp turns an allocation failure (an absurd declared count against the import
+  // memory limit) into an error string; rethrown, it is reported as the memory limit.
+  if (!scene && std::strstr(importer.GetErrorString(), "bad_alloc")) throw std::bad_alloc();
+  if (!scene)
+    throw input_error(path, std::string("Assimp cannot read the file (") +
+                                importer.GetErrorString() +
+                                "); it may be corrupt or in a format Assimp does not support");
+  if (scene->mNumMeshes == 0 || !scene->mMeshes)
+    throw input_error(path,
+                      "no meshes: the file holds no geometry; export the character's mesh "
+                      "together with its armature");
+  polygons_per_mesh.assign(scene->mNumMeshes, 0);
+  bool missing_normals = false;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (!mesh)
+      throw input_error(path, "mesh " + std::to_string(m) + " is missing; the file is corrupt");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f)
+      if (mesh->mFaces[f].mNumIndices > 3) ++polygons_per_mesh[m];
+    missing_normals = missing_normals || !mesh->HasNormals();
+  }
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
+  // note: smooth normals only where the file has none; GenSmoothNormals leaves other
+  // meshes and every vertex count alone.
+  if (scene && missing_normals) scene = importer.ApplyPostProcessing(aiProcess_GenSmoothNormals);
+  if (!scene)
+    throw input_error(path, std::string("Assimp failed to triangulate the meshes (") +
+                                importer.GetErrorString() + "); the file may be corrupt");
+  return *scene;
+}
+
+SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
+                           const std::vector<int>& polygons_per_mesh,
+                           const ImportOptions& options) {
   SkinnedAsset asset;
   asset.source = path;
   asset.files.push_back(path);
@@ -533,6 +525,33 @@ SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options
 
   report_import_stats(asset.stats, asset.warnings);
   return asset;
+}
+
+}  // namespace ai
+
+namespace {
+
+// Read without triangulation first so polygons can be counted, then triangulate in place.
+const aiScene& read_scene_file(Assimp::Importer& importer, const std::string& path,
+                               std::vector<int>& polygons_per_mesh) {
+  std::error_code ignored;
+  if (!std::filesystem::exists(path, ignored))
+    throw input_error(path, "file not found; check the path");
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  // note: without this, a file with a skeleton and no mesh gets a generated stick-figure
+  // mesh from Assimp, which would import as a "character".
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  return ai::prepare_scene(importer, importer.ReadFile(path, aiProcess_ValidateDataStructure), path,
+                           polygons_per_mesh);
+}
+
+}  // namespace
+
+SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options) {
+  Assimp::Importer importer;
+  std::vector<int> polygons_per_mesh;
+  const aiScene& scene = read_scene_file(importer, path, polygons_per_mesh);
+  return ai::convert_scene(scene, path, polygons_per_mesh, options);
 }
 
 }  // namespace crowdbake

@@ -5,8 +5,10 @@
 // one JSON document, and a failure is exit 1-3 with a one-line message.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -203,6 +205,26 @@ TEST(HostileCorpus, MalformedCharactersAreRefusedCleanly) {
   EXPECT_GT(refused, 15);
 }
 
+// One instance of `pack` in front of the camera, drawn at a size that keeps lavapipe quick.
+std::string one_instance_scene(const fs::path& pack) {
+  return R"({"camera": {"position": [0, 1.5, 4], "target": [0, 1, 0], "resolution": [48, 32]},
+  "character_types": [{"name": "spectator", "pack": ")" +
+         pack.string() + R"("}],
+  "instances": [{"position": [0, 0, 0]}]})";
+}
+
+test::CommandResult render_one(const fs::path& dir, const fs::path& pack, const fs::path& png) {
+  const fs::path scene = dir / (png.stem().string() + ".json");
+  std::ofstream(scene) << one_instance_scene(pack);
+  return test::run_crowdbake(
+      {"render", scene.string(), "-o", png.string(), "--quiet", "--no-shadows", "--msaa", "1"});
+}
+
+bool vulkan_required() {
+  const char* v = std::getenv("CROWDBAKE_REQUIRE_VULKAN");
+  return v != nullptr && std::strcmp(v, "1") == 0;
+}
+
 TEST(HostileCorpus, MalformedPacksAreRefusedCleanly) {
   test::TempDir dir;
   const fs::path good = dir / "good.crowdpack";
@@ -210,6 +232,16 @@ TEST(HostileCorpus, MalformedPacksAreRefusedCleanly) {
                                  CROWDBAKE_FAST_BAKE_CONFIG})
                 .exit_code,
             0);
+  // render: the runtime's own reading of the pack (streaming, decoders, GPU upload). The
+  // intact pack must draw; without a Vulkan device only the render part is left out.
+  const test::CommandResult control = render_one(dir.path(), good, dir / "good.png");
+  const bool render_device = control.err.find("no Vulkan device") == std::string::npos;
+  if (render_device) {
+    ASSERT_EQ(control.exit_code, 0) << control.err;
+  } else {
+    ASSERT_FALSE(vulkan_required()) << control.err;
+    std::cerr << "HostileCorpus: no Vulkan device, packs are not rendered: " << control.err;
+  }
   int refused = 0;
   for (const auto& [name, variant] : pack_variants(test::slurp(good))) {
     const fs::path pack = dir / (name + ".crowdpack");
@@ -223,6 +255,17 @@ TEST(HostileCorpus, MalformedPacksAreRefusedCleanly) {
     EXPECT_LE(diff.exit_code, 3) << diff.err;
     if (!diff.out.empty()) {
       EXPECT_TRUE(json::accept(diff.out)) << diff.out.substr(0, 400);
+    }
+    if (!render_device) continue;
+    const fs::path png = dir / (name + ".png");
+    const test::CommandResult render = render_one(dir.path(), pack, png);
+    expect_contained(render, false, "render " + name);
+    // The runtime reads no more loosely than the pack reader: what inspect refuses, render does.
+    if (inspect.exit_code != 0) {
+      EXPECT_NE(render.exit_code, 0) << name << ": render drew a pack inspect refuses";
+    }
+    if (render.exit_code != 0) {
+      EXPECT_FALSE(fs::exists(png)) << name << ": a failed render left " << png;
     }
   }
   EXPECT_GT(refused, 10);
