@@ -3,7 +3,7 @@
 // triangles, divided by those of the original. (Vertex-buffer entries are counted too,
 // but they depend on how a tool splits attribute seams: most FBX exports store every
 // triangle corner as its own vertex, and a tool that welds seams away keeps 3–6× fewer
-// entries for the same geometry; DESIGN.md §5.)
+// entries for the same geometry; docs/design.md §5.)
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Colour pass: the partition region (the pack's mask in UV space, DESIGN.md §3.7) picks the
+// Colour pass: the partition region (the pack's mask in UV space, docs/design.md §3.7) picks the
 // instance's texture variant for that region; the variant's swatch (generated, the packs carry
 // no images) gets the instance's HSB variation, then Lambert + ambient light with the
 // directional shadow map.

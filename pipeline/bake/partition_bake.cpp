@@ -1,4 +1,4 @@
-// Partition bake: seed 000 Algorithm 3 with the comparisons of DESIGN.md §3.7. The rules
+// Partition bake: seed 000 Algorithm 3 with the comparisons of docs/design.md §3.7. The rules
 // (heights, region, mask conventions) are documented in partition_bake.h.
 #include "crowdbake/pipeline/partition_bake.h"
 

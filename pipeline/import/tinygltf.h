@@ -1,7 +1,7 @@
 // The one way crowdbake includes tinygltf.
 //
 // Debian's libdraco.so exports its own, older copy of tinygltf with 71 symbols mangled
-// exactly like libtinygltf.so's (TOOLCHAIN.md §3), and Assimp links libdraco. With two
+// exactly like libtinygltf.so's (docs/toolchain.md §3), and Assimp links libdraco. With two
 // providers of one symbol the dynamic loader binds each call to whichever library comes
 // first in search order, so a link-order change would silently run a different parser
 // revision with a different struct layout. Instead of relying on link order we compile

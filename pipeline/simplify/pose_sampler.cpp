@@ -1,5 +1,5 @@
 // Pose distributions (histogram estimator over the clips, or the bind-pose default) and
-// pose sampling for DQEM (DESIGN.md §3.2, thesis §4.2.1: independent roll/pitch/yaw
+// pose sampling for DQEM (docs/design.md §3.2, thesis §4.2.1: independent roll/pitch/yaw
 // densities per joint, pose = TRS per joint with the drawn rotation). The range file
 // reader lives in pose_ranges.cpp; docs/pose-ranges.md describes both.
 #include "simplify/pose_sampler.h"
@@ -119,7 +119,7 @@ PoseDistribution default_distribution(const SkinnedAsset& asset) {
   for (size_t j = 0; j < skeleton.joints.size(); ++j) {
     const Joint& joint = skeleton.joints[j];
     // note: G_bind = B^-1 and G_j = G_parent · pre · TRS, so TRS = pre^-1 · B_parent · B_j^-1;
-    // the rest pose is not the bind pose in most FBX files (DESIGN.md §5).
+    // the rest pose is not the bind pose in most FBX files (docs/design.md §5).
     const glm::dmat4 parent_inverse_bind =
         joint.parent >= 0 ? skeleton.joints[joint.parent].inverse_bind : glm::dmat4(1.0);
     const glm::dmat4 local =

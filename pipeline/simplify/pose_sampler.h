@@ -1,4 +1,4 @@
-// Pose distributions and pose sampling for DQEM (DESIGN.md §3.2, thesis §4.2.1).
+// Pose distributions and pose sampling for DQEM (docs/design.md §3.2, thesis §4.2.1).
 //
 // Each joint's rotation relative to its parent is described as a rotation `base` times
 // a small Euler rotation (roll about X, pitch about Y, yaw about Z, applied Z·Y·X), with

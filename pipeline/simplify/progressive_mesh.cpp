@@ -1,4 +1,4 @@
-// Progressive mesh arrays (DESIGN.md §3.3): ECol, PermuteV, PermuteT and Map of
+// Progressive mesh arrays (docs/design.md §3.3): ECol, PermuteV, PermuteT and Map of
 // Peng & Cao, "Progressive mesh simplification with half-edge collapses" as used in
 // the thesis §2.2.1.2, extended with collapse groups (one record = one position).
 #include "crowdbake/pipeline/progressive_mesh.h"

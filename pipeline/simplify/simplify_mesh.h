@@ -1,4 +1,4 @@
-// The simplifier's view of a character (DESIGN.md §5): all primitives in one vertex
+// The simplifier's view of a character (docs/design.md §5): all primitives in one vertex
 // array, vertices welded by position so attribute seams survive as "wedges" (several
 // vertices at one position), positions recentred and scaled to unit extent so costs are
 // relative to the model's size and far-from-origin coordinates keep their precision.

@@ -1,4 +1,4 @@
-// Group sizes of a crowd (DESIGN.md §3.9, crowd-patches paper §1).
+// Group sizes of a crowd (docs/design.md §3.9, crowd-patches paper §1).
 #include "crowdbake/runtime/crowd/group_mix.h"
 
 #include <algorithm>

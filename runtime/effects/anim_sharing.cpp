@@ -1,4 +1,4 @@
-// Animation state sharing: thesis chapter 3 (seeds/001), DESIGN.md §3.8. The header states
+// Animation state sharing: thesis chapter 3 (seeds/001), docs/design.md §3.8. The header states
 // the model; this file follows its four stages top to bottom.
 #include "crowdbake/runtime/effects/anim_sharing.h"
 

@@ -1,5 +1,5 @@
 // libdraco.so (loaded through Assimp) exports an embedded copy of tinygltf under the
-// same mangled names as libtinygltf.so (TOOLCHAIN.md §3). crowdbake compiles its own
+// same mangled names as libtinygltf.so (docs/toolchain.md §3). crowdbake compiles its own
 // tinygltf under a private namespace (pipeline/import/tinygltf.h), so none of its calls
 // may ever bind to libdraco's copy. This test runs the real executable with every
 // symbol bound at start-up and reads the dynamic loader's binding log.

@@ -1,4 +1,4 @@
-// Frame choice (seed 000 Algorithm 2, DESIGN.md §3.6), root motion and placement.
+// Frame choice (seed 000 Algorithm 2, docs/design.md §3.6), root motion and placement.
 #include "crowdbake/runtime/frame.h"
 
 #include <gtest/gtest.h>

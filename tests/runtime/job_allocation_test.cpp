@@ -1,4 +1,4 @@
-// Every job's Run() allocates nothing (STYLE §5.12): this binary counts global operator new
+// Every job's Run() allocates nothing: this binary counts global operator new
 // calls while a test asks it to.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The runtime links no importer and nothing from the pipeline (DESIGN.md §2, STYLE §5.1):
+// The runtime links no importer and nothing from the pipeline (docs/design.md §2):
 //   1. CMake's view: every target crowdbake_runtime reaches through its link libraries
 //      (written at configure time by tests/runtime/CMakeLists.txt);
 //   2. the linker's view: this test binary links crowdbake_runtime (and formats, GTest), so

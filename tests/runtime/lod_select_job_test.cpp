@@ -1,4 +1,4 @@
-// LodSelectJob: the budgeted continuous LoD of DESIGN.md §3.4, hand-computed, every clamping
+// LodSelectJob: the budgeted continuous LoD of docs/design.md §3.4, hand-computed, every clamping
 // branch, the budget, culled instances, discrete and full modes.
 #include "crowdbake/runtime/lod_select_job.h"
 

@@ -1,5 +1,5 @@
 // ReconstructJob against an independent implementation of the pack's progressive semantics
-// (docs/pack-format.md §3.6, DESIGN.md §3.3), for every n, on the hand-built pack and on packs
+// (docs/pack-format.md §3.6, docs/design.md §3.3), for every n, on the hand-built pack and on packs
 // baked by the real pipeline.
 #include "crowdbake/runtime/reconstruct_job.h"
 

@@ -1,4 +1,4 @@
-// Tests for the progressive mesh arrays (DESIGN.md §3.3) on tiny hand-built meshes: every
+// Tests for the progressive mesh arrays (docs/design.md §3.3) on tiny hand-built meshes: every
 // vertex budget is compared with an independent replay of the collapse records.
 #include "crowdbake/pipeline/progressive_mesh.h"
 

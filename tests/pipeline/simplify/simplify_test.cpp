@@ -1,4 +1,4 @@
-// The simplifier on hard inputs (DESIGN.md §4): every case must give a valid
+// The simplifier on hard inputs (docs/design.md §4): every case must give a valid
 // ProgressiveMesh (every invariant, every n), finite costs, finite skinned LoDs, and a
 // reconstruction equal to replaying the recorded collapses.
 #include "crowdbake/pipeline/simplify.h"

@@ -1,4 +1,4 @@
-// Small characters for simplifier tests, each built for one trap (DESIGN.md §4): a mesh
+// Small characters for simplifier tests, each built for one trap (docs/design.md §4): a mesh
 // is given as positions and triangles, skinned to a two-joint chain along +Y whose tip
 // bends 80° about +Z in a clip, with weights blending smoothly over the height.
 #pragma once

@@ -1,5 +1,5 @@
 // Animation texture codec: how one joint's skinning matrix becomes texels and back
-// (DESIGN.md §3.5, seed 000 Algorithm 1; the exact layouts are in docs/animation-encoding.md).
+// (docs/design.md §3.5, seed 000 Algorithm 1; the exact layouts are in docs/animation-encoding.md).
 //
 // It lives in formats/ because the runtime (which links only crowdbake_formats) and the
 // GPU shader must decode exactly what the pipeline encoded. Everything here is plain C++

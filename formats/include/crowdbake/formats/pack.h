@@ -4,7 +4,7 @@
 // PackContents is the decoded, in-memory form: the pipeline fills it (pipeline/bake),
 // write_pack() serialises it deterministically, read_pack() parses and validates
 // untrusted bytes back into it. Vertex and triangle arrays are in ProgressiveMesh order
-// (DESIGN.md §3.3): the LoD with n vertices uses the first n vertices.
+// (docs/design.md §3.3): the LoD with n vertices uses the first n vertices.
 #pragma once
 
 #include <array>

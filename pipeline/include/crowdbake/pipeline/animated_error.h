@@ -1,4 +1,4 @@
-// Animated error of a simplified character (DESIGN.md §4: accuracy is measured on the
+// Animated error of a simplified character (docs/design.md §4: accuracy is measured on the
 // animated character, every frame of every clip). The LoD and the original are skinned
 // with the original's skeleton and clips at each frame, and the symmetric surface
 // distance between the two skinned surfaces is measured.

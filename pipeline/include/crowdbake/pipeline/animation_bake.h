@@ -1,4 +1,4 @@
-// Animation texture bake (DESIGN.md §3.5, seed 000 Algorithm 1): every clip, every frame
+// Animation texture bake (docs/design.md §3.5, seed 000 Algorithm 1): every clip, every frame
 // at the bake rate, every joint's skinning matrix S_j = G_j · B_j⁻¹ (pose_evaluator.h),
 // one texture row per frame, clips stacked in asset order, encoded with
 // formats/animation_codec.h. Root motion is split off per clip on request.
@@ -34,7 +34,7 @@
 //
 // Assets without clips bake one row, the REST pose (every joint at its stored transform,
 // what a glTF viewer shows for an unanimated skin; for FBX characters this differs from
-// the bind pose, DESIGN.md §5), as a one-frame looping clip named "rest", and say so in
+// the bind pose, docs/design.md §5), as a one-frame looping clip named "rest", and say so in
 // warnings.
 //
 // Deterministic: the same asset and options give identical bytes (single-threaded,

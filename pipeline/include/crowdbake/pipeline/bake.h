@@ -1,4 +1,4 @@
-// The bake: one character in, one PackContents out (DESIGN.md §2): simplify into a
+// The bake: one character in, one PackContents out (docs/design.md §2): simplify into a
 // ProgressiveMesh, bake the animation texture and the partition mask, and lay the
 // geometry out in progressive order. formats/ serialises the result.
 #pragma once

@@ -1,10 +1,10 @@
-// Partition bake (seed 000 Algorithm 3, DESIGN.md §3.7): splits a character into head,
+// Partition bake (seed 000 Algorithm 3, docs/design.md §3.7): splits a character into head,
 // upper body and trousers by two heights measured on the bind pose along the up axis,
 // as a UV-space mask texture (for the runtime's per-fragment textureMapping[type][uv])
 // and as a region id per vertex.
 //
 // Region rule (the seed writes the comparisons the other way round, as if the axis
-// pointed down; DESIGN.md §3.7 fixes them). With h = dot(bind-pose position, up):
+// pointed down; docs/design.md §3.7 fixes them). With h = dot(bind-pose position, up):
 //   h >= neck           -> Region::kHead
 //   waist <= h < neck   -> Region::kUpperBody
 //   h < waist           -> Region::kTrousers

@@ -1,4 +1,4 @@
-// The reference evaluation every accuracy number is measured against (DESIGN.md §3.1):
+// The reference evaluation every accuracy number is measured against (docs/design.md §3.1):
 // clip sampling → local joint transforms → global matrices G_j = G_parent * L_j →
 // linear blend skinning v' = Σ w_i · G_i · B_i^-1 · v. Double precision throughout.
 #pragma once

@@ -1,5 +1,5 @@
 // ProgressiveMesh: the GPU-friendly arrays of Peng & Cao's half-edge-collapse progressive
-// meshes (DESIGN.md §3.3), extended with collapse groups so seams never crack.
+// meshes (docs/design.md §3.3), extended with collapse groups so seams never crack.
 //
 // Vertices and triangles are permuted so that the LoD with n vertices uses the first n
 // vertices and the first triangle_count[n] triangles; a corner index k of such a

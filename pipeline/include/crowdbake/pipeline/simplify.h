@@ -1,4 +1,4 @@
-// Pose-aware simplification (DESIGN.md §3.2–3.3): half-edge collapses ordered by the
+// Pose-aware simplification (docs/design.md §3.2–3.3): half-edge collapses ordered by the
 // dynamic quadric error metric (DQEM), the expected QEM error over poses drawn from the
 // character's pose distribution, recorded as a ProgressiveMesh.
 #pragma once

@@ -9,7 +9,7 @@
 // - clips have one JointChannels per joint; an empty track means "rest value";
 //   key times are finite, ascending and within [0, duration].
 //
-// Two poses must never be confused (DESIGN.md §5): the *rest* pose (every joint at
+// Two poses must never be confused (docs/design.md §5): the *rest* pose (every joint at
 // its stored local transform) and the *bind* pose (the pose the inverse bind matrices
 // describe, in which skinning returns the stored vertex positions unchanged).
 #pragma once

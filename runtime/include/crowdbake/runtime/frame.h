@@ -1,5 +1,5 @@
 // Frame choice and placement: which baked frame an instance shows at a time, and where it
-// stands (seed 000 Algorithm 2, DESIGN.md §3.6). The crowd update job, the CPU skinning path
+// stands (seed 000 Algorithm 2, docs/design.md §3.6). The crowd update job, the CPU skinning path
 // and the joint queries all call these, so they agree exactly; the GPU passes mirror them.
 //
 // An instance plays clip c at `speed` with a `time_offset` (seconds): at scene time t its

@@ -1,4 +1,4 @@
-// LodSelectJob: how many vertices each visible instance gets this frame (DESIGN.md §3.4,
+// LodSelectJob: how many vertices each visible instance gets this frame (docs/design.md §3.4,
 // thesis §2.2.1.3), as a two-pass job like the GPU's (pass 1: weights and their sum, the
 // reduction; pass 2: each instance's share and its clamping).
 //

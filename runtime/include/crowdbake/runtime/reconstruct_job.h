@@ -1,5 +1,5 @@
 // ReconstructJob: the triangle list of the LoD with n vertices, from a pack's ProgressiveMesh
-// arrays (DESIGN.md §3.3, docs/pack-format.md §3.6) — the CPU reference of the GPU's
+// arrays (docs/design.md §3.3, docs/pack-format.md §3.6) — the CPU reference of the GPU's
 // per-corner reconstruction pass.
 //
 // The n requested vertices are first made usable: clamped to [min_vertices, vertex_count],

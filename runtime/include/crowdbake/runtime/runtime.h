@@ -7,7 +7,7 @@
 //   frame choice    frame.h          which frame an instance shows, its world matrix
 //   jobs            animate_job.h    crowd update (frames, world matrices)
 //                   cull_job.h       frustum culling by bounding sphere
-//                   lod_select_job.h budgeted continuous LoD (DESIGN.md §3.4), discrete, full
+//                   lod_select_job.h budgeted continuous LoD (docs/design.md §3.4), discrete, full
 //                   reconstruct_job.h triangles of the LoD with n vertices
 //                   skin_job.h       joint palette and CPU skinning
 //   per frame       cpu_reference.h  update_frame(), reconstruct_lod(), skin_instance()

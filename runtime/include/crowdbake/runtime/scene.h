@@ -28,7 +28,7 @@ namespace crowdbake::runtime {
 // is allocated).
 constexpr uint32_t kMaxInstances = 1u << 24;
 
-// How many texture variants a character type has per partition region (DESIGN.md §3.7);
+// How many texture variants a character type has per partition region (docs/design.md §3.7);
 // an instance's texture choice for a region is in [0, count).
 struct TextureVariants {
   uint32_t head = 1, upper_body = 1, trousers = 1;  // each 1..256

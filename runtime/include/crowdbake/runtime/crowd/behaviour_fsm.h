@@ -1,4 +1,4 @@
-// Spectator behaviour FSM (spectator thesis ch. 3.2–3.3; DESIGN.md §3.9).
+// Spectator behaviour FSM (spectator thesis ch. 3.2–3.3; docs/design.md §3.9).
 //
 // A state is a high-level motion (sit, stand, arm_up, cheer, clap, ...) that owns several
 // clip variants; each time the state is entered or repeats, one variant is picked by weight

@@ -1,4 +1,4 @@
-// Small social groups (DESIGN.md §3.9, crowd-patches paper §1–2): people stand, walk and sit
+// Small social groups (docs/design.md §3.9, crowd-patches paper §1–2): people stand, walk and sit
 // with 1–4 companions, and a group is one unit ("patch") for placement and timing.
 //
 // The observed mix (71% pairs, 21% triples, 6% fours, 2% larger) counts groups, not people,

@@ -1,4 +1,4 @@
-// Free-standing crowd placement (crowd-patches paper, Wang et al. 2017, §2; DESIGN.md §3.9).
+// Free-standing crowd placement (crowd-patches paper, Wang et al. 2017, §2; docs/design.md §3.9).
 //
 // People come in small groups (group_mix.h); each group is one patch whose site is a point of
 // a weighted Voronoi (power) diagram clipped to the region. Each patch has a capacity (target

@@ -1,4 +1,4 @@
-// Spectator crowds (spectator thesis ch. 3; DESIGN.md §3.9): the hierarchy crowd → team →
+// Spectator crowds (spectator thesis ch. 3; docs/design.md §3.9): the hierarchy crowd → team →
 // group → individual, the scene events on a timeline, the behaviour parameters, and the
 // seat-grid placement of a stadium stand.
 //

@@ -1,4 +1,4 @@
-// Animation state sharing (DESIGN.md §3.8; thesis chapter 3, seeds/001): many characters reuse
+// Animation state sharing (docs/design.md §3.8; thesis chapter 3, seeds/001): many characters reuse
 // a bounded set of CPU poses, so the pose work per frame is capped by a budget
 // (state instances + transition instances) that does not depend on the crowd size.
 //

@@ -1,6 +1,6 @@
 // A plain keyframe clip for CPU pose sampling: every joint's local transform at evenly spaced
 // frames, the same timing as a baked animation texture (frame i at i·duration/(frames−1), the
-// last frame at the clip end; DESIGN.md §3.5).
+// last frame at the clip end; docs/design.md §3.5).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Poses for CPU animation (DESIGN.md §3.1, §3.8): a runtime skeleton and per-joint local
+// Poses for CPU animation (docs/design.md §3.1, §3.8): a runtime skeleton and per-joint local
 // transforms, and the one blend every pose operation in crowdbake_effects uses.
 //
 // A joint's local transform is translation · rotation · scale (TRS) relative to its parent,

@@ -1,4 +1,4 @@
-// CrowdCompute: the crowd's per-frame compute passes on the GPU (DESIGN.md §3.3–3.5) —
+// CrowdCompute: the crowd's per-frame compute passes on the GPU (docs/design.md §3.3–3.5) —
 // culling, continuous/discrete/full LoD selection and parallel reconstruction — producing
 // everything the draw needs: a corner buffer and one indirect draw per character type.
 //
