@@ -11,7 +11,7 @@ set(CROWDBAKE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/crowdbake)
 # Public name (crowdbake::NAME) of each installed library. Static libraries carry their
 # private dependencies to the link: crowdbake_spirv (the embedded shaders) and the
 # crowdbake_warnings flags target (compile options only, never propagated) come along.
-set(crowdbake_installed formats runtime crowd effects scene_effects gpu spirv warnings)
+set(crowdbake_installed base formats runtime crowd effects scene_effects gpu spirv warnings)
 if(CROWDBAKE_BUILD_PIPELINE)
   list(APPEND crowdbake_installed pipeline)
 endif()
@@ -25,7 +25,7 @@ install(TARGETS ${crowdbake_install_targets} EXPORT crowdbakeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY formats/include/ runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY base/include/ formats/include/ runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 if(CROWDBAKE_BUILD_PIPELINE)
   install(DIRECTORY pipeline/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()

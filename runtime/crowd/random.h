@@ -5,25 +5,18 @@
 
 #include <cstdint>
 
+#include "crowdbake/base/random.h"
+
 namespace crowdbake::crowd::detail {
 
-// splitmix64 finaliser (Steele, Lea, Flood 2014).
-inline uint64_t Mix64(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
+inline uint64_t Mix64(uint64_t x) { return splitmix64(x); }
 
 inline uint64_t Hash3(uint64_t seed, uint64_t stream, uint64_t counter) {
   return Mix64(Mix64(Mix64(seed) ^ stream) ^ counter);
 }
 
-// Uniform in [0, 1) with 53 random bits.
-inline double ToUnit(uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
-
 inline double Uniform(uint64_t seed, uint64_t stream, uint64_t counter) {
-  return ToUnit(Hash3(seed, stream, counter));
+  return unit_double(Hash3(seed, stream, counter));
 }
 
 // A sequential generator for setup code (placement, seat grids).

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "crowdbake/base/random.h"
 #include "crowdbake/runtime/effects/pose_jobs.h"
 
 namespace crowdbake::effects {
@@ -17,18 +18,6 @@ constexpr StateId kMaxStateId = 65535;
 bool fail(std::string* why, std::string message) {
   if (why) *why = std::move(message);
   return false;
-}
-
-// splitmix64: a fixed, portable sequence (std distributions differ between libraries).
-uint64_t next_random(uint64_t& state) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-double unit_random(uint64_t& state) {
-  return static_cast<double>(next_random(state) >> 11) * (1.0 / 9007199254740992.0);
 }
 
 }  // namespace
@@ -95,7 +84,7 @@ std::unique_ptr<AnimSharingInstance> AnimSharingInstance::create(AnimSharingSetu
 AnimSharingInstance::AnimSharingInstance(AnimSharingSetup setup) : setup_(std::move(setup)) {
   const std::vector<Transform>& rest = setup_.skeleton.rest_pose;
   state_of_id_.assign(kMaxStateId + 1, kNone);
-  uint64_t random = setup_.seed;
+  SplitMix64 random(setup_.seed);
   for (uint32_t s = 0; s < setup_.states.size(); ++s) {
     const AnimState& state = setup_.states[s];
     state_of_id_[state.id] = s;
@@ -105,7 +94,7 @@ AnimSharingInstance::AnimSharingInstance(AnimSharingSetup setup) : setup_(std::m
       instance.state = s;
       instance.clip_index = k % static_cast<uint32_t>(state.clips.size());
       const KeyframeClip& clip = setup_.clips[state.clips[instance.clip_index]];
-      instance.time_offset = static_cast<float>(unit_random(random) * clip.duration);
+      instance.time_offset = static_cast<float>(random.next_double() * clip.duration);
       instance.sampling_pose = rest;
       instance.output_pose = rest;
       instances_.push_back(std::move(instance));

@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 
+#include "crowdbake/base/random.h"
 #include "crowdbake/runtime/scene.h"
 
 namespace crowdbake::runtime {
@@ -158,24 +159,19 @@ Range range(const json& v, const std::string& path, double lo, bool inclusive) {
   return {x, x};
 }
 
-// Deterministic on every platform (std:: distributions are not): splitmix64.
+// Generators' draws (the same on every platform, base/random.h).
 class Random {
  public:
-  explicit Random(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float unit() { return static_cast<float>(next() >> 40) * (1.0f / 16777216.0f); }  // [0, 1)
+  explicit Random(uint64_t seed) : bits_(seed) {}
+  uint64_t next() { return bits_.next(); }
+  float unit() { return bits_.next_float(); }  // [0, 1)
   float in(const Range& r) { return r.lo + (r.hi - r.lo) * unit(); }
   uint32_t below(uint32_t n) {
     return std::min(n - 1, static_cast<uint32_t>(unit() * static_cast<float>(n)));
   }
 
  private:
-  uint64_t state_;
+  SplitMix64 bits_;
 };
 
 uint64_t mix(uint64_t seed, uint64_t index, uint64_t stream) {

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "crowdbake/base/random.h"
+
 namespace crowdbake::samples {
 namespace {
 
@@ -877,13 +879,8 @@ Pose walk_pose(const Rig& rig, double t) {
 Body make_body(uint32_t seed) {
   Body b;
   if (seed == 0) return b;
-  uint64_t state = seed;
-  auto next = [&]() {  // note: splitmix64, portable and deterministic.
-    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  };
+  SplitMix64 random(seed);
+  auto next = [&]() { return random.next_double(); };
   auto pick = [&](const std::vector<glm::vec4>& palette) {
     return palette[std::min(palette.size() - 1, static_cast<size_t>(next() * palette.size()))];
   };

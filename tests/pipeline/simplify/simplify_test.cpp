@@ -185,8 +185,9 @@ TEST(SimplifyHardCases, CoincidentVerticesAreWeldedAndMoveTogether) {
   for (uint32_t n_used = pm.min_vertices; n_used <= pm.vertex_count(); ++n_used) {
     const uint32_t u = pm.usable_vertices(n_used);
     for (size_t v = 0; v < n; ++v)
-      if (std::fabs(p[v].x - 0.5f) < 1e-6f)
+      if (std::fabs(p[v].x - 0.5f) < 1e-6f) {
         ASSERT_EQ(where[v] < u, where[copy[v]] < u) << "level " << u;
+      }
   }
 }
 
