@@ -13,9 +13,7 @@ namespace {
 constexpr size_t kMaxStates = 1024;  // note: the routing table is states² entries
 constexpr size_t kMaxClips = 65534;
 
-Status FsmError(const std::string& message) {
-  return Status::Error(Status::Code::kInvalidFsm, message);
-}
+Status FsmError(const std::string& message) { return Status(StatusCode::kInvalidFsm, message); }
 
 std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
@@ -263,7 +261,7 @@ Status BuildBehaviourFsm(const BehaviourFsmDef& def, BehaviourFsm* out) {
   }
 
   *out = std::move(fsm);
-  return Status::Ok();
+  return Status();
 }
 
 BehaviourFsmDef DefaultStadiumFsm() {

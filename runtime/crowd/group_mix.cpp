@@ -11,9 +11,8 @@ namespace crowdbake::crowd {
 
 Status ValidateGroupMix(const GroupMix& mix) {
   auto bad = [](const char* field, float v, const char* rule) {
-    return Status::Error(
-        Status::Code::kInvalidArgument,
-        std::string("group mix: ") + field + " = " + std::to_string(v) + " must be " + rule);
+    return Status(StatusCode::kInvalidArgument, std::string("group mix: ") + field + " = " +
+                                                    std::to_string(v) + " must be " + rule);
   };
   if (!std::isfinite(mix.single_fraction) || mix.single_fraction < 0.0f ||
       mix.single_fraction > 1.0f)
@@ -27,10 +26,10 @@ Status ValidateGroupMix(const GroupMix& mix) {
     total += s.second;
   }
   if (!(total > 0.0) && mix.single_fraction < 1.0f)
-    return Status::Error(Status::Code::kInvalidArgument,
-                         "group mix: pairs, triples, fours and larger are all 0 but "
-                         "single_fraction < 1 leaves people to put in groups");
-  return Status::Ok();
+    return Status(StatusCode::kInvalidArgument,
+                  "group mix: pairs, triples, fours and larger are all 0 but "
+                  "single_fraction < 1 leaves people to put in groups");
+  return Status();
 }
 
 std::vector<uint8_t> DrawGroupSizes(const GroupMix& mix, int people, uint64_t seed) {

@@ -32,7 +32,7 @@ std::string Num(double v) {
 }
 
 Status BadOption(const std::string& what) {
-  return Status::Error(Status::Code::kInvalidArgument, "placement: " + what);
+  return Status(StatusCode::kInvalidArgument, "placement: " + what);
 }
 
 // Moves p inside the polygon when it is outside (centroids of non-convex patches).
@@ -109,16 +109,16 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   const double d = o.min_distance_m;
   const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
   if (area < packing)
-    return Status::Error(Status::Code::kInfeasible,
-                         "placement: the region's " + Num(area) + " m² cannot hold " +
-                             std::to_string(o.people) + " people " + Num(d) +
-                             " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
+    return Status(StatusCode::kInfeasible,
+                  "placement: the region's " + Num(area) + " m² cannot hold " +
+                      std::to_string(o.people) + " people " + Num(d) +
+                      " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
 
   Placement out;
   out.backend = detail::PowerBackendName();
   if (o.people == 0) {
     *result = std::move(out);
-    return Status::Ok();
+    return Status();
   }
 
   // Groups and their capacities (paper eq. 7: patch area ∝ people in it).
@@ -144,8 +144,8 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   const uint64_t max_attempts = 1000 * static_cast<uint64_t>(groups) + 100000;
   for (uint64_t attempt = 0; sites.size() < groups; ++attempt) {
     if (attempt >= max_attempts)
-      return Status::Error(Status::Code::kInfeasible,
-                           "placement: could not sample starting points inside the region");
+      return Status(StatusCode::kInfeasible,
+                    "placement: could not sample starting points inside the region");
     const dvec2 p(rng.Range(llo.x, lhi.x), rng.Range(llo.y, lhi.y));
     if (detail::Inside(local, p)) sites.push_back(p);
   }
@@ -163,7 +163,7 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   for (int it = 0; it < o.max_iterations; ++it) {
     if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
                               &weights, &cells, &error))
-      return Status::Error(Status::Code::kInternal, "placement: " + error);
+      return Status(StatusCode::kInternal, "placement: " + error);
     double energy = 0.0, cap_error = 0.0, max_move = 0.0;
     for (size_t g = 0; g < groups; ++g) {
       energy += cells.moment[g];
@@ -185,7 +185,7 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
                             &weights, &cells, &error) ||
       !detail::ComputeCells(local, sites, weights, true, &cells, &error))
-    return Status::Error(Status::Code::kInternal, "placement: " + error);
+    return Status(StatusCode::kInternal, "placement: " + error);
   out.energy_bound = bound * to_m4;
 
   // Back to metres.
@@ -253,13 +253,13 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
     if (close.empty()) break;
     if (round == kRepairRounds) {
       const auto [a, b] = close.front();
-      return Status::Error(
-          Status::Code::kInfeasible,
-          "placement: characters " + std::to_string(a) + " and " + std::to_string(b) + " stay " +
-              Num(glm::length(out.positions[a] - out.positions[b])) +
-              " m apart (< min_distance_m " + Num(d) + ") after " + std::to_string(kRepairRounds) +
-              " separation passes; the region is too crowded (" + Num(o.people / area) +
-              " people/m²)");
+      return Status(StatusCode::kInfeasible,
+                    "placement: characters " + std::to_string(a) + " and " + std::to_string(b) +
+                        " stay " + Num(glm::length(out.positions[a] - out.positions[b])) +
+                        " m apart (< min_distance_m " + Num(d) + ") after " +
+                        std::to_string(kRepairRounds) +
+                        " separation passes; the region is too crowded (" + Num(o.people / area) +
+                        " people/m²)");
     }
     if (round == 0) out.repaired_pairs = static_cast<int>(close.size());
     for (const auto& [a, b] : close) {
@@ -280,7 +280,7 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
                               ? 0.0
                               : MinPairDistance(out.positions, std::max(2.0 * d, scale * spacing));
   *result = std::move(out);
-  return Status::Ok();
+  return Status();
 }
 
 }  // namespace crowdbake::crowd

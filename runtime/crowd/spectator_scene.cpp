@@ -17,9 +17,7 @@ namespace {
 constexpr size_t kMaxGroupMembers = 64;
 constexpr int64_t kMaxSeats = 16 * 1024 * 1024;
 
-Status SceneError(const std::string& message) {
-  return Status::Error(Status::Code::kInvalidScene, message);
-}
+Status SceneError(const std::string& message) { return Status(StatusCode::kInvalidScene, message); }
 
 std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
@@ -84,7 +82,7 @@ Status CheckParams(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t* 
       return SceneError("params.home_state " + Quote(p.home_state) + ": state " +
                         Quote(fsm.state_name(st)) + " can be reached from it but has no path back");
   }
-  return Status::Ok();
+  return Status();
 }
 
 // Neighbours within `radius` (3D), found through a uniform grid of cell size `radius`.
@@ -264,7 +262,7 @@ Status BuildSpectatorScene(const BehaviourFsm& fsm, const SpectatorSceneDef& def
   scene.home_state_ = home;
   scene.events_ = std::move(events);
   *out = std::move(scene);
-  return Status::Ok();
+  return Status();
 }
 
 Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
@@ -371,7 +369,7 @@ Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
   // note: a group cut short by a gap keeps its id; singles are groups of one here, which
   // BuildSpectatorScene treats the same as kNoGroup.
   *individuals = std::move(out);
-  return Status::Ok();
+  return Status();
 }
 
 }  // namespace crowdbake::crowd

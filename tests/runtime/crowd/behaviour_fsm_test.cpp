@@ -35,7 +35,7 @@ void ExpectFsmError(const std::function<void(BehaviourFsmDef&)>& edit,
   BehaviourFsm fsm;
   const Status status = BuildBehaviourFsm(def, &fsm);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
-  EXPECT_EQ(status.code(), Status::Code::kInvalidFsm);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidFsm);
   for (const std::string& needle : needles)
     EXPECT_NE(status.message().find(needle), std::string::npos)
         << "message: " << status.message() << "\nmissing: " << needle;
@@ -235,7 +235,7 @@ TEST(BehaviourFsmErrors, ClipsAndWeights) {
 TEST(BehaviourFsmErrors, EmptyFsm) {
   BehaviourFsm fsm;
   const Status status = BuildBehaviourFsm(BehaviourFsmDef(), &fsm);
-  EXPECT_EQ(status.code(), Status::Code::kInvalidFsm);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidFsm);
   EXPECT_EQ(status.message(), "the FSM has no states");
 }
 

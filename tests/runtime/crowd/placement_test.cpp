@@ -168,7 +168,7 @@ TEST(Placement, TinyCrowds) {
   EXPECT_EQ(p.positions.size(), 3u);
 }
 
-void ExpectPlacementError(const PlacementOptions& o, Status::Code code,
+void ExpectPlacementError(const PlacementOptions& o, StatusCode code,
                           const std::vector<std::string>& needles) {
   Placement p;
   p.iterations = 42;
@@ -182,7 +182,7 @@ void ExpectPlacementError(const PlacementOptions& o, Status::Code code,
 }
 
 TEST(PlacementErrors, BadRegions) {
-  const auto bad = Status::Code::kInvalidArgument;
+  const auto bad = StatusCode::kInvalidArgument;
   ExpectPlacementError(Options({{0, 0}, {1, 0}}, 1), bad, {"region has 2 vertices"});
   ExpectPlacementError(Options({{0, 0}, {1, 0}, {2, 0}}, 1), bad, {"region has zero area"});
   ExpectPlacementError(Options({{0, 0}, {1, 0}, {1, 0}, {0, 1}}, 1), bad,
@@ -197,7 +197,7 @@ TEST(PlacementErrors, BadRegions) {
 }
 
 TEST(PlacementErrors, BadOptions) {
-  const auto bad = Status::Code::kInvalidArgument;
+  const auto bad = StatusCode::kInvalidArgument;
   PlacementOptions o = Options(Square(10.0), -1);
   ExpectPlacementError(o, bad, {"people = -1"});
   o = Options(Square(10.0), 10);
@@ -221,7 +221,7 @@ TEST(PlacementErrors, BadOptions) {
 }
 
 TEST(PlacementErrors, RegionTooSmall) {
-  ExpectPlacementError(Options(Square(3.0), 100), Status::Code::kInfeasible,
+  ExpectPlacementError(Options(Square(3.0), 100), StatusCode::kInfeasible,
                        {"cannot hold 100 people 0.5 m apart", "hexagonal packing needs"});
 }
 

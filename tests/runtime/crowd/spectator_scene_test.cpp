@@ -53,7 +53,7 @@ void ExpectSceneError(const std::function<void(SpectatorSceneDef&)>& edit,
   SpectatorScene scene;
   const Status status = BuildSpectatorScene(StadiumFsm(), def, &scene);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
-  EXPECT_EQ(status.code(), Status::Code::kInvalidScene);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   for (const std::string& needle : needles)
     EXPECT_NE(status.message().find(needle), std::string::npos)
         << "message: " << status.message() << "\nmissing: " << needle;
@@ -67,7 +67,7 @@ void ExpectSeatError(const std::function<void(SeatGridDef&)>& edit,
   std::vector<IndividualDef> people(3);
   const Status status = PlaceSeatGrid(grid, TwoTeams(), &people);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
-  EXPECT_EQ(status.code(), Status::Code::kInvalidScene);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   for (const std::string& needle : needles)
     EXPECT_NE(status.message().find(needle), std::string::npos)
         << "message: " << status.message() << "\nmissing: " << needle;
@@ -303,7 +303,7 @@ TEST(SpectatorSceneErrors, HomeMustBeReachableBack) {
   scene_def.events.clear();
   SpectatorScene scene;
   const Status status = BuildSpectatorScene(fsm, scene_def, &scene);
-  EXPECT_EQ(status.code(), Status::Code::kInvalidScene);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   EXPECT_NE(status.message().find("state 'stand_up' can be reached from it but has no path back"),
             std::string::npos)
       << status.message();

@@ -1,0 +1,68 @@
+// Status: how every crowdbake library that does not throw reports a failure (the runtime, its
+// crowd and effect modules). A code for programs, a message for people that names the file,
+// the key or the item and the problem, e.g. "scene.json: lod.budget: must be at least 1, got 0".
+// One type for all of them: a crowd module's failure passes up through the runtime unchanged.
+#pragma once
+
+#include <string>
+#include <utility>
+
+namespace crowdbake {
+
+enum class StatusCode {
+  kOk = 0,
+  kIoError,          // a file could not be opened or read
+  kInvalidPack,      // pack bytes are corrupt, truncated or inconsistent (untrusted data)
+  kInvalidScene,     // a scene, crowd, team, event or seat grid is malformed or names nothing
+  kInvalidArgument,  // the caller passed an out-of-range value or inconsistent arrays
+  kNotLoaded,        // the call needs a pack part (geometry, animation, ...) not loaded yet
+  kOutOfMemory,      // an allocation failed while loading
+  kInvalidFsm,       // a behaviour state machine breaks a rule (crowd/behaviour_fsm.h)
+  kInfeasible,       // valid input that cannot be satisfied (a region too small, ...)
+  kInternal,         // a geometry backend failed (the message says how)
+};
+
+// Short lower-case name of a code: "ok", "io error", "invalid pack", ...
+inline const char* status_code_name(StatusCode code) {
+  switch (code) {
+    case StatusCode::kOk:
+      return "ok";
+    case StatusCode::kIoError:
+      return "io error";
+    case StatusCode::kInvalidPack:
+      return "invalid pack";
+    case StatusCode::kInvalidScene:
+      return "invalid scene";
+    case StatusCode::kInvalidArgument:
+      return "invalid argument";
+    case StatusCode::kNotLoaded:
+      return "not loaded";
+    case StatusCode::kOutOfMemory:
+      return "out of memory";
+    case StatusCode::kInvalidFsm:
+      return "invalid behaviour fsm";
+    case StatusCode::kInfeasible:
+      return "infeasible";
+    case StatusCode::kInternal:
+      return "internal error";
+  }
+  return "unknown";
+}
+
+class Status {
+ public:
+  Status() = default;  // ok
+  Status(StatusCode code, std::string message) : code_(code), message_(std::move(message)) {}
+
+  bool ok() const { return code_ == StatusCode::kOk; }
+  explicit operator bool() const { return ok(); }
+  StatusCode code() const { return code_; }
+  // Empty when ok.
+  const std::string& message() const { return message_; }
+
+ private:
+  StatusCode code_ = StatusCode::kOk;
+  std::string message_;
+};
+
+}  // namespace crowdbake
