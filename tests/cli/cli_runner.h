@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -50,6 +51,13 @@ inline CommandResult run_crowdbake(const std::vector<std::string>& args,
   std::filesystem::remove(base.string() + ".out");
   std::filesystem::remove(base.string() + ".err");
   return r;
+}
+
+// CROWDBAKE_REQUIRE_VULKAN=1 (CI): a command that finds no Vulkan device fails the test
+// instead of skipping it.
+inline bool vulkan_required() {
+  const char* v = std::getenv("CROWDBAKE_REQUIRE_VULKAN");
+  return v != nullptr && std::strcmp(v, "1") == 0;
 }
 
 inline int count_lines(const std::string& s) {

@@ -220,11 +220,6 @@ test::CommandResult render_one(const fs::path& dir, const fs::path& pack, const 
       {"render", scene.string(), "-o", png.string(), "--quiet", "--no-shadows", "--msaa", "1"});
 }
 
-bool vulkan_required() {
-  const char* v = std::getenv("CROWDBAKE_REQUIRE_VULKAN");
-  return v != nullptr && std::strcmp(v, "1") == 0;
-}
-
 TEST(HostileCorpus, MalformedPacksAreRefusedCleanly) {
   test::TempDir dir;
   const fs::path good = dir / "good.crowdpack";
@@ -239,7 +234,7 @@ TEST(HostileCorpus, MalformedPacksAreRefusedCleanly) {
   if (render_device) {
     ASSERT_EQ(control.exit_code, 0) << control.err;
   } else {
-    ASSERT_FALSE(vulkan_required()) << control.err;
+    ASSERT_FALSE(test::vulkan_required()) << control.err;
     std::cerr << "HostileCorpus: no Vulkan device, packs are not rendered: " << control.err;
   }
   int refused = 0;

@@ -23,11 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool vulkan_required() {
-  const char* v = std::getenv("CROWDBAKE_REQUIRE_VULKAN");
-  return v != nullptr && std::strcmp(v, "1") == 0;
-}
-
 // A small scene of the baked spectator: a listed instance and a 4 x 6 seat grid in front of
 // the camera. `edit` is spliced into the JSON text (e.g. a different resolution).
 std::string scene_json(const std::string& pack, const std::string& camera_extra = "",
@@ -87,7 +82,7 @@ class RenderCommand : public ::testing::Test {
     all.push_back("--validate");
     r = test::run_crowdbake(all);
     if (r.exit_code != 0 && r.err.find("no Vulkan device") != std::string::npos) {
-      if (vulkan_required()) {
+      if (test::vulkan_required()) {
         ADD_FAILURE() << "no Vulkan device (CROWDBAKE_REQUIRE_VULKAN=1): " << r.err;
         return false;
       }
