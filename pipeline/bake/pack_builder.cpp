@@ -134,6 +134,12 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack, doub
   radius = static_cast<float>(far);
 }
 
+// note: the runtime needs each level's error to within its LoD ladder's steps, not to the
+// last sample: measuring at most this many points per surface and frame keeps the cost of a
+// hero character's table near a crowd character's (docs/bake-config.md). Characters under
+// about 20,000 triangles are measured at every point.
+constexpr uint32_t kLevelErrorPoints = 32768;
+
 // LERR: each sampled level against the full mesh over the clips, in model units; the full
 // mesh itself is exact. A coarser level is never reported better than a finer one (the
 // running maximum from fine to coarse), so the runtime's table is monotone.
@@ -151,6 +157,7 @@ PackLevelErrors measure_level_errors(const SkinnedAsset& asset, const Progressiv
   AnimatedErrorOptions measure;
   measure.fps = options.fps;
   measure.threads = threads;
+  measure.max_points = kLevelErrorPoints;
   const std::vector<AnimatedError> errors = animated_error(asset, pointers, measure);
   out.max_error.assign(out.vertices.size(), 0.0f);
   out.rms_error.assign(out.vertices.size(), 0.0f);

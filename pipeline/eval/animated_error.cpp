@@ -49,12 +49,29 @@ double bbox_diagonal(const std::vector<glm::dvec3>& positions) {
   return glm::length(hi - lo);
 }
 
+// One pose of the original and of every LoD: skinned positions and their trees.
+struct Posed {
+  std::vector<glm::dvec3> original_at;
+  std::vector<std::vector<glm::dvec3>> lods_at;
+  TriangleBvh original_bvh;
+  std::vector<TriangleBvh> lod_bvhs;
+};
+
+Posed bind_pose(const Surface& original, const std::vector<Surface>& lods) {
+  Posed posed{original.bind, {}, TriangleBvh(original.bind, original.triangles), {}};
+  for (const Surface& s : lods) {
+    posed.lods_at.push_back(s.bind);
+    posed.lod_bvhs.emplace_back(s.bind, s.triangles);
+  }
+  return posed;
+}
+
 // Distance between the original and each LoD on the given skinned positions.
-std::vector<SurfaceError> measure(const Surface& original,
-                                  const std::vector<glm::dvec3>& original_at,
-                                  const std::vector<Surface>& lods,
-                                  const std::vector<std::vector<glm::dvec3>>& lods_at) {
-  const TriangleBvh original_bvh(original_at, original.triangles);
+std::vector<SurfaceError> measure(const Surface& original, const std::vector<Surface>& lods,
+                                  const Posed& posed) {
+  const std::vector<glm::dvec3>& original_at = posed.original_at;
+  const std::vector<std::vector<glm::dvec3>>& lods_at = posed.lods_at;
+  const TriangleBvh& original_bvh = posed.original_bvh;
   std::vector<SurfaceError> out(lods.size());
   for (size_t l = 0; l < lods.size(); ++l) {
     const Surface& lod = lods[l];
@@ -64,7 +81,7 @@ std::vector<SurfaceError> measure(const Surface& original,
                                                                    : SurfaceError{inf, inf};
       continue;
     }
-    const TriangleBvh lod_bvh(lods_at[l], lod.triangles);
+    const TriangleBvh& lod_bvh = posed.lod_bvhs[l];
     out[l] = combine(one_way_distance(original.plan, original_at, original.triangles, lod_bvh),
                      one_way_distance(lod.plan, lods_at[l], lod.triangles, original_bvh));
   }
@@ -125,6 +142,7 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   const double diagonal = bbox_diagonal(base.bind);
   const double spacing = default_spacing(base.bind, base.triangles);
   base.plan = plan_samples(base.bind, base.triangles, spacing);
+  limit_points(base.plan, options.max_points);
   // note: identical LoDs (several settings often give the same level) are measured once.
   std::vector<Surface> surfaces;
   std::vector<size_t> surface_of(lods.size());
@@ -146,14 +164,15 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     hashes.push_back(hash);
     surfaces.push_back(make_surface(*lod));
     surfaces.back().plan = plan_samples(surfaces.back().bind, surfaces.back().triangles, spacing);
+    limit_points(surfaces.back().plan, options.max_points);
   }
 
   std::vector<AnimatedError> unique(surfaces.size());
   const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
+  // note: the trees are built once, on the bind pose, and refitted to every frame.
+  const Posed bind_posed = bind_pose(base, surfaces);
   {
-    std::vector<std::vector<glm::dvec3>> lods_bind;
-    for (const Surface& s : surfaces) lods_bind.push_back(s.bind);
-    const std::vector<SurfaceError> bind = measure(base, base.bind, surfaces, lods_bind);
+    const std::vector<SurfaceError> bind = measure(base, surfaces, bind_posed);
     for (size_t l = 0; l < surfaces.size(); ++l) {
       unique[l].diagonal = diagonal;
       unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
@@ -176,15 +195,19 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   auto work = [&](size_t first, size_t step) {
     std::vector<Transform> local;
     std::vector<glm::dmat4> global, skinning;
-    std::vector<glm::dvec3> original_at, scratch;
-    std::vector<std::vector<glm::dvec3>> lods_at(surfaces.size());
+    std::vector<glm::dvec3> scratch;
+    Posed posed = bind_posed;
     for (size_t f = first; f < frames.size(); f += step) {
       sample_clip(original.skeleton, *frames[f].clip, frames[f].t, local);
       local_to_global(original.skeleton, local, global);
       skinning_matrices(original.skeleton, global, skinning);
-      skin(base, skinning, original_at, scratch);
-      for (size_t l = 0; l < surfaces.size(); ++l) skin(surfaces[l], skinning, lods_at[l], scratch);
-      per_frame[f] = measure(base, original_at, surfaces, lods_at);
+      skin(base, skinning, posed.original_at, scratch);
+      posed.original_bvh.refit(posed.original_at);
+      for (size_t l = 0; l < surfaces.size(); ++l) {
+        skin(surfaces[l], skinning, posed.lods_at[l], scratch);
+        posed.lod_bvhs[l].refit(posed.lods_at[l]);
+      }
+      per_frame[f] = measure(base, surfaces, posed);
     }
   };
   size_t threads =

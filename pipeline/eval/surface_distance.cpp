@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <tuple>
 #include <unordered_map>
@@ -17,13 +16,22 @@ constexpr int kMinLevel = 1;
 constexpr int kMaxLevel = 16;
 constexpr uint32_t kInteriorKey = 0xFFFFFFFFu;
 
-// Welds vertices by exact position so points shared by triangles are sampled once.
+// Welds vertices by exact position so points shared by triangles are sampled once: every
+// vertex maps to the lowest-numbered vertex at its position.
 std::vector<uint32_t> weld_by_position(const std::vector<glm::dvec3>& positions) {
-  std::map<std::tuple<double, double, double>, uint32_t> first;
-  std::vector<uint32_t> weld(positions.size());
-  for (uint32_t v = 0; v < positions.size(); ++v)
-    weld[v] = first.emplace(std::make_tuple(positions[v].x, positions[v].y, positions[v].z), v)
-                  .first->second;
+  const uint32_t n = static_cast<uint32_t>(positions.size());
+  auto key = [&](uint32_t v) {
+    return std::make_tuple(positions[v].x, positions[v].y, positions[v].z, v);
+  };
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  std::vector<uint32_t> weld(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = order[i];
+    const bool same = i > 0 && positions[v] == positions[order[i - 1]];
+    weld[v] = same ? weld[order[i - 1]] : v;
+  }
   return weld;
 }
 
@@ -111,16 +119,31 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
                              const std::vector<uint32_t>& triangles, double spacing) {
   const std::vector<uint32_t> weld = weld_by_position(positions);
   SurfaceSampling plan;
+  // note: vertices are looked up by weld id and interior points are never shared, so only
+  // edge points (on triangles longer than the spacing) need the hash map.
+  std::vector<uint32_t> vertex_point(positions.size(), UINT32_MAX);
   std::unordered_map<PointKey, uint32_t, PointKeyHash> known;
   const size_t count = triangles.size() / 3;
   plan.offset.reserve(count + 1);
   plan.offset.push_back(0);
-  uint32_t interior = 0;
-  auto add = [&](const PointKey& key, const SurfaceSampling::Point& point) {
-    const auto [it, fresh] = known.emplace(key, static_cast<uint32_t>(plan.points.size()));
-    if (fresh) plan.points.push_back(point);
-    plan.triangle_points.push_back(it->second);
+  plan.triangle_points.reserve(4 * count);
+  auto point_id = [&](uint32_t& id, const SurfaceSampling::Point& point) {
+    if (id == UINT32_MAX) {
+      id = static_cast<uint32_t>(plan.points.size());
+      plan.points.push_back(point);
+    }
+    plan.triangle_points.push_back(id);
   };
+  auto add = [&](const PointKey& key, const SurfaceSampling::Point& point) {
+    if (key.den == kInteriorKey) {
+      uint32_t id = UINT32_MAX;
+      return point_id(id, point);
+    }
+    if (key.den == 0) return point_id(vertex_point[key.a], point);
+    const auto [it, fresh] = known.emplace(key, UINT32_MAX);
+    point_id(it->second, point);
+  };
+  uint32_t interior = 0;
   for (size_t t = 0; t < count; ++t) {
     const uint32_t v[3] = {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
     const uint32_t w[3] = {weld[v[0]], weld[v[1]], weld[v[2]]};
@@ -163,6 +186,13 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
   return plan;
 }
 
+void limit_points(SurfaceSampling& plan, uint32_t max_points) {
+  const size_t n = plan.points.size();
+  plan.stride = max_points == 0 || n <= max_points
+                    ? 1
+                    : static_cast<uint32_t>((n + max_points - 1) / max_points);
+}
+
 OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<glm::dvec3>& positions,
                                 const std::vector<uint32_t>& triangles, const TriangleBvh& other) {
@@ -180,15 +210,19 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
   OneWayDistance out;
   double max_sq = 0.0;
   uint32_t hint = UINT32_MAX;
-  for (size_t i = 0; i < plan.points.size(); ++i) {
-    const SurfaceSampling::Point& s = plan.points[i];
+  const size_t n = plan.points.size(), stride = std::max<uint32_t>(plan.stride, 1);
+  for (size_t first = 0; first < n; first += stride) {
+    const size_t end = std::min(n, first + stride);
+    double run_weight = 0.0;
+    for (size_t i = first; i < end; ++i) run_weight += weight[i];
+    const SurfaceSampling::Point& s = plan.points[first + (end - first - 1) / 2];
     const glm::dvec3 p =
         positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
     // note: points are in Morton order, so the previous point's closest triangle is
     // usually close to this one's and prunes most of the tree.
     const double d_sq = other.distance_sq(p, hint, hint);
-    out.sum_sq += weight[i] * d_sq;
-    out.weight += weight[i];
+    out.sum_sq += run_weight * d_sq;
+    out.weight += run_weight;
     max_sq = std::max(max_sq, d_sq);
   }
   out.max = std::sqrt(max_sq);

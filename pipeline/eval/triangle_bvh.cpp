@@ -81,9 +81,32 @@ TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& positions,
   build(0, 0, count, order, centroids);
   // Lay the corners out in leaf order so a leaf reads one contiguous run.
   std::vector<glm::dvec3> sorted(corners_.size());
+  indices_.resize(corners_.size());
   for (uint32_t i = 0; i < count; ++i)
-    for (int c = 0; c < 3; ++c) sorted[3 * size_t{i} + c] = corners_[3 * size_t{order[i]} + c];
+    for (int c = 0; c < 3; ++c) {
+      sorted[3 * size_t{i} + c] = corners_[3 * size_t{order[i]} + c];
+      indices_[3 * size_t{i} + c] = triangles[3 * size_t{order[i]} + c];
+    }
   corners_.swap(sorted);
+}
+
+void TriangleBvh::refit(const std::vector<glm::dvec3>& positions) {
+  for (size_t i = 0; i < indices_.size(); ++i) corners_[i] = positions[indices_[i]];
+  // note: children always come after their parent in nodes_, so a reverse sweep sees both
+  // children of a node before the node itself.
+  for (size_t n = nodes_.size(); n-- > 0;) {
+    Node& node = nodes_[n];
+    if (node.count > 0) {
+      glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+      for (size_t c = 3 * size_t{node.first}; c < 3 * size_t{node.first + node.count}; ++c)
+        lo = glm::min(lo, corners_[c]), hi = glm::max(hi, corners_[c]);
+      node.lo = lo, node.hi = hi;
+    } else {
+      const Node& left = nodes_[node.first];
+      const Node& right = nodes_[node.first + 1];
+      node.lo = glm::min(left.lo, right.lo), node.hi = glm::max(left.hi, right.hi);
+    }
+  }
 }
 
 void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,

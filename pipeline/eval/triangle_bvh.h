@@ -1,6 +1,7 @@
 // Closest point on a triangle soup: exact point-triangle distance (Ericson, "Real-Time
 // Collision Detection" §5.1.5) under a bounding-volume hierarchy, double precision.
-// Used by the animated error (animated_error.cpp), rebuilt for every frame.
+// Used by the animated error (animated_error.cpp): built on the bind pose, refitted to
+// every frame.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,12 @@ class TriangleBvh {
 
   bool empty() const { return nodes_.empty(); }
 
+  // Moves the same triangles to new positions (same count and order as at construction)
+  // and recomputes every box bottom-up. The tree keeps the shape it was built with, so a
+  // deformed surface is searched a little slower, but answers stay exact; a frame of an
+  // animation costs a pass over the corners instead of a new build.
+  void refit(const std::vector<glm::dvec3>& positions);
+
   // Squared distance from p to the closest point of any triangle; +inf when empty.
   double distance_sq(const glm::dvec3& p) const;
 
@@ -41,6 +48,7 @@ class TriangleBvh {
 
   std::vector<Node> nodes_;
   std::vector<glm::dvec3> corners_;  // 3 per triangle, in leaf order
+  std::vector<uint32_t> indices_;    // the corners' vertex indices, same order
 };
 
 }  // namespace crowdbake

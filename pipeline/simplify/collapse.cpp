@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 
 #include "eval/triangle_bvh.h"
+#include "simplify/position_queue.h"
 
 namespace crowdbake {
 namespace {
@@ -13,28 +13,19 @@ namespace {
 // fold guard meshoptimizer uses); that is the one geometric refusal.
 constexpr double kMinBindNormalDot = 0.25;
 
-// note: 32-byte candidates: the queue holds one per directed edge, and its sifting is the
-// loop's largest cost on big meshes.
 constexpr uint32_t kUnpriced = 0xffffffffu;
 
+// A collapse of the position whose list holds it onto `to`. Every live directed edge has
+// at most one; its DQEM cost is always computed on the current quadrics (candidates of a
+// position whose quadric changes are replaced).
 struct Candidate {
   double cost;  // DQEM cost, plus the penalties once priced
-  uint32_t from, to;
-  uint32_t version_from, version_to;  // quadric versions the DQEM cost was computed with
+  uint32_t to;
   // Neighbourhood versions the penalties were priced on; kUnpriced until then.
   uint32_t star_from = kUnpriced, star_to = kUnpriced;
 };
 
 enum class Outcome { kDone, kRefused, kRequeued };
-
-// Lowest cost first; ties broken by ids so the order never depends on the heap's history.
-struct Later {
-  bool operator()(const Candidate& a, const Candidate& b) const {
-    if (a.cost != b.cost) return a.cost > b.cost;
-    if (a.from != b.from) return a.from > b.from;
-    return a.to > b.to;
-  }
-};
 
 enum class Kind { kInterior, kBorder, kLocked };
 
@@ -47,7 +38,8 @@ class Collapser {
         poses_(poses),
         all_poses_(all_poses),
         cost_(cost),
-        stats_(stats) {
+        stats_(stats),
+        queue_(mesh.position_count()) {
     const uint32_t positions = mesh.position_count();
     corner_ = mesh.triangles;
     triangle_alive_.assign(mesh.triangle_count(), 1);
@@ -55,8 +47,8 @@ class Collapser {
     for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
       for (int k = 0; k < 3; ++k) incident_[position(t, k)].push_back(t);
     position_alive_.assign(positions, 1);
-    version_.assign(positions, 0);
     star_.assign(positions, 0);
+    leaving_.resize(positions);
     refused_.resize(positions);
     mark_small_parts();
   }
@@ -73,30 +65,73 @@ class Collapser {
 
  private:
   void push_all() {
-    for (uint32_t p = 0; p < mesh_.position_count(); ++p)
-      if (position_alive_[p])
-        for (uint32_t x : neighbours(p))
-          if (x > p) push(p, x), push(x, p);
+    for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
+      for (uint32_t x : neighbours(p)) leaving_[p].push_back(fresh(p, x));
+      update(p);
+    }
   }
 
   void drain(std::vector<CollapseRecord>& records) {
     while (!queue_.empty()) {
-      const Candidate c = queue_.top();
-      queue_.pop();
-      if (!position_alive_[c.from] || !position_alive_[c.to] ||
-          version_[c.from] != c.version_from || version_[c.to] != c.version_to)
-        continue;
+      const uint32_t from = queue_.top().from;
+      const Candidate c = take_best(from);
+      // note: a retried refusal may name a position that has since collapsed elsewhere.
+      if (!position_alive_[c.to]) continue;
       CollapseRecord record;
-      const Outcome outcome = try_collapse(c, record);
+      const Outcome outcome = try_collapse(from, c, record);
       if (outcome == Outcome::kDone) {
         records.push_back(std::move(record));
       } else if (outcome == Outcome::kRefused) {
         // note: a refused collapse may become legal when either end's neighbourhood
-        // changes; it waits at both ends instead of being pushed after every collapse.
-        refused_[c.from].push_back({c.from, c.to});
-        refused_[c.to].push_back({c.from, c.to});
+        // changes; it waits at both ends instead of being tried after every collapse.
+        refused_[from].push_back({from, c.to});
+        refused_[c.to].push_back({from, c.to});
       }
     }
+  }
+
+  Candidate fresh(uint32_t from, uint32_t to) const { return {cost_.cost(from, to), to}; }
+
+  // Keys position p in the queue by its cheapest candidate (lowest `to` on ties).
+  void update(uint32_t p) {
+    const std::vector<Candidate>& list = leaving_[p];
+    if (list.empty()) return queue_.remove(p);
+    const Candidate* best = &list.front();
+    for (const Candidate& c : list)
+      if (c.cost < best->cost || (c.cost == best->cost && c.to < best->to)) best = &c;
+    queue_.set({best->cost, p, best->to});
+  }
+
+  Candidate take_best(uint32_t from) {
+    std::vector<Candidate>& list = leaving_[from];
+    const uint32_t to = queue_.top().to;
+    auto it =
+        std::find_if(list.begin(), list.end(), [&](const Candidate& c) { return c.to == to; });
+    const Candidate c = *it;
+    *it = list.back();
+    list.pop_back();
+    update(from);
+    return c;
+  }
+
+  // Adds a candidate, replacing the one for the same edge if any.
+  void offer(uint32_t from, const Candidate& c) {
+    std::vector<Candidate>& list = leaving_[from];
+    auto it =
+        std::find_if(list.begin(), list.end(), [&](const Candidate& x) { return x.to == c.to; });
+    if (it == list.end())
+      list.push_back(c);
+    else
+      *it = c;
+    update(from);
+  }
+
+  // Drops p's candidates onto a or b.
+  void forget(uint32_t p, uint32_t a, uint32_t b) {
+    std::vector<Candidate>& list = leaving_[p];
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](const Candidate& c) { return c.to == a || c.to == b; }),
+               list.end());
   }
 
   uint32_t position(uint32_t triangle, int k) const {
@@ -104,10 +139,6 @@ class Collapser {
   }
   const glm::dvec3& at(uint32_t pose, uint32_t p) const {
     return posed_[size_t{p} * poses_ + pose];
-  }
-
-  void push(uint32_t from, uint32_t to) {
-    queue_.push({cost_.cost(from, to), from, to, version_[from], version_[to]});
   }
 
   void compact(uint32_t p) {
@@ -152,6 +183,12 @@ class Collapser {
     return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
   }
 
+  bool adjacent(uint32_t a, uint32_t b) {
+    compact(a);
+    return std::any_of(incident_[a].begin(), incident_[a].end(),
+                       [&](uint32_t t) { return contains(t, b); });
+  }
+
   bool contains(uint32_t t, uint32_t p) const {
     return position(t, 0) == p || position(t, 1) == p || position(t, 2) == p;
   }
@@ -174,8 +211,8 @@ class Collapser {
 
   // Performs the collapse when it is legal and its penalties are priced in; a legal
   // candidate with a penalty still to pay goes back into the queue at its full cost.
-  Outcome try_collapse(const Candidate& candidate, CollapseRecord& record) {
-    const uint32_t from = candidate.from, to = candidate.to;
+  Outcome try_collapse(uint32_t from, const Candidate& candidate, CollapseRecord& record) {
+    const uint32_t to = candidate.to;
     compact(from);
     compact(to);
     std::vector<uint32_t> shared, moved;
@@ -268,10 +305,7 @@ class Collapser {
                              left_behind_penalty(from, to, moved);
       // note: a candidate still cheaper than the queue's top would be popped next anyway.
       if (penalty > 0.0 && !queue_.empty() && base + penalty > queue_.top().cost) {
-        Candidate again = candidate;
-        again.cost = base + penalty;
-        again.star_from = star_[from], again.star_to = star_[to];
-        queue_.push(again);
+        offer(from, {base + penalty, to, star_[from], star_[to]});
         return Outcome::kRequeued;
       }
     }
@@ -294,18 +328,31 @@ class Collapser {
     }
     position_alive_[from] = 0;
     incident_[from].clear();
+    leaving_[from].clear();
+    queue_.remove(from);
     cost_.merge(from, to);
 
     // `to` has a new quadric, so its edges get new costs; the ring's other edges keep theirs
     // (their quadrics did not change) but their stars did: penalties priced on the old
     // stars are priced again, and collapses refused there get another chance.
-    ++version_[to];
     ++star_[to];
     const std::vector<uint32_t> ring = neighbours(to);
+    leaving_[to].clear();
+    for (uint32_t x : ring) leaving_[to].push_back(fresh(to, x));
+    update(to);
     for (uint32_t x : ring) {
       ++star_[x];
-      push(to, x), push(x, to);
+      forget(x, from, to);
+      leaving_[x].push_back(fresh(x, to));
+      update(x);
     }
+    // Former neighbours no longer next to `to` (a border face's corner) lose their edges.
+    for (const std::vector<uint32_t>* before : {&nf, &nt})
+      for (uint32_t x : *before)
+        if (x != from && x != to && !std::binary_search(ring.begin(), ring.end(), x)) {
+          forget(x, from, to);
+          update(x);
+        }
     retry_refused(to, ring);
     return Outcome::kDone;
   }
@@ -322,8 +369,11 @@ class Collapser {
     for (uint32_t x : ring) take(x);
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    // note: a pair no longer joined by an edge can only be joined again by a collapse onto one
+    // of its ends, which offers that end's edges afresh.
     for (const auto& [a, b] : pairs)
-      if (position_alive_[a] && position_alive_[b] && a != to && b != to) push(a, b);
+      if (position_alive_[a] && position_alive_[b] && a != to && b != to && adjacent(a, b))
+        offer(a, fresh(a, b));
   }
 
   // The attribute class at position p in the same primitive as class v with the nearest
@@ -497,11 +547,11 @@ class Collapser {
   std::vector<char> triangle_alive_;
   std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
   std::vector<char> position_alive_;
-  std::vector<char> small_part_;   // position lies on a part that may vanish
-  std::vector<uint32_t> version_;  // per position: bumped when its quadric changes
-  std::vector<uint32_t> star_;     // per position: bumped when its incident faces change
+  std::vector<char> small_part_;  // position lies on a part that may vanish
+  std::vector<uint32_t> star_;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
-  std::priority_queue<Candidate, std::vector<Candidate>, Later> queue_;
+  std::vector<std::vector<Candidate>> leaving_;  // per position: its live candidates
+  PositionQueue queue_;
   uint32_t collapses_ = 0;
 };
 

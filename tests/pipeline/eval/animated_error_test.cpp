@@ -142,6 +142,55 @@ TEST(TriangleBvh, MatchesBruteForceOnARandomSoup) {
   EXPECT_EQ(TriangleBvh({}, {}).distance_sq({0, 0, 0}), INFINITY);
 }
 
+TEST(TriangleBvh, RefitAnswersLikeARebuild) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const TriangleSurface s = grid(12, 2.0);
+  TriangleBvh refitted(s.positions, s.triangles);
+  // A non-rigid bend and twist, far enough that most boxes change.
+  std::vector<glm::dvec3> moved;
+  for (const glm::dvec3& p : s.positions)
+    moved.push_back({p.x, std::cos(p.x) * p.y, std::sin(p.x) * p.y + 0.3 * p.x * p.x});
+  refitted.refit(moved);
+  const TriangleBvh rebuilt(moved, s.triangles);
+  for (int q = 0; q < 300; ++q) {
+    const glm::dvec3 p(3 * u(rng), 3 * u(rng), 3 * u(rng));
+    double best = INFINITY;
+    for (size_t t = 0; t < s.triangles.size(); t += 3) {
+      const glm::dvec3 c = closest_point_on_triangle(
+          p, moved[s.triangles[t]], moved[s.triangles[t + 1]], moved[s.triangles[t + 2]]);
+      best = std::min(best, glm::dot(c - p, c - p));
+    }
+    EXPECT_EQ(refitted.distance_sq(p), best);
+    EXPECT_EQ(rebuilt.distance_sq(p), best);
+  }
+}
+
+TEST(SurfaceSampling, LimitedPointsEstimateTheWholeMeasure) {
+  // A 40 x 40 grid against a plane tilted under it: the distance varies over the surface.
+  const TriangleSurface a = grid(40, 1.0);
+  TriangleSurface b = grid(3, 1.0);
+  for (glm::dvec3& p : b.positions) p.z = 0.05 + 0.2 * p.x;
+  const TriangleBvh other(b.positions, b.triangles);
+  SurfaceSampling plan = plan_samples(a.positions, a.triangles, 1.0);
+  const OneWayDistance all = one_way_distance(plan, a.positions, a.triangles, other);
+  limit_points(plan, static_cast<uint32_t>(plan.points.size()));
+  EXPECT_EQ(plan.stride, 1u);
+  limit_points(plan, 0);
+  EXPECT_EQ(plan.stride, 1u);
+  const size_t points = plan.points.size();
+  limit_points(plan, static_cast<uint32_t>(points / 8));
+  EXPECT_GE(plan.stride, 8u);
+  EXPECT_LE((points + plan.stride - 1) / plan.stride, points / 8);
+  const OneWayDistance some = one_way_distance(plan, a.positions, a.triangles, other);
+  // Every point's weight is still counted once; the distances are estimated per run.
+  EXPECT_NEAR(some.weight, all.weight, 1e-12 * all.weight);
+  EXPECT_NEAR(std::sqrt(some.sum_sq / some.weight), std::sqrt(all.sum_sq / all.weight),
+              0.02 * std::sqrt(all.sum_sq / all.weight));
+  EXPECT_LE(some.max, all.max);
+  EXPECT_GE(some.max, 0.9 * all.max);
+}
+
 TEST(SurfaceDistance, TriangleAgainstItselfIsZero) {
   TriangleSurface t;
   t.positions = {{0, 0, 0}, {1, 0, 0}, {0.2, 0.9, 0.3}};
@@ -290,6 +339,20 @@ TEST(AnimatedError, ThreadCountDoesNotChangeTheResult) {
   const AnimatedError x = animated_error(a, b, one), y = animated_error(a, b, two);
   EXPECT_EQ(x.mean_rms, y.mean_rms);
   EXPECT_EQ(x.max, y.max);
+}
+
+TEST(AnimatedError, PointLimitBeyondTheSamplesChangesNothingAndBelowItEstimates) {
+  const SkinnedAsset a = bending_strip(1.0, 0.0), b = bending_strip(1.0, 0.03);
+  AnimatedErrorOptions all, roomy, tight;
+  roomy.max_points = 1000000;
+  tight.max_points = 16;
+  const AnimatedError x = animated_error(a, b, all), y = animated_error(a, b, roomy),
+                      z = animated_error(a, b, tight);
+  EXPECT_EQ(x.mean_rms, y.mean_rms);
+  EXPECT_EQ(x.max, y.max);
+  EXPECT_NE(x.mean_rms, z.mean_rms);
+  EXPECT_NEAR(z.mean_rms, x.mean_rms, 0.25 * x.mean_rms);
+  EXPECT_LE(z.max, x.max);
 }
 
 TEST(AnimatedError, BatchEqualsOneByOne) {

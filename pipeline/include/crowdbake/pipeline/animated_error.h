@@ -46,6 +46,10 @@ struct AnimatedErrorOptions {
   double fps = 30.0;     // frames at t = 0, 1/fps, 2/fps, ... and the clip end
   int frame_stride = 1;  // evaluate every k-th of those frames (quick runs); the end always
   int threads = 0;       // 0 = hardware concurrency; results never depend on it
+  // At most this many measured sample points per surface (0: all of them); beyond it one
+  // point per run of neighbouring points stands for the run (limit_points), so the cost of a
+  // frame stops growing with the triangle count.
+  uint32_t max_points = 0;
 };
 
 // All numbers but `diagonal` and `frames` are divided by `diagonal`.

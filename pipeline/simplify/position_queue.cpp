@@ -1,0 +1,62 @@
+#include "simplify/position_queue.h"
+
+namespace crowdbake {
+
+void PositionQueue::set(const QueueKey& key) {
+  uint32_t i = slot_[key.from];
+  if (i == kAbsent) {
+    i = static_cast<uint32_t>(heap_.size());
+    heap_.push_back(key);
+    slot_[key.from] = i;
+    sift_up(i);
+    return;
+  }
+  const bool lower = key < heap_[i];
+  heap_[i] = key;
+  if (lower)
+    sift_up(i);
+  else
+    sift_down(i);
+}
+
+void PositionQueue::remove(uint32_t position) {
+  const uint32_t i = slot_[position];
+  if (i == kAbsent) return;
+  slot_[position] = kAbsent;
+  const QueueKey last = heap_.back();
+  heap_.pop_back();
+  if (i == heap_.size()) return;
+  const bool lower = last < heap_[i];
+  place(i, last);
+  if (lower)
+    sift_up(i);
+  else
+    sift_down(i);
+}
+
+void PositionQueue::sift_up(uint32_t i) {
+  const QueueKey key = heap_[i];
+  while (i > 0) {
+    const uint32_t parent = (i - 1) / 2;
+    if (!(key < heap_[parent])) break;
+    place(i, heap_[parent]);
+    i = parent;
+  }
+  place(i, key);
+}
+
+void PositionQueue::sift_down(uint32_t i) {
+  const QueueKey key = heap_[i];
+  const uint32_t n = static_cast<uint32_t>(heap_.size());
+  for (;;) {
+    uint32_t child = 2 * i + 1;
+    if (child >= n) break;
+    if (child + 1 < n && heap_[child + 1] < heap_[child]) ++child;
+    if (!(heap_[child] < key)) break;
+    place(i, heap_[child]);
+    i = child;
+  }
+  place(i, key);
+}
+
+}  // namespace crowdbake
