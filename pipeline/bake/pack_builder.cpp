@@ -1,5 +1,6 @@
 // build_pack(): simplify → bake animation → bake partition → geometry in progressive
 // order → skeleton, clips, materials, bounds.
+#include <malloc.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -210,6 +211,7 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
                          report.simplify.warnings.end());
   pack.progressive = {pm.collapse_to, pm.triangle_count, pm.group_start, pm.min_vertices};
   clock.done("simplify");
+  malloc_trim(0);
   pack.level_errors =
       measure_level_errors(asset, pm, settings.level_errors, settings.simplify.threads);
   clock.done("level errors");

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/parallel.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "eval/animated_error.h"
 
@@ -49,41 +50,38 @@ double bbox_diagonal(const std::vector<glm::dvec3>& positions) {
   return glm::length(hi - lo);
 }
 
-// One pose of the original and of every LoD: skinned positions and their trees.
+// One pose of a surface: its skinned positions and their tree.
 struct Posed {
-  std::vector<glm::dvec3> original_at;
-  std::vector<std::vector<glm::dvec3>> lods_at;
-  TriangleBvh original_bvh;
-  std::vector<TriangleBvh> lod_bvhs;
+  std::vector<glm::dvec3> at;
+  TriangleBvh bvh;
 };
 
-Posed bind_pose(const Surface& original, const std::vector<Surface>& lods) {
-  Posed posed{original.bind, {}, TriangleBvh(original.bind, original.triangles), {}};
-  for (const Surface& s : lods) {
-    posed.lods_at.push_back(s.bind);
-    posed.lod_bvhs.emplace_back(s.bind, s.triangles);
-  }
-  return posed;
-}
+// The original (first) and every LoD in one pose.
+using PosedSurfaces = std::vector<Posed>;
 
-// Distance between the original and each LoD on the given skinned positions.
+// Distance between the original and each LoD in one pose. The 2 × LoDs one-way distances
+// run in parallel and are combined in order, so the answer does not depend on threads.
 std::vector<SurfaceError> measure(const Surface& original, const std::vector<Surface>& lods,
-                                  const Posed& posed) {
-  const std::vector<glm::dvec3>& original_at = posed.original_at;
-  const std::vector<std::vector<glm::dvec3>>& lods_at = posed.lods_at;
-  const TriangleBvh& original_bvh = posed.original_bvh;
+                                  const PosedSurfaces& posed, int threads) {
+  std::vector<OneWayDistance> one_way(2 * lods.size());
+  const bool original_empty = original.triangles.empty();
+  parallel_for(one_way.size(), threads, [&](size_t i) {
+    const size_t l = i / 2;
+    if (lods[l].triangles.empty() || original_empty) return;
+    one_way[i] =
+        i % 2 == 0
+            ? one_way_distance(original.plan, posed[0].at, original.triangles, posed[l + 1].bvh)
+            : one_way_distance(lods[l].plan, posed[l + 1].at, lods[l].triangles, posed[0].bvh);
+  });
   std::vector<SurfaceError> out(lods.size());
   for (size_t l = 0; l < lods.size(); ++l) {
-    const Surface& lod = lods[l];
-    if (lod.triangles.empty() || original.triangles.empty()) {
+    if (lods[l].triangles.empty() || original_empty) {
       const double inf = std::numeric_limits<double>::infinity();
-      out[l] = lod.triangles.empty() == original.triangles.empty() ? SurfaceError{}
-                                                                   : SurfaceError{inf, inf};
+      out[l] =
+          lods[l].triangles.empty() == original_empty ? SurfaceError{} : SurfaceError{inf, inf};
       continue;
     }
-    const TriangleBvh& lod_bvh = posed.lod_bvhs[l];
-    out[l] = combine(one_way_distance(original.plan, original_at, original.triangles, lod_bvh),
-                     one_way_distance(lod.plan, lods_at[l], lod.triangles, original_bvh));
+    out[l] = combine(one_way[2 * l], one_way[2 * l + 1]);
   }
   return out;
 }
@@ -169,10 +167,15 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
 
   std::vector<AnimatedError> unique(surfaces.size());
   const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
-  // note: the trees are built once, on the bind pose, and refitted to every frame.
-  const Posed bind_posed = bind_pose(base, surfaces);
+  // note: the trees are built once, on the bind pose, and refitted to every frame; one set
+  // for all threads, which share each frame's work, so memory does not grow with threads.
+  PosedSurfaces posed(surfaces.size() + 1);
+  parallel_for(posed.size(), options.threads, [&](size_t i) {
+    const Surface& s = i == 0 ? base : surfaces[i - 1];
+    posed[i] = {s.bind, TriangleBvh(s.bind, s.triangles)};
+  });
   {
-    const std::vector<SurfaceError> bind = measure(base, surfaces, bind_posed);
+    const std::vector<SurfaceError> bind = measure(base, surfaces, posed, options.threads);
     for (size_t l = 0; l < surfaces.size(); ++l) {
       unique[l].diagonal = diagonal;
       unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
@@ -192,31 +195,19 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   if (frames.empty()) return expand();
 
   std::vector<std::vector<SurfaceError>> per_frame(frames.size());
-  auto work = [&](size_t first, size_t step) {
-    std::vector<Transform> local;
-    std::vector<glm::dmat4> global, skinning;
-    std::vector<glm::dvec3> scratch;
-    Posed posed = bind_posed;
-    for (size_t f = first; f < frames.size(); f += step) {
-      sample_clip(original.skeleton, *frames[f].clip, frames[f].t, local);
-      local_to_global(original.skeleton, local, global);
-      skinning_matrices(original.skeleton, global, skinning);
-      skin(base, skinning, posed.original_at, scratch);
-      posed.original_bvh.refit(posed.original_at);
-      for (size_t l = 0; l < surfaces.size(); ++l) {
-        skin(surfaces[l], skinning, posed.lods_at[l], scratch);
-        posed.lod_bvhs[l].refit(posed.lods_at[l]);
-      }
-      per_frame[f] = measure(base, surfaces, posed);
-    }
-  };
-  size_t threads =
-      options.threads > 0 ? size_t(options.threads) : std::thread::hardware_concurrency();
-  threads = std::clamp<size_t>(threads, 1, frames.size());
-  std::vector<std::thread> pool;
-  for (size_t i = 1; i < threads; ++i) pool.emplace_back(work, i, threads);
-  work(0, threads);
-  for (std::thread& t : pool) t.join();
+  std::vector<Transform> local;
+  std::vector<glm::dmat4> global, skinning;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    sample_clip(original.skeleton, *frames[f].clip, frames[f].t, local);
+    local_to_global(original.skeleton, local, global);
+    skinning_matrices(original.skeleton, global, skinning);
+    parallel_for(posed.size(), options.threads, [&](size_t i) {
+      std::vector<glm::dvec3> scratch;
+      skin(i == 0 ? base : surfaces[i - 1], skinning, posed[i].at, scratch);
+      posed[i].bvh.refit(posed[i].at);
+    });
+    per_frame[f] = measure(base, surfaces, posed, options.threads);
+  }
 
   // note: reduced in frame order, so the sums do not depend on the thread count.
   for (size_t l = 0; l < surfaces.size(); ++l) {

@@ -24,14 +24,13 @@ struct SurfaceSampling {
   std::vector<Point> points;
   std::vector<uint32_t> offset;
   std::vector<uint32_t> triangle_points;
-  // Distances are measured at every stride-th point (the middle of each run of `stride`
-  // points in Z-order), which stands for the whole run's weight: see limit_points.
-  uint32_t stride = 1;
 };
 
-// Thins a plan to at most max_points measured points (0: no limit) by measuring one point
-// per run of consecutive points in Z-order. The runs are small patches of the surface, so
-// the RMS stays an area-weighted estimate; the max is taken over the measured points only.
+// Thins a plan to at most max_points points (0: no limit): each run of consecutive
+// points in Z-order, a small patch of the surface, becomes its middle point, and the
+// triangles that listed any point of the run list that one instead, so it carries the run's
+// whole area weight. The RMS stays an area-weighted estimate; the max is taken over the
+// points kept.
 void limit_points(SurfaceSampling& plan, uint32_t max_points);
 
 // Grid level per triangle: k = clamp(ceil(longest edge / spacing), 1, 16); points are the

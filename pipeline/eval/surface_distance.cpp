@@ -124,6 +124,7 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
   std::vector<uint32_t> vertex_point(positions.size(), UINT32_MAX);
   std::unordered_map<PointKey, uint32_t, PointKeyHash> known;
   const size_t count = triangles.size() / 3;
+  known.reserve(count);
   plan.offset.reserve(count + 1);
   plan.offset.push_back(0);
   plan.triangle_points.reserve(4 * count);
@@ -188,9 +189,14 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
 
 void limit_points(SurfaceSampling& plan, uint32_t max_points) {
   const size_t n = plan.points.size();
-  plan.stride = max_points == 0 || n <= max_points
-                    ? 1
-                    : static_cast<uint32_t>((n + max_points - 1) / max_points);
+  if (max_points == 0 || n <= max_points) return;
+  const size_t stride = (n + max_points - 1) / max_points;
+  std::vector<SurfaceSampling::Point> kept;
+  kept.reserve((n + stride - 1) / stride);
+  for (size_t first = 0; first < n; first += stride)
+    kept.push_back(plan.points[first + (std::min(n, first + stride) - first - 1) / 2]);
+  plan.points.swap(kept);
+  for (uint32_t& i : plan.triangle_points) i = static_cast<uint32_t>(i / stride);
 }
 
 OneWayDistance one_way_distance(const SurfaceSampling& plan,
@@ -210,19 +216,15 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
   OneWayDistance out;
   double max_sq = 0.0;
   uint32_t hint = UINT32_MAX;
-  const size_t n = plan.points.size(), stride = std::max<uint32_t>(plan.stride, 1);
-  for (size_t first = 0; first < n; first += stride) {
-    const size_t end = std::min(n, first + stride);
-    double run_weight = 0.0;
-    for (size_t i = first; i < end; ++i) run_weight += weight[i];
-    const SurfaceSampling::Point& s = plan.points[first + (end - first - 1) / 2];
+  for (size_t i = 0; i < plan.points.size(); ++i) {
+    const SurfaceSampling::Point& s = plan.points[i];
     const glm::dvec3 p =
         positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
     // note: points are in Morton order, so the previous point's closest triangle is
     // usually close to this one's and prunes most of the tree.
     const double d_sq = other.distance_sq(p, hint, hint);
-    out.sum_sq += run_weight * d_sq;
-    out.weight += run_weight;
+    out.sum_sq += weight[i] * d_sq;
+    out.weight += weight[i];
     max_sq = std::max(max_sq, d_sq);
   }
   out.max = std::sqrt(max_sq);

@@ -20,6 +20,7 @@ class TriangleBvh {
   // positions: the surface's vertices; triangles: 3 indices each, < positions.size().
   // Both are copied (only what the query needs). An empty triangle list is allowed.
   TriangleBvh(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& triangles);
+  TriangleBvh() = default;  // no triangles
 
   bool empty() const { return nodes_.empty(); }
 

@@ -66,7 +66,7 @@ class Collapser {
  private:
   void push_all() {
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
-      for (uint32_t x : neighbours(p)) leaving_[p].push_back(fresh(p, x));
+      for (uint32_t x : neighbours(p, ring_)) leaving_[p].push_back(fresh(p, x));
       update(p);
     }
   }
@@ -148,9 +148,10 @@ class Collapser {
         list.end());
   }
 
-  std::vector<uint32_t> neighbours(uint32_t p) {
+  // p's neighbours, sorted, written to `out` (scratch reused across collapses).
+  const std::vector<uint32_t>& neighbours(uint32_t p, std::vector<uint32_t>& out) {
     compact(p);
-    std::vector<uint32_t> out;
+    out.clear();
     for (uint32_t t : incident_[p])
       for (int k = 0; k < 3; ++k)
         if (position(t, k) != p) out.push_back(position(t, k));
@@ -163,7 +164,8 @@ class Collapser {
   // border); anything else (non-manifold edges, several borders meeting) stays put.
   Kind kind(uint32_t p) {
     compact(p);
-    std::vector<std::pair<uint32_t, int>> edges;
+    std::vector<std::pair<uint32_t, int>>& edges = edges_;
+    edges.clear();
     for (uint32_t t : incident_[p])
       for (int k = 0; k < 3; ++k) {
         const uint32_t x = position(t, k);
@@ -215,7 +217,8 @@ class Collapser {
     const uint32_t to = candidate.to;
     compact(from);
     compact(to);
-    std::vector<uint32_t> shared, moved;
+    std::vector<uint32_t>&shared = shared_, &moved = moved_;
+    shared.clear(), moved.clear();
     for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
     const Kind k = kind(from);
     if (k == Kind::kLocked) return reject_topology();
@@ -225,14 +228,16 @@ class Collapser {
     // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
     // faces with one third corner are the two sides of a flattened closed part: the
     // collapse removes both.)
-    std::vector<uint32_t> third;
+    std::vector<uint32_t>& third = third_;
+    third.clear();
     for (uint32_t t : shared)
       for (int c = 0; c < 3; ++c)
         if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
     std::sort(third.begin(), third.end());
     third.erase(std::unique(third.begin(), third.end()), third.end());
-    std::vector<uint32_t> common;
-    const std::vector<uint32_t> nf = neighbours(from), nt = neighbours(to);
+    std::vector<uint32_t>& common = common_;
+    common.clear();
+    const std::vector<uint32_t>&nf = neighbours(from, from_ring_), &nt = neighbours(to, to_ring_);
     std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
     if (common != third) return reject_topology();
 
@@ -258,7 +263,8 @@ class Collapser {
     // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
     // or material border: allowed, at a price. A class with no class at `to` in its own
     // primitive cannot move (its faces would leave their primitive).
-    std::vector<std::pair<uint32_t, uint32_t>> map;
+    std::vector<std::pair<uint32_t, uint32_t>>& map = map_;
+    map.clear();
     double crossed_area = 0.0;  // bind-pose area of faces whose corner crosses a seam
     for (uint32_t t : shared) {
       const uint32_t v = klass(t, from), w = klass(t, to);
@@ -336,7 +342,7 @@ class Collapser {
     // (their quadrics did not change) but their stars did: penalties priced on the old
     // stars are priced again, and collapses refused there get another chance.
     ++star_[to];
-    const std::vector<uint32_t> ring = neighbours(to);
+    const std::vector<uint32_t>& ring = neighbours(to, ring_);
     leaving_[to].clear();
     for (uint32_t x : ring) leaving_[to].push_back(fresh(to, x));
     update(to);
@@ -360,7 +366,8 @@ class Collapser {
   // Pushes the refused collapses waiting at `to` and its ring once each (a pair waits at
   // both its ends; pushing it twice would make it wait twice over).
   void retry_refused(uint32_t to, const std::vector<uint32_t>& ring) {
-    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    std::vector<std::pair<uint32_t, uint32_t>>& pairs = pairs_;
+    pairs.clear();
     auto take = [&](uint32_t p) {
       pairs.insert(pairs.end(), refused_[p].begin(), refused_[p].end());
       refused_[p].clear();
@@ -551,6 +558,10 @@ class Collapser {
   std::vector<uint32_t> star_;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving_;  // per position: its live candidates
+  // Scratch of try_collapse and its helpers, kept so the loop does not allocate.
+  std::vector<uint32_t> shared_, moved_, third_, common_, from_ring_, to_ring_, ring_;
+  std::vector<std::pair<uint32_t, uint32_t>> map_, pairs_;
+  std::vector<std::pair<uint32_t, int>> edges_;
   PositionQueue queue_;
   uint32_t collapses_ = 0;
 };

@@ -96,12 +96,17 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
   for (uint32_t p = 0; p < asset.primitives.size(); ++p)
     for (uint32_t v = 0; v < asset.primitives[p].vertex_count(); ++v) origin.push_back({p, v});
 
-  SkinnedAsset lod = asset;
-  std::vector<uint32_t> local(used);
-  for (Primitive& p : lod.primitives) {
-    p.positions.clear(), p.normals.clear(), p.uvs.clear(), p.joints.clear(), p.weights.clear(),
-        p.indices.clear();
+  // note: everything but the primitives' arrays is copied; copying those only to clear them
+  // cost a hero character's whole vertex data per level.
+  SkinnedAsset lod;
+  lod.source = asset.source, lod.files = asset.files, lod.skeleton = asset.skeleton;
+  lod.materials = asset.materials, lod.clips = asset.clips, lod.stats = asset.stats;
+  lod.warnings = asset.warnings;
+  for (const Primitive& p : asset.primitives) {
+    lod.primitives.emplace_back();
+    lod.primitives.back().name = p.name, lod.primitives.back().material = p.material;
   }
+  std::vector<uint32_t> local(used);
   for (uint32_t i = 0; i < used; ++i) {
     const auto [prim, v] = origin[pm.vertex_source[i]];
     const Primitive& src = asset.primitives[prim];

@@ -174,14 +174,16 @@ TEST(SurfaceSampling, LimitedPointsEstimateTheWholeMeasure) {
   const TriangleBvh other(b.positions, b.triangles);
   SurfaceSampling plan = plan_samples(a.positions, a.triangles, 1.0);
   const OneWayDistance all = one_way_distance(plan, a.positions, a.triangles, other);
-  limit_points(plan, static_cast<uint32_t>(plan.points.size()));
-  EXPECT_EQ(plan.stride, 1u);
-  limit_points(plan, 0);
-  EXPECT_EQ(plan.stride, 1u);
   const size_t points = plan.points.size();
+  SurfaceSampling same = plan;
+  limit_points(same, static_cast<uint32_t>(points));
+  limit_points(same, 0);
+  EXPECT_EQ(same.points.size(), points);
+  EXPECT_EQ(same.triangle_points, plan.triangle_points);
   limit_points(plan, static_cast<uint32_t>(points / 8));
-  EXPECT_GE(plan.stride, 8u);
-  EXPECT_LE((points + plan.stride - 1) / plan.stride, points / 8);
+  EXPECT_LE(plan.points.size(), points / 8);
+  EXPECT_GE(plan.points.size(), points / 9);
+  for (uint32_t i : plan.triangle_points) ASSERT_LT(i, plan.points.size());
   const OneWayDistance some = one_way_distance(plan, a.positions, a.triangles, other);
   // Every point's weight is still counted once; the distances are estimated per run.
   EXPECT_NEAR(some.weight, all.weight, 1e-12 * all.weight);
