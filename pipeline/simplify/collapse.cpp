@@ -51,6 +51,7 @@ class Collapser {
     leaving_.resize(positions);
     refused_.resize(positions);
     mark_small_parts();
+    mark_limbs();
   }
 
   std::vector<CollapseRecord> run() {
@@ -296,6 +297,11 @@ class Collapser {
       if (!paired) crossed_area += bind_area(t);
     }
 
+    const uint16_t limb = limb_[from];
+    if (limb != kNoLimb && limb_[to] != limb && limb_positions_[limb] == 1) {
+      ++stats_.rejected_limbs;
+      return Outcome::kRefused;
+    }
     if (!closing && folds_in_bind_pose(from, to, moved)) {
       ++stats_.rejected_flips;
       return Outcome::kRefused;
@@ -333,6 +339,7 @@ class Collapser {
       incident_[to].push_back(t);
     }
     position_alive_[from] = 0;
+    if (limb != kNoLimb) --limb_positions_[limb];
     incident_[from].clear();
     leaving_[from].clear();
     queue_.remove(from);
@@ -465,6 +472,33 @@ class Collapser {
     for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[root_of[p]];
   }
 
+  // Joints whose dominant positions outside the small parts span at least kLimbFraction of
+  // the character's diagonal (bind pose); limb_[p] is p's joint when that joint is a limb.
+  void mark_limbs() {
+    const uint32_t positions = mesh_.position_count();
+    uint32_t joints = 0;
+    for (uint16_t j : mesh_.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
+    std::vector<glm::dvec3> lo(joints, glm::dvec3(1e300)), hi(joints, glm::dvec3(-1e300));
+    glm::dvec3 all_lo(1e300), all_hi(-1e300);
+    for (uint32_t p = 0; p < positions; ++p) {
+      if (incident_[p].empty()) continue;
+      all_lo = glm::min(all_lo, at(0, p)), all_hi = glm::max(all_hi, at(0, p));
+      if (small_part_[p]) continue;
+      const uint16_t j = mesh_.dominant_joint[p];
+      lo[j] = glm::min(lo[j], at(0, p)), hi[j] = glm::max(hi[j], at(0, p));
+    }
+    const double limit = kLimbFraction * glm::length(all_hi - all_lo);
+    limb_.assign(positions, kNoLimb);
+    limb_positions_.assign(joints, 0);
+    for (uint32_t p = 0; p < positions; ++p) {
+      const uint16_t j = mesh_.dominant_joint[p];
+      if (incident_[p].empty() || small_part_[p] || !(glm::length(hi[j] - lo[j]) >= limit))
+        continue;
+      limb_[p] = j;
+      ++limb_positions_[j];
+    }
+  }
+
   double bind_area(uint32_t t) const {
     const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)),
                      c = at(0, position(t, 2));
@@ -555,7 +589,10 @@ class Collapser {
   std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
   std::vector<char> position_alive_;
   std::vector<char> small_part_;  // position lies on a part that may vanish
-  std::vector<uint32_t> star_;    // per position: bumped when its incident faces change
+  static constexpr uint16_t kNoLimb = 0xffff;
+  std::vector<uint16_t> limb_;            // per position: its limb joint, or kNoLimb
+  std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb
+  std::vector<uint32_t> star_;            // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving_;  // per position: its live candidates
   // Scratch of try_collapse and its helpers, kept so the loop does not allocate.

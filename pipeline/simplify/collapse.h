@@ -16,6 +16,7 @@ struct CollapseStats {
   uint32_t locked_positions = 0;  // on non-manifold edges or complex borders: never moved
   uint32_t rejected_flips = 0;    // collapses refused because a face folded in the bind pose
   uint32_t rejected_topology = 0;
+  uint32_t rejected_limbs = 0;  // collapses refused because they took a limb's last position
   uint32_t priced_flips = 0;    // (face, pose) flips priced into candidates' costs
   uint32_t seam_crossings = 0;  // collapses made that cross a UV seam or material border
   // Collapses made before the first seam crossing: levels down to there keep every seam.
@@ -34,6 +35,11 @@ constexpr double kLeftBehindWeight = 3.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
+// A joint whose dominant positions (outside the small parts) span at least this fraction
+// of the character's bind-pose diagonal is a limb: its last such position is never
+// collapsed onto another joint's, so a limb, head or tail thins to a spike at the lowest
+// levels instead of vanishing.
+constexpr double kLimbFraction = 0.1;
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link

@@ -60,6 +60,13 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
     mesh.position_of[v] = it->second;
   }
   const uint32_t positions = mesh.position_count();
+  mesh.dominant_joint.resize(positions);
+  for (uint32_t p = 0; p < positions; ++p) {
+    const VertexRef& r = refs[mesh.representative[p]];
+    const std::array<float, 4>& w = r.primitive->weights[r.index];
+    const int k = static_cast<int>(std::max_element(w.begin(), w.end()) - w.begin());
+    mesh.dominant_joint[p] = r.primitive->joints[r.index][k];
+  }
   mesh.wedge_offset.assign(positions + 1, 0);
   for (uint32_t v = 0; v < refs.size(); ++v) ++mesh.wedge_offset[mesh.position_of[v] + 1];
   std::partial_sum(mesh.wedge_offset.begin(), mesh.wedge_offset.end(), mesh.wedge_offset.begin());

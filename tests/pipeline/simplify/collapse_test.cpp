@@ -1,12 +1,13 @@
 // The collapse rules (one set all the way down): seams and material borders never crack at
-// any level, small detached parts may vanish while large ones stay, and more sampled poses
-// do not make a level worse.
+// any level, small detached parts may vanish while large ones and every limb stay, and more
+// sampled poses do not make a level worse.
 #include "simplify/collapse.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "asset_paths.h"
@@ -182,6 +183,53 @@ TEST(CollapseSmallParts, SmallNearPartsVanishLargeAndFarPartsStay) {
   for (int id : {0, 2, 3}) {
     ASSERT_TRUE(kept.count(id)) << "part " << id << " vanished";
     EXPECT_GE(kept.at(id), 4u) << "part " << id;
+  }
+}
+
+// Every limb (a joint whose dominant vertices span at least kLimbFraction of the diagonal)
+// still has a vertex of its own in a triangle of the coarsest level.
+void expect_every_limb_at_the_minimum(const SkinnedAsset& a) {
+  const ProgressiveMesh pm = simplify(a, SimplifyOptions{});
+  std::vector<glm::vec3> positions;
+  std::vector<uint16_t> dominant;
+  for (const Primitive& p : a.primitives)
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      positions.push_back(p.positions[v]);
+      const auto& w = p.weights[v];
+      dominant.push_back(p.joints[v][std::max_element(w.begin(), w.end()) - w.begin()]);
+    }
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  std::map<uint16_t, std::pair<glm::vec3, glm::vec3>> box;
+  for (size_t v = 0; v < positions.size(); ++v) {
+    lo = glm::min(lo, positions[v]), hi = glm::max(hi, positions[v]);
+    auto [it, fresh] = box.emplace(dominant[v], std::make_pair(positions[v], positions[v]));
+    it->second.first = glm::min(it->second.first, positions[v]);
+    it->second.second = glm::max(it->second.second, positions[v]);
+  }
+  std::set<uint16_t> kept;
+  for (uint32_t i : pm.reconstruct(pm.min_vertices)) kept.insert(dominant[pm.vertex_source[i]]);
+  int limbs = 0;
+  for (const auto& [joint, b] : box) {
+    if (glm::length(b.second - b.first) < kLimbFraction * glm::length(hi - lo)) continue;
+    ++limbs;
+    EXPECT_TRUE(kept.count(joint))
+        << "joint " << a.skeleton.joints[joint].name << " has no vertex at the minimum ("
+        << pm.min_vertices << " vertices)";
+  }
+  EXPECT_GE(limbs, 3);
+}
+
+TEST(CollapseLimbs, SpectatorKeepsEveryLimbAtItsMinimum) {
+  expect_every_limb_at_the_minimum(samples::make_spectator_character());
+}
+
+TEST(CollapseLimbs, SingleMeshCharactersKeepEveryLimbAtTheirMinimum) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  // One closed part each, which earlier went down to a tetrahedron.
+  for (const char* path : {"CesiumMan/CesiumMan.glb", "Quaternius_Zebra/Zebra.fbx",
+                           "Quaternius_Watermelon/Watermelon.fbx"}) {
+    SCOPED_TRACE(path);
+    expect_every_limb_at_the_minimum(import_asset((test::shared_assets() / path).string()));
   }
 }
 
