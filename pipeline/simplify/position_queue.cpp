@@ -11,12 +11,7 @@ void PositionQueue::set(const QueueKey& key) {
     sift_up(i);
     return;
   }
-  const bool lower = key < heap_[i];
-  heap_[i] = key;
-  if (lower)
-    sift_up(i);
-  else
-    sift_down(i);
+  replace(i, key);
 }
 
 void PositionQueue::remove(uint32_t position) {
@@ -26,8 +21,12 @@ void PositionQueue::remove(uint32_t position) {
   const QueueKey last = heap_.back();
   heap_.pop_back();
   if (i == heap_.size()) return;
-  const bool lower = last < heap_[i];
-  place(i, last);
+  replace(i, last);
+}
+
+void PositionQueue::replace(uint32_t i, const QueueKey& key) {
+  const bool lower = key < heap_[i];
+  place(i, key);
   if (lower)
     sift_up(i);
   else

@@ -45,6 +45,7 @@ class PositionQueue {
     heap_[i] = key;
     slot_[key.from] = i;
   }
+  void replace(uint32_t i, const QueueKey& key);  // puts key at slot i and restores the heap
   void sift_up(uint32_t i);
   void sift_down(uint32_t i);
 
