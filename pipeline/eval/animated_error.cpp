@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <thread>
 
 #include "core/parallel.h"
 #include "crowdbake/pipeline/pose_evaluator.h"

@@ -370,8 +370,8 @@ class Collapser {
     return Outcome::kDone;
   }
 
-  // Pushes the refused collapses waiting at `to` and its ring once each (a pair waits at
-  // both its ends; pushing it twice would make it wait twice over).
+  // Offers again the refused collapses waiting at `to` and its ring, once each (a pair waits
+  // at both its ends).
   void retry_refused(uint32_t to, const std::vector<uint32_t>& ring) {
     std::vector<std::pair<uint32_t, uint32_t>>& pairs = pairs_;
     pairs.clear();

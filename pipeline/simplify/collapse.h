@@ -43,7 +43,8 @@ constexpr double kLimbFraction = 0.1;
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
-// condition, manifold borders, locked positions) and the bind-pose fold guard refuse;
+// condition, manifold borders, locked positions), the limb floor and the bind-pose fold
+// guard refuse;
 // seam crossings and flips in the other sampled poses (when all_poses) are priced.
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
