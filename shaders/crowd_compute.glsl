@@ -47,6 +47,7 @@ struct InstanceLod {
   uint local_draw;     // drawn earlier same-type instances in the workgroup
   uint visible;
   uint local_chunk;    // reconstruction chunks of earlier same-type instances in the workgroup
+  float morph;         // the geomorph's continuous count x_i (LodSelectJob::morph; 0: none)
 };
 
 struct TypeRange {
@@ -144,11 +145,12 @@ double lod_error_ladder(uint step) {
   return ldexp(thirds[step % 3u], int(step / 3u));
 }
 
-uint lod_vertices_for_error(TypeData t, double threshold) {
+uint lod_vertices_for_error(TypeData t, double threshold, out double continuous) {
   uint n = t.max_vertices;
   if (t.error_count == 0u ||
       threshold >= double(uintBitsToFloat(mesh_data[t.error_offset + t.error_count]))) {
     n = t.error_count != 0u ? mesh_data[t.error_offset] : t.max_vertices;
+    continuous = double(n) + 1.0lf;
   } else {
     for (uint k = 1u; k < t.error_count; ++k) {
       const double hi = double(uintBitsToFloat(mesh_data[t.error_offset + t.error_count + k - 1u]));
@@ -158,6 +160,7 @@ uint lod_vertices_for_error(TypeData t, double threshold) {
       precise double span = double(v1 - v0);
       precise double at = double(v0) + span * ((hi - threshold) / (hi - lo));
       n = uint(min(ceil(at), double(v1)));
+      continuous = at + 1.0lf;
       break;
     }
   }

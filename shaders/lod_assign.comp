@@ -44,6 +44,7 @@ void main() {
   }
   uint type = 0xFFFFFFFFu;
   uint selected = 0u, usable = 0u, corner_count = 0u;
+  double morph = 0.0lf;  // LodSelectJob::morph
   if (i < params.instance_count) {
     type = instances[i].type;
     const TypeData t = types[type];
@@ -54,11 +55,12 @@ void main() {
         selected = t.max_vertices;
       } else if (params.mode == kModeError) {
         precise double t_step = lod_error_ladder(step) * weights[i];
-        selected = lod_vertices_for_error(t, t_step);
+        selected = lod_vertices_for_error(t, t_step, morph);
         atomicAdd(counts[selected == t.max_vertices ? 2 : 3], 1u);
       } else {
         const double sum = stats.weight_sum;
         precise double vc = sum > 0.0lf ? params.budget * weights[i] / sum : 0.0lf;
+        if (params.mode == kModeContinuous) morph = vc;
         if (vc > double(t.max_vertices)) {
           selected = t.max_vertices;
           atomicAdd(counts[2], 1u);
@@ -70,6 +72,7 @@ void main() {
           atomicAdd(counts[4], 1u);
         } else {
           atomicAdd(counts[5], 1u);
+          morph = 0.0lf;
         }
         if (params.mode == kModeDiscrete && selected > 0u) {
           uint level = t.levels[t.level_count - 1u];
@@ -95,6 +98,7 @@ void main() {
     lods[i].selected = selected;
     lods[i].usable = usable;
     lods[i].corners = corner_count;
+    lods[i].morph = float(morph);
   }
 
   // Per-type exclusive prefix of (corners, drawn, chunks) within the workgroup, in instance

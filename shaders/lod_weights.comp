@@ -56,7 +56,8 @@ void main() {
       w = tau;
       for (uint j = 0u; j < kLadderSteps; ++j) {
         precise double t_step = lod_error_ladder(j) * tau;
-        const uint n = lod_vertices_for_error(t, t_step);
+        double unused;
+        const uint n = lod_vertices_for_error(t, t_step, unused);
         ADD64(ladder_lo[j], ladder_hi[j], n);
       }
     } else if (visible && t.triangles > 0u) {

@@ -6,7 +6,7 @@
 // The includer includes instance.glsl (GpuInstance, kNoPose) before this file and enables
 // GL_EXT_control_flow_attributes (loops are kept rolled to keep the shader small). This file
 // declares the per-type descriptor set (SKIN_SET, default 1): the type's constants, its
-// vertices, its animation texture as raw words and its pose buffer.
+// vertices, its animation texture as raw words, its pose buffer and its geomorph table.
 #ifndef CROWDBAKE_SKIN_GLSL
 #define CROWDBAKE_SKIN_GLSL
 
@@ -48,6 +48,9 @@ layout(std430, set = SKIN_SET, binding = 1) readonly buffer VertexBlock { GpuVer
 layout(std430, set = SKIN_SET, binding = 2) readonly buffer AnimBlock { uint anim_words[]; };
 // EffectFrame::pose_buffers[type]: 12 floats per joint, joints of pose 0 first.
 layout(std430, set = SKIN_SET, binding = 3) readonly buffer PoseBlock { float pose_floats[]; };
+// The type's geomorph table (runtime/geomorph.h GeomorphVertex): per vertex the vertex it
+// collapses onto and its removal point r_v (0: never morphs). (Binding 4 is the partition mask.)
+layout(std430, set = SKIN_SET, binding = 5) readonly buffer MorphBlock { uvec2 morph_table[]; };
 
 // A 3x4 affine matrix as its three rows (the codec's m[0..3], m[4..7], m[8..11]).
 struct Affine {
@@ -339,5 +342,13 @@ SkinnedVertex place_vertex(GpuInstance inst, GpuVertex v, Affine m) {
 
 // SkinJob::Run for one vertex.
 SkinnedVertex skin_vertex(GpuInstance inst, GpuVertex v) { return place_vertex(inst, v, blend_joints(inst, v)); }
+
+// m_v(x) of runtime/geomorph.h (geomorph_weight), operation by operation.
+float geomorph_weight(uvec2 vertex, float x, float fraction) {
+  if (vertex.y == 0u || !(fraction > 0.0) || !(x > 0.0) || isinf(x)) return 0.0;
+  precise float window = max(fraction * x, 1.0);
+  precise float m = 1.0 - (x - float(vertex.y)) / window;
+  return clamp(m, 0.0, 1.0);
+}
 
 #endif  // CROWDBAKE_SKIN_GLSL

@@ -12,10 +12,11 @@
 const uint kSkinNotDrawn = 0xFFFFFFFFu;
 const uint kMaxDispatch = 65535u;  // workgroups per dimension
 
-// CrowdCompute's InstanceLod (crowd_compute.h), 32 bytes.
+// CrowdCompute's InstanceLod (crowd_compute.h), 36 bytes.
 struct SkinLod {
   uint selected, usable, corners, corner_offset;
   uint local_corner, local_draw, visible, local_chunk;
+  float morph;  // the geomorph's continuous count x_i (0: none)
 };
 
 // Unit normal ↔ octahedral snorm16x2 (one uint next to the position).

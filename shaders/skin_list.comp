@@ -20,7 +20,9 @@ layout(std430, set = 0, binding = 4) writeonly buffer BaseBlock { uint skin_base
 layout(std430, set = 0, binding = 5) readonly buffer ParamsBlock {
   uint instance_count, type_count, list_stride, skin_capacity;
   uint instanced;  // 1: CrowdCompute drew instanced static levels (no corner offsets)
-  uint palette_stride, pad0, pad1;
+  uint palette_stride;
+  float geomorph;  // skin_pass.comp
+  uint pad1;
   uint type_joints[];  // per type
 } params;
 

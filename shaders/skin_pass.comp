@@ -2,8 +2,9 @@
 // vertices of drawn instances of the type (skin.glsl, the shader the probe tests) into their
 // slots; the shadow and colour vertex shaders then only fetch. Like PaletteJob + SkinJob, the
 // instance's joint matrices are decoded once (skin_palette.comp) and every vertex blends them
-// (the same values skin_vertex decodes per influence, so the same results). No shared memory
-// and no barrier: lavapipe runs workgroups with barriers as coroutines, far slower.
+// (the same values skin_vertex decodes per influence, so the same results), and vertices about
+// to leave the LoD are geomorphed onto their collapse targets (runtime/geomorph.h). No shared
+// memory and no barrier: lavapipe runs workgroups with barriers as coroutines, far slower.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -23,7 +24,9 @@ layout(std430, set = 0, binding = 4) readonly buffer BaseBlock { uint skin_base[
 layout(std430, set = 0, binding = 6) writeonly buffer SkinnedBlock { vec4 skinned[]; };
 layout(std430, set = 0, binding = 5) readonly buffer ParamsBlock {
   uint instance_count, type_count, list_stride, skin_capacity;
-  uint instanced, palette_stride, pad0, pad1;
+  uint instanced, palette_stride;
+  float geomorph;  // LodSettings::geomorph: the morph window as a fraction of x (0: off)
+  uint pad1;
 } params;
 // skin_palette.comp's output: the joint matrices of listed instance g of type t, 3 rows per
 // joint, from ((t · list_stride + g) · palette_stride) · 3 on.
@@ -55,6 +58,43 @@ Affine blend_palette(GpuVertex v, uint first) {
   return m;
 }
 
+// Vertex v of a listed instance, skinned.
+SkinnedVertex skin_listed(GpuInstance inst, uint v, uint first) {
+  const GpuVertex vertex = vertices[v];
+  return kPalette != 0u ? place_vertex(inst, vertex, blend_palette(vertex, first))
+                        : skin_vertex(inst, vertex);
+}
+
+// Vertex v geomorphed at the instance's continuous count x (runtime/geomorph.h): its skinned
+// value blended down its collapse chain, P'(v) = (1 − m_v)·P(v) + m_v·P'(collapse_to[v]), the
+// loop of geomorph_values. Unmorphed vertices (m_v = 0) come out as skin_listed's, bit for bit.
+// (The chain ends: targets descend, and vertices of the coarsest level never morph.)
+// note: written as an early return and a while loop on purpose: a `for (;;)` with the
+// unmorphed case breaking out of its first iteration left some vertices at zero on llvmpipe
+// (Mesa 22.3) where neighbouring lanes went on down their chains.
+SkinnedVertex morph_listed(GpuInstance inst, uint v, uint first, float x) {
+  SkinnedVertex s = skin_listed(inst, v, first);
+  uvec2 entry = morph_table[v];
+  float m = geomorph_weight(entry, x, params.geomorph);
+  if (m == 0.0) return s;
+  vec3 position = (1.0 - m) * s.position, normal = (1.0 - m) * s.normal;
+  float weight = m;
+  uint a = entry.x;
+  [[dont_unroll]] while (weight > 0.0) {
+    s = skin_listed(inst, a, first);
+    entry = morph_table[a];
+    m = geomorph_weight(entry, x, params.geomorph);
+    position += (weight * (1.0 - m)) * s.position;
+    normal += (weight * (1.0 - m)) * s.normal;
+    weight *= m;
+    a = entry.x;
+  }
+  const float len = length(normal);
+  s.position = position;
+  s.normal = len > 0.0 ? normal * (1.0 / len) : vec3(0.0);
+  return s;
+}
+
 void main() {
   const uint t = push.type;
   const uint count = type_args[t].w;
@@ -64,11 +104,9 @@ void main() {
     const uint base = skin_base[i];
     const GpuInstance inst = instances[i];
     const uint first = (t * params.list_stride + g) * params.palette_stride * 3u;
+    const float x = lods[i].morph;
     for (uint v = gl_LocalInvocationID.x; v < n; v += 64u) {
-      const GpuVertex vertex = vertices[v];
-      const SkinnedVertex s = kPalette != 0u
-                                  ? place_vertex(inst, vertex, blend_palette(vertex, first))
-                                  : skin_vertex(inst, vertex);
+      const SkinnedVertex s = morph_listed(inst, v, first, x);
       skinned[base + v] = vec4(s.position, uintBitsToFloat(pack_normal(s.normal)));
     }
   }

@@ -58,7 +58,7 @@ struct StatsData {
   uint32_t coarser, error_step;
 };
 static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
-static_assert(sizeof(InstanceLod) == 32 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
+static_assert(sizeof(InstanceLod) == 36 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
 
 constexpr uint32_t kKernels = CrowdCompute::kKernelCount;
 constexpr const char* kShaders[kKernels] = {

@@ -36,7 +36,7 @@ void normalize3(float v[3]);
 void multiply4(const float a[16], const float b[16], float out[16]);
 
 struct TypeResources {
-  GpuBuffer constants, vertices, animation, poses;
+  GpuBuffer constants, vertices, animation, poses, morphs;
   GpuImage mask;
   VkDescriptorSet set = VK_NULL_HANDLE;
   uint32_t vertex_count = 0, joints = 0;

@@ -1,10 +1,11 @@
 // CrowdDraw's long-lived resources: descriptor set layouts, pool and sets, samplers, each
-// character type's buffers (constants, vertices, animation words, poses) and partition mask,
-// and the swatch array; plus the descriptor writes that point the sets at them.
+// character type's buffers (constants, vertices, animation words, poses, geomorph table) and
+// partition mask, and the swatch array; plus the descriptor writes that point the sets at them.
 #include <algorithm>
 #include <string>
 
 #include "crowd_draw_impl.h"
+#include "crowdbake/runtime/geomorph.h"
 #include "vk_helpers.h"
 
 namespace crowdbake::runtime::gpu {
@@ -62,6 +63,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   if (Status s = create_set_layout(d, frame_bindings, frame_layout); !s) return s;
   if (Status s = create_set_layout(d, type_bindings, type_layout); !s) return s;
@@ -72,7 +74,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 4 * type_count + 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 5 * type_count + 8},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
   };
   if (Status s = create_descriptor_pool(d, sizes, 2 + type_count, pool); !s) return s;
@@ -177,6 +179,16 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
       !s)
     return s;
 
+  // Geomorph table (skin.glsl): a type without progressive data never morphs.
+  std::vector<GeomorphVertex> morphs = geomorph_table(progressive_view(c));
+  if (morphs.empty())
+    for (uint32_t v = 0; v < std::max<uint32_t>(out.vertex_count, 1); ++v)
+      morphs.push_back({v, kGeomorphNever});
+  if (Status s = create_filled_buffer(*context, storage, MemoryKind::kDeviceLocal, morphs.data(),
+                                      morphs.size() * sizeof(GeomorphVertex), out.morphs);
+      !s)
+    return s;
+
   // note: the texture is uploaded byte for byte; skin.glsl reads it as little-endian words.
   const VkDeviceSize anim_bytes = std::max<VkDeviceSize>((anim.data.size() + 3) / 4 * 4, 16);
   if (anim_bytes > context->limits().maxStorageBufferRange)
@@ -231,6 +243,7 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
       .buffer(2, t.animation.descriptor())
       .buffer(3, t.poses.descriptor())
       .image(4, {mask_sampler, t.mask.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL})
+      .buffer(5, t.morphs.descriptor())
       .apply(context->device());
 }
 
@@ -250,7 +263,7 @@ CrowdDraw::Memory CrowdDraw::memory() const {
   Memory out;
   for (const TypeResources& t : m.types)
     out.per_type.push_back(t.constants.size() + t.vertices.size() + t.animation.size() +
-                           t.poses.size() + image_bytes(t.mask));
+                           t.poses.size() + t.morphs.size() + image_bytes(t.mask));
   for (const GpuBuffer* b :
        {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})
     out.skinning += b->size();

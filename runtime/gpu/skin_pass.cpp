@@ -2,6 +2,8 @@
 // per-frame sizing of the skinned-vertex slots, instance lists and joint palette, and the
 // recorded list → palette → skin dispatches that run before the shadow and colour passes.
 #include <algorithm>
+#include <cstring>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -10,6 +12,12 @@
 
 namespace crowdbake::runtime::gpu {
 namespace {
+
+uint32_t float_bits(float f) {
+  uint32_t bits = 0;
+  std::memcpy(&bits, &f, sizeof bits);
+  return bits;
+}
 
 // Replaces `buffer` by a new device-local storage buffer of `bytes` (kept as it was on failure).
 Status replace_storage_buffer(VulkanContext& context, VkDeviceSize bytes, GpuBuffer& buffer) {
@@ -133,7 +141,7 @@ Status CrowdDraw::Impl::update_skin_pass(const Scene& scene, const FrameState& s
                                   skin_capacity,
                                   compute.instanced() ? 1u : 0u,
                                   palette_stride,
-                                  0,
+                                  float_bits(scene.lod.geomorph),
                                   0};
   for (const TypeResources& t : types) params.push_back(t.joints);
   {
@@ -169,6 +177,25 @@ Status CrowdDraw::read_skin_stats(uint32_t& slots_used, uint32_t& no_room) const
   if (Status s = m.type_args.download(totals, sizeof(totals), 16 * m.types.size()); !s) return s;
   slots_used = std::min(totals[0], m.skin_capacity);
   no_room = totals[1];
+  return {};
+}
+
+Status CrowdDraw::read_skinned_positions(uint32_t instance, uint32_t count,
+                                         std::vector<float>& positions) const {
+  const Impl& m = *impl_;
+  positions.clear();
+  if (instance >= m.instance_count)
+    return {StatusCode::kInvalidArgument, "instance " + std::to_string(instance) + " out of range"};
+  uint32_t base = 0;
+  if (Status s = m.skin_base.download(&base, sizeof base, VkDeviceSize{instance} * 4); !s) return s;
+  if (base == 0xFFFFFFFFu || count == 0) return {};
+  if (uint64_t{base} + count > m.skin_capacity)
+    return {StatusCode::kInvalidArgument, "more vertices than the instance's slots"};
+  std::vector<float> slots(4 * size_t{count});
+  if (Status s = m.skinned.download(slots.data(), slots.size() * 4, VkDeviceSize{base} * 16); !s)
+    return s;
+  for (size_t v = 0; v < count; ++v)
+    positions.insert(positions.end(), {slots[4 * v], slots[4 * v + 1], slots[4 * v + 2]});
   return {};
 }
 

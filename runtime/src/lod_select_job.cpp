@@ -23,6 +23,8 @@ bool check_lod_settings(const LodSettings& s, std::string* why) {
   if (!(s.min_t >= 0.0f && s.min_t <= 1.0f)) return fail(why, "min_t must be in [0, 1]");
   if (!(s.max_pixel_error > 0.0f) || !std::isfinite(s.max_pixel_error))
     return fail(why, "max_pixel_error must be a finite number of pixels > 0");
+  if (!(s.geomorph >= 0.0f && s.geomorph < 1.0f))
+    return fail(why, "geomorph must be a fraction in [0, 1) (0: off)");
   if (s.discrete_level_count < 1 || s.discrete_level_count > kMaxDiscreteLevels)
     return fail(why, "discrete levels: 1 to 8 levels");
   for (uint32_t k = 0; k < s.discrete_level_count; ++k) {
@@ -126,12 +128,13 @@ double lod_error_threshold(double distance, float world_radius, float type_radiu
   return (double{max_pixel_error} * distance * double{type_radius}) / below;
 }
 
-uint32_t lod_vertices_for_error(const LodType& type, double t) {
+uint32_t lod_vertices_for_error(const LodType& type, double t, double* continuous) {
   const Span<const uint32_t> v = type.error_vertices;
   const Span<const float> e = type.error_max;
   uint32_t n = type.max_vertices;
   if (v.size() == 0 || t >= double{e[0]}) {
     n = v.size() ? v[0] : type.max_vertices;
+    if (continuous) *continuous = static_cast<double>(n) + 1.0;
   } else {
     for (size_t k = 1; k < v.size(); ++k) {
       const double hi = e[k - 1], lo = e[k];
@@ -139,6 +142,7 @@ uint32_t lod_vertices_for_error(const LodType& type, double t) {
       const double span = static_cast<double>(v[k] - v[k - 1]);
       const double at = static_cast<double>(v[k - 1]) + span * ((hi - t) / (hi - lo));
       n = static_cast<uint32_t>(std::min(std::ceil(at), static_cast<double>(v[k])));
+      if (continuous) *continuous = at + 1.0;
       break;
     }
   }
@@ -166,7 +170,7 @@ bool LodSelectJob::Validate() const {
   if (view == nullptr || !check_lod_settings(settings)) return false;
   const size_t n = type.size();
   if (spheres.size() != 4 * n || visible.size() != n || weights.size() != n ||
-      vertex_count.size() != n)
+      vertex_count.size() != n || (morph.size() != 0 && morph.size() != n))
     return false;
   for (const LodType& t : types) {
     if (t.min_vertices > t.max_vertices) return false;
@@ -211,12 +215,14 @@ bool LodSelectJob::Run() const {
     // Pass 2: each visible instance at that step.
     for (size_t i = 0; i < n; ++i) {
       uint32_t selected = 0;
+      double x = 0.0;
       if (visible[i]) {
         const LodType& t = types[type[i]];
-        selected = lod_vertices_for_error(t, ladder[step] * weights[i]);
+        selected = lod_vertices_for_error(t, ladder[step] * weights[i], &x);
         ++(selected == t.max_vertices ? s.at_max : s.in_range);
       }
       vertex_count[i] = selected;
+      if (morph.size()) morph[i] = static_cast<float>(x);
       s.drawn += selected > 0;
       s.selected_vertices += selected;
     }
@@ -250,12 +256,14 @@ bool LodSelectJob::Run() const {
   const double budget = settings.budget;
   for (size_t i = 0; i < n; ++i) {
     uint32_t selected = 0;
+    double x = 0.0;
     if (visible[i]) {
       const LodType& t = types[type[i]];
       if (settings.mode == LodMode::kFull) {
         selected = t.max_vertices;
       } else {
         const double vc = sum > 0.0 ? budget * weights[i] / sum : 0.0;
+        if (settings.mode == LodMode::kContinuous) x = vc;
         if (vc > t.max_vertices) {
           selected = t.max_vertices;
           ++s.at_max;
@@ -267,6 +275,7 @@ bool LodSelectJob::Run() const {
           ++s.promoted;
         } else {
           ++s.dropped;
+          x = 0.0;
         }
         if (settings.mode == LodMode::kDiscrete && selected > 0) {
           uint32_t level = t.levels[t.level_count - 1];  // coarsest
@@ -281,6 +290,7 @@ bool LodSelectJob::Run() const {
       }
     }
     vertex_count[i] = selected;
+    if (morph.size()) morph[i] = static_cast<float>(x);
     s.drawn += selected > 0;
     s.selected_vertices += selected;
   }

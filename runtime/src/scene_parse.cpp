@@ -351,7 +351,7 @@ void parse_lod(const json& v, RawScene& s) {
   const std::string path = "lod";
   check_object(v, path,
                {"mode", "budget", "alpha", "min_t", "drop_below_min_t", "max_pixel_error",
-                "discrete_levels"});
+                "geomorph", "discrete_levels"});
   LodSettings& l = s.lod;
   if (const json* p = find(v, "mode")) {
     const std::string mode = string(*p, path + ".mode");
@@ -385,6 +385,12 @@ void parse_lod(const json& v, RawScene& s) {
     if (!(e > 0.0) || !std::isfinite(e) || e > 1e6)
       fail(path + ".max_pixel_error", "must be a number of pixels > 0, got " + show(e));
     l.max_pixel_error = static_cast<float>(e);
+  }
+  if (const json* p = find(v, "geomorph")) {
+    const double f = number(*p, path + ".geomorph");
+    if (!(f >= 0.0 && f < 1.0))
+      fail(path + ".geomorph", "must be a fraction in [0, 1) (0: off), got " + show(f));
+    l.geomorph = static_cast<float>(f);
   }
   if (const json* p = find(v, "drop_below_min_t"))
     l.drop_below_min_t = boolean(*p, path + ".drop_below_min_t");

@@ -30,6 +30,7 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
   state.visible.resize(n);
   state.weights.resize(n);
   state.vertex_count.resize(n);
+  state.morph.resize(n);
   state.lod_types.resize(scene.types.size());
   state.bounds.resize(scene.types.size());
   for (size_t t = 0; t < scene.types.size(); ++t) {
@@ -90,6 +91,7 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
   lod.visible = state.visible;
   lod.weights = state.weights;
   lod.vertex_count = state.vertex_count;
+  lod.morph = state.morph;
   lod.stats = &state.lod;
   if (!lod.Run()) return invalid("LoD selection rejected its inputs");
   return {};

@@ -44,6 +44,7 @@ struct Crowd {
   std::vector<uint8_t> visible;
   std::vector<double> weights;
   std::vector<uint32_t> vertex_count;
+  std::vector<float> morph;
   LodStats stats;
   View view = test_view();
 
@@ -57,6 +58,7 @@ struct Crowd {
   bool run(const LodSettings& settings) {
     weights.assign(type.size(), -1.0);
     vertex_count.assign(type.size(), 12345);
+    morph.assign(type.size(), -1.0f);
     LodSelectJob job;
     job.settings = settings;
     job.view = &view;
@@ -66,6 +68,7 @@ struct Crowd {
     job.visible = visible;
     job.weights = weights;
     job.vertex_count = vertex_count;
+    job.morph = morph;
     job.stats = &stats;
     return job.Run();
   }
@@ -331,6 +334,15 @@ TEST(LodSelectJob, SettingsChecks) {
   s.min_t = 1.5f;
   EXPECT_FALSE(check_lod_settings(s, &why));
   EXPECT_NE(why.find("min_t"), std::string::npos);
+  for (float bad : {-0.1f, 1.0f, std::nanf("")}) {
+    s = LodSettings{};
+    s.geomorph = bad;
+    EXPECT_FALSE(check_lod_settings(s, &why)) << bad;
+    EXPECT_NE(why.find("geomorph"), std::string::npos) << why;
+  }
+  s = LodSettings{};
+  s.geomorph = 0.0f;  // off
+  EXPECT_TRUE(check_lod_settings(s, &why));
   s = LodSettings{};
   s.discrete_levels[1] = 1.0f;
   EXPECT_FALSE(check_lod_settings(s, &why));
@@ -371,6 +383,10 @@ TEST(LodSelectJob, JobValidity) {
   EXPECT_FALSE(bad.Validate());
   bad = job;
   bad.visible = Span<const uint8_t>(c.visible.data(), 1);
+  EXPECT_FALSE(bad.Validate());
+  std::vector<float> short_morph(1);
+  bad = job;
+  bad.morph = short_morph;
   EXPECT_FALSE(bad.Validate());
   std::vector<uint32_t> bad_type{0, 1};
   bad = job;
@@ -474,6 +490,53 @@ TEST(LodSelectJob, ErrorModeBudgetRaisesEveryErrorEvenly) {
   EXPECT_EQ(c.stats.drawn, 10u);
   EXPECT_TRUE(c.stats.budget_exceeded);
   for (uint32_t n : c.vertex_count) EXPECT_EQ(n, 100u);
+}
+
+// The geomorph's continuous count: vc_i in budget mode and the interpolated count + 1 in error
+// mode, so floor(x_i) = n_i inside the LoD range; nothing in full and discrete modes.
+TEST(LodSelectJob, MorphIsTheContinuousCountTheSelectionRoundsDown) {
+  Crowd c = two_instances();  // vc = 8/9 N and 1/9 N
+  LodSettings s = settings(900);
+  ASSERT_TRUE(c.run(s));
+  EXPECT_EQ(c.vertex_count[0], 800u);
+  EXPECT_EQ(c.vertex_count[1], 100u);
+  EXPECT_NEAR(c.morph[0], 800.0f, 1e-3f);
+  EXPECT_NEAR(c.morph[1], 100.0f, 1e-3f);
+  s.budget = 950;  // vc 844.4 and 105.6
+  ASSERT_TRUE(c.run(s));
+  for (size_t i = 0; i < 2; ++i) EXPECT_EQ(std::floor(c.morph[i]), float(c.vertex_count[i])) << i;
+  EXPECT_GT(c.morph[0], 844.0f);
+  s.budget = 1800;  // vc_near 1600 > max: drawn at max, x above it
+  ASSERT_TRUE(c.run(s));
+  EXPECT_EQ(c.vertex_count[0], 1000u);
+  EXPECT_NEAR(c.morph[0], 1600.0f, 1e-2f);
+  for (LodMode mode : {LodMode::kDiscrete, LodMode::kFull}) {
+    s.mode = mode;
+    ASSERT_TRUE(c.run(s));
+    EXPECT_EQ(c.morph[0], 0.0f);
+    EXPECT_EQ(c.morph[1], 0.0f);
+  }
+  s = settings(200);  // vc_far 22.2 < MinT · 100: dropped, no morph
+  ASSERT_TRUE(c.run(s));
+  EXPECT_EQ(c.vertex_count[1], 0u);
+  EXPECT_EQ(c.morph[1], 0.0f);
+
+  const ErrorTable table;
+  Crowd e;
+  e.types = {table.type()};
+  e.add(0, 18.75f, 1.0f);  // τ 0.375: at = 250 exactly
+  e.add(0, 20.0f, 1.0f);   // τ 0.4: at = 100 + 300 · 0.1 / 0.25 = 220
+  e.add(0, 19.0f, 1.0f);   // τ 0.38: at = 244, not a whole count
+  e.add(0, 50.0f, 1.0f);   // τ 1.0: coarsest sample, x = 101
+  e.add(0, 5.0f, 1.0f, false);
+  ASSERT_TRUE(e.run(error_settings(100000)));
+  EXPECT_EQ(e.morph[0], 251.0f);
+  EXPECT_NEAR(e.morph[1], 221.0f, 1e-3f);
+  // note: at = 243.99… rounds up to 244 vertices; x = 244.99… rounds to the float 245.
+  EXPECT_GE(e.morph[2], float(e.vertex_count[2]));
+  EXPECT_LE(e.morph[2], float(e.vertex_count[2] + 1));
+  EXPECT_EQ(e.morph[3], 101.0f);
+  EXPECT_EQ(e.morph[4], 0.0f);
 }
 
 TEST(LodSelectJob, ErrorModeRejectsUnequalErrorTables) {

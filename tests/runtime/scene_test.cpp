@@ -137,7 +137,8 @@ TEST(Scene, SettingsAndCameraPath) {
   const Status s = files.load(
       scene_with(
           R"("version": 1,
-         "lod": {"mode": "discrete", "budget": 250000, "alpha": 2.5, "min_t": 0.25, "discrete_levels": [1, 0.4, 0.1]},
+         "lod": {"mode": "discrete", "budget": 250000, "alpha": 2.5, "min_t": 0.25, "geomorph": 0.125,
+                 "discrete_levels": [1, 0.4, 0.1]},
          "animation": {"interpolation": "linear", "root_motion": false})",
           R"("camera": {"up": [0, 1, 0], "fov_degrees": 40, "near": 0.5, "far": 300, "resolution": [640, 360],
                     "path": [{"time": 0, "position": [0, 2, 30], "target": [0, 1, 0]},
@@ -148,6 +149,7 @@ TEST(Scene, SettingsAndCameraPath) {
   EXPECT_EQ(scene.lod.budget, 250000u);
   EXPECT_EQ(scene.lod.alpha, 2.5f);
   EXPECT_EQ(scene.lod.min_t, 0.25f);
+  EXPECT_EQ(scene.lod.geomorph, 0.125f);
   EXPECT_EQ(scene.lod.discrete_level_count, 3u);
   EXPECT_EQ(scene.lod.discrete_levels[1], 0.4f);
   EXPECT_EQ(scene.animation.filter, FrameFilter::kLinear);
@@ -478,6 +480,9 @@ TEST(SceneErrors, OutOfRangeValues) {
       {"give either rotation or yaw_degrees"});
   expect_error(scene_with(R"("lod": {"alpha": 1})"), {"lod.alpha: must be > 1"});
   expect_error(scene_with(R"("lod": {"min_t": 2})"), {"lod.min_t: must be in [0, 1], got 2"});
+  expect_error(scene_with(R"("lod": {"geomorph": 1})"),
+               {"lod.geomorph: must be a fraction in [0, 1) (0: off), got 1"});
+  expect_error(scene_with(R"("lod": {"geomorph": -0.5})"), {"lod.geomorph: must be a fraction"});
   expect_error(scene_with(R"("lod": {"discrete_levels": [0.5, 1]})"),
                {"lod.discrete_levels[1]: levels must be strictly decreasing"});
   expect_error(scene_with(R"("version": 2)"),

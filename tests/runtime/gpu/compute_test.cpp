@@ -34,9 +34,27 @@ class ComputeTest : public test::GpuTest {
     ASSERT_TRUE(gpu.ok()) << gpu.message();
   }
 
-  // Every instance: selected count identical; drawn instances: corners identical to
-  // reconstruct_lod. Returns the number of instances checked as drawn.
+  // Every instance's geomorph count (LodSelectJob::morph) identical, bit for bit.
+  void expect_same_morph(const CrowdCompute& compute) {
+    std::vector<InstanceLod> lods;
+    ASSERT_TRUE(compute.read_instance_lods(lods).ok());
+    ASSERT_EQ(lods.size(), state_.morph.size());
+    uint32_t mismatched = 0, morphing = 0;
+    for (size_t i = 0; i < lods.size(); ++i) {
+      morphing += state_.morph[i] > 0.0f;
+      if (lods[i].morph != state_.morph[i] && ++mismatched <= 5)
+        ADD_FAILURE() << "instance " << i << ": GPU morph " << lods[i].morph << ", CPU "
+                      << state_.morph[i];
+    }
+    EXPECT_EQ(mismatched, 0u);
+    if (state_.lod_mode == LodMode::kContinuous || state_.lod_mode == LodMode::kError)
+      EXPECT_GT(morphing, 0u);
+  }
+
+  // Every instance: selected count and geomorph count identical; drawn instances: corners
+  // identical to reconstruct_lod.
   void expect_identical(const Scene& scene, const CrowdCompute& compute, bool expect_all_fit) {
+    expect_same_morph(compute);
     std::vector<InstanceLod> lods;
     ASSERT_TRUE(compute.read_instance_lods(lods).ok());
     std::vector<uint32_t> corners;
@@ -226,6 +244,7 @@ TEST_F(ComputeTest, ErrorModeIsIdenticalToTheCpu) {
         EXPECT_EQ(state_.lod_mode, LodMode::kError);
         if (options.instanced_static_levels) {
           EXPECT_EQ(expect_instanced_identical(scene, state_, *compute), 0u);
+          expect_same_morph(*compute);
         } else {
           expect_identical(scene, *compute, true);
         }

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/runtime/geomorph.h"
 #include "crowdbake/runtime/gpu/gpu_buffer.h"
 #include "runtime/gpu/draw_test_support.h"
 #include "runtime/gpu/gpu_test_support.h"
@@ -365,6 +366,77 @@ TEST_F(RendererTest, MultisamplingSmoothsEdgesOnly) {
     EXPECT_EQ(Renderer::create(context(), scene, options, refused).code(),
               runtime::StatusCode::kInvalidArgument)
         << bad;
+  }
+}
+
+// Geomorphs change the picture only inside their window: far above every removal point (the
+// full mesh, x = budget) the frame is the unmorphed one pixel for pixel; at a mid-range count
+// vertices are on their way to their targets. (Their continuity is checked on the CPU,
+// tests/runtime/geomorph_test.cpp, and the GPU's vertices against the CPU's below; how much
+// popping they remove is measured by `crowdbake bench render`, docs/performance.md.)
+TEST_F(RendererTest, GeomorphsMoveVerticesOnlyInsideTheirWindow) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  ASSERT_TRUE(test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator()).ok());
+  test::add_grid(scene, 0, 1, 1, 1.0f);
+  scene.camera.position = {0.0f, 1.2f, 2.0f};
+  scene.camera.target = {0.0f, 0.9f, 0.0f};
+  scene.camera.width = 256;
+  scene.camera.height = 144;
+  scene.lod.mode = runtime::LodMode::kContinuous;
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  for (uint32_t budget : {100000u, 300u}) {
+    scene.lod.budget = budget;
+    scene.lod.geomorph = 0.0f;
+    const Image plain = render(scene, 0.8f);
+    scene.lod.geomorph = 0.25f;
+    const Image morphed = render(scene, 0.8f);
+    EXPECT_EQ(morphed.rgba == plain.rgba, budget == 100000u) << "budget " << budget;
+  }
+}
+
+// The skinning pass's geomorphed vertices are the CPU reference's: skin_instance, then
+// geomorph_values at the instance's continuous count.
+TEST_F(RendererTest, GeomorphedVerticesMatchTheCpuReference) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene scene;
+  ASSERT_TRUE(test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator()).ok());
+  test::add_grid(scene, 0, 1, 1, 1.0f);
+  scene.camera.position = {0.0f, 1.2f, 2.0f};
+  scene.camera.target = {0.0f, 0.9f, 0.0f};
+  scene.camera.width = 64;
+  scene.camera.height = 64;
+  scene.lod.mode = runtime::LodMode::kContinuous;
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const PackContents& pack = scene.types[0].pack.contents();
+  const runtime::ProgressiveView mesh = runtime::progressive_view(pack);
+  const std::vector<runtime::GeomorphVertex> table = runtime::geomorph_table(mesh);
+  runtime::FrameState state;
+  for (uint32_t budget : {700u, 574u, 568u, 300u}) {
+    SCOPED_TRACE("budget " + std::to_string(budget));
+    scene.lod.budget = budget;
+    render(scene, 0.8f);
+    ASSERT_TRUE(runtime::update_frame(scene, 0.8f, state).ok());
+    const uint32_t n = runtime::usable_vertices(mesh, state.vertex_count[0]);
+    std::vector<float> gpu, cpu, expected(3 * size_t{n});
+    ASSERT_TRUE(renderer_->draw().read_skinned_positions(0, n, gpu).ok());
+    ASSERT_TRUE(runtime::skin_instance(scene, 0, 0.8f, n, cpu).ok());
+    ASSERT_TRUE(
+        runtime::geomorph_values(table, state.morph[0], scene.lod.geomorph, n, cpu, expected));
+    ASSERT_EQ(gpu.size(), expected.size());
+    float worst = 0.0f;
+    uint32_t worst_vertex = 0, morphed = 0;
+    for (uint32_t v = 0; v < n; ++v) {
+      morphed += runtime::geomorph_weight(table[v], state.morph[0], scene.lod.geomorph) > 0.0f;
+      for (int k = 0; k < 3; ++k) {
+        const float d = std::abs(gpu[3 * v + k] - expected[3 * v + k]);
+        if (d > worst) worst = d, worst_vertex = v;
+      }
+    }
+    EXPECT_GT(morphed, 0u);
+    EXPECT_LT(worst, 1e-4f) << "vertex " << worst_vertex << " of " << n << ", x " << state.morph[0];
   }
 }
 

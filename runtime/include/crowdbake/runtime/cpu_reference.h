@@ -26,6 +26,7 @@ struct FrameState {
   std::vector<uint8_t> visible;        // 1 visible, 0 culled
   std::vector<double> weights;         // w_i^(1/α) (LodSelectJob's pass 1)
   std::vector<uint32_t> vertex_count;  // selected vertices, 0 = not drawn (LodSelectJob)
+  std::vector<float> morph;            // the geomorph's continuous count (LodSelectJob)
   uint32_t visible_count = 0;
   LodStats lod;
   std::vector<LodType> lod_types;  // per type

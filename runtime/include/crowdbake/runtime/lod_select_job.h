@@ -95,13 +95,18 @@ struct LodSettings {
   // when the selection then spends more than N).
   bool drop_below_min_t = false;
   float max_pixel_error = 1.0f;  // error mode: P, pixels, > 0 and finite
+  // Geomorphs (geomorph.h): the window over which a vertex glides onto its collapse target,
+  // as a fraction f of the continuous count, in [0, 1); 0 turns them off. Budget and error
+  // modes only (discrete and full levels do not morph).
+  float geomorph = 0.25f;
   // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
   std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
   uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels
 };
 
-// Checks settings: budget >= 1, α > 1 and finite, MinT in [0, 1], and for the discrete
-// levels a count in 1..8 with fractions strictly decreasing in (0, 1].
+// Checks settings: budget >= 1, α > 1 and finite, MinT in [0, 1], max_pixel_error > 0 and
+// finite, geomorph in [0, 1), and for the discrete levels a count in 1..8 with fractions
+// strictly decreasing in (0, 1].
 // Returns false with the reason in *why (may be null).
 bool check_lod_settings(const LodSettings& settings, std::string* why = nullptr);
 
@@ -149,12 +154,17 @@ struct LodSelectJob {
   Span<double> weights;
   // Output: the selected vertex count n_i of each instance (0 = not drawn).
   Span<uint32_t> vertex_count;
+  // Optional output (empty or n floats): the continuous count x_i the geomorph follows
+  // (geomorph.h) — budget mode vc_i, error mode the interpolated count + 1 (n_i = ceil of the
+  // interpolated count), so that floor(x_i) = n_i within the LoD range; 0 for instances not
+  // drawn and in discrete and full modes.
+  Span<float> morph;
   LodStats* stats = nullptr;  // may be null
 
   // False when: view is null; the settings fail check_lod_settings; spheres is not 4n,
-  // visible / weights / vertex_count not n (n = type.size()); a type index is out of
-  // `types`; a type has min_vertices > max_vertices, error tables of unequal lengths, or
-  // (discrete mode) no levels.
+  // visible / weights / vertex_count not n, morph neither empty nor n (n = type.size()); a
+  // type index is out of `types`; a type has min_vertices > max_vertices, error tables of unequal
+  // lengths, or (discrete mode) no levels.
   bool Validate() const;
   // Validates, then runs both passes. Allocates nothing.
   bool Run() const;
@@ -164,7 +174,8 @@ struct LodSelectJob {
 double lod_error_ladder(uint32_t step);
 double lod_error_threshold(double distance, float world_radius, float type_radius,
                            float focal_pixels, float max_pixel_error);
-uint32_t lod_vertices_for_error(const LodType& type, double t);
+// continuous: may be null; receives the count before rounding up, plus one (see `morph`).
+uint32_t lod_vertices_for_error(const LodType& type, double t, double* continuous = nullptr);
 
 // A_i and D_i of one sphere as the job defines them (see the file comment).
 void lod_area_distance(const View& view, const float sphere[4], double* area, double* distance);

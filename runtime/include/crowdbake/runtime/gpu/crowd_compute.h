@@ -111,13 +111,14 @@ struct CrowdComputeOptions {
   uint64_t level_cache_bytes = 0;
 };
 
-// Per-instance result of the passes (instance_lod_buffer(), std430, 32 bytes).
+// Per-instance result of the passes (instance_lod_buffer(), std430, 36 bytes).
 struct InstanceLod {
   uint32_t selected;       // n_i (0 = culled or not drawn) — compare FrameState::vertex_count
   uint32_t usable;         // n' = usable_vertices(n_i)
   uint32_t corners;        // 3 · triangle_count[n']
   uint32_t corner_offset;  // first corner in the corner buffer; kNotDrawn when none
   uint32_t local_corner, local_draw, visible, local_chunk;  // scan internals, culling
+  float morph;  // the geomorph's continuous count x_i — compare FrameState::morph
 };
 constexpr uint32_t kNotDrawn = 0xFFFFFFFFu;
 
@@ -214,7 +215,8 @@ class CrowdCompute {
   // GPU memory of the compute side in bytes, fixed at create (the level cache included).
   uint64_t gpu_bytes() const { return gpu_bytes_; }
   // Of which per instance (records, weights, LoD results, lists), times max_instances.
-  static constexpr uint64_t kBytesPerInstance = sizeof(GpuInstance) + 8 + 32 + 32 + 4 + 4;
+  static constexpr uint64_t kBytesPerInstance =
+      sizeof(GpuInstance) + 8 + sizeof(InstanceLod) + 32 + 4 + 4;
   uint32_t max_instances() const { return max_instances_; }
   // The level cache's bytes of one type.
   uint64_t level_cache_bytes(uint32_t type) const;

@@ -155,6 +155,10 @@ class CrowdDraw {
   void record_skinning(VkCommandBuffer cmd);
   // After the skinning pass ran: slots used and drawn instances that found no room (not drawn).
   Status read_skin_stats(uint32_t& slots_used, uint32_t& no_room) const;
+  // After the skinning pass ran (for tests): the world positions the pass wrote for instance i's
+  // first `count` vertices (3 floats each; empty when it has no slots).
+  Status read_skinned_positions(uint32_t instance, uint32_t count,
+                                std::vector<float>& positions) const;
 
   // GPU memory of the drawing side in bytes, as allocated now: per type (vertices, animation,
   // pose buffer, constants, partition mask), the skinning buffers (skinned-vertex slots,
