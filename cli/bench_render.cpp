@@ -1,6 +1,7 @@
 // crowdbake bench render: for each stand size, full resolution first (the reference image and
 // frame time), then continuous and discrete LoD at each budget; then the popping measure over
-// a camera dolly, continuous against discrete at an equal mean triangle count.
+// a camera dolly, continuous against discrete at an equal mean triangle count, and continuous
+// without and with geomorphs.
 #include <unistd.h>
 
 #include <algorithm>
@@ -280,6 +281,8 @@ void check_settings(const BenchRenderSettings& s) {
   for (uint32_t b : s.budgets)
     if (b < 1) throw usage("--budgets", "budgets must be at least 1");
   if (s.frames < 1 || s.frames > 1000) throw usage("--frames", "must be in 1..1000");
+  if (!(s.geomorph > 0.0f && s.geomorph < 1.0f))
+    throw usage("--geomorph", "must be a fraction in (0, 1)");
   for (float p : s.pixel_errors)
     if (!(p > 0.0f) || !std::isfinite(p))
       throw usage("--pixel-errors", "pixel errors must be numbers > 0");
@@ -425,10 +428,19 @@ int run_bench_render(const BenchRenderSettings& settings) {
         *context, *renderer, scene, runtime::LodMode::kDiscrete, equal, dolly, s.frames_dir);
     const PopSequence disc_same =
         render_sequence(*context, *renderer, scene, runtime::LodMode::kDiscrete, budget, dolly, "");
+    // note: the same continuous selection with geomorphs (off by default): what they change.
+    const float geomorph = scene.lod.geomorph;
+    scene.lod.geomorph = s.geomorph;
+    const PopSequence cont_morph = render_sequence(
+        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, "");
+    scene.lod.geomorph = geomorph;
     result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
     result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
     result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
     result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
+    char morph_why[32];
+    std::snprintf(morph_why, sizeof morph_why, "geomorphs %g", s.geomorph);
+    result.pops.push_back(pop_row(cont_morph, full, "continuous", budget, morph_why));
     print_pop_rows(result);
   }
 

@@ -93,7 +93,9 @@ struct RenderSettings {
   bool fps_given = false;
   int64_t budget = 0;  // with budget_given: LoD budget N in vertices, >= 1
   bool budget_given = false;
-  std::string lod;             // "" = the scene's; continuous, discrete or full
+  std::string lod;        // "" = the scene's; continuous, discrete or full
+  double geomorph = 0.0;  // with geomorph_given: lod.geomorph, in [0, 1)
+  bool geomorph_given = false;
   std::string resolution;      // "" = the scene's; "WxH"
   std::string contact_sheet;   // --frames: also tile every frame into this PNG
   uint32_t sheet_columns = 0;  // 0 = ceil(sqrt(frames))
@@ -130,7 +132,8 @@ struct BenchRenderSettings {
   bool shadows = true;
   uint32_t msaa = 4;  // samples per pixel of every image, the full-resolution reference too
   std::vector<float> pixel_errors{0.5f, 1.0f, 2.0f};  // error-mode rows (max_pixel_error)
-  bool quick = false;  // CI smoke test: tiny sizes, resolution and sequence
+  float geomorph = 0.25f;  // lod.geomorph of the dolly's extra continuous sequence
+  bool quick = false;      // CI smoke test: tiny sizes, resolution and sequence
 };
 
 int run_bench_render(const BenchRenderSettings& settings);

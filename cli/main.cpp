@@ -156,6 +156,9 @@ int main(int argc, char** argv) {
   bench_render_cmd->add_flag("!--no-shadows", bench_render.shadows, "No shadow map");
   bench_render_cmd->add_option("--msaa", bench_render.msaa,
                                "Samples per pixel of every image (default 4; 1 = off)");
+  bench_render_cmd->add_option("--geomorph", bench_render.geomorph,
+                               "The dolly is also rendered with this lod.geomorph, in (0, 1) "
+                               "(default 0.25)");
   bench_render_cmd->add_flag("--quick", bench_render.quick,
                              "Tiny sizes, resolution and dolly (CI smoke test)");
 
@@ -227,6 +230,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option(
       "--lod", render.lod,
       "LoD mode: error, budget (= continuous), discrete or full (default: the scene's)");
+  auto* geomorph_opt = render_cmd->add_option(
+      "--geomorph", render.geomorph,
+      "Geomorph window as a fraction of each instance's vertex count, in [0, 1); 0 = off "
+      "(default: the scene's lod.geomorph, off)");
   render_cmd->add_option("--resolution", render.resolution,
                          "Image size WIDTHxHEIGHT, e.g. 1280x720");
   render_cmd->add_option("--contact-sheet", render.contact_sheet,
@@ -269,6 +276,7 @@ int main(int argc, char** argv) {
       render.frames_given = frames_opt->count() > 0;
       render.fps_given = fps_opt->count() > 0;
       render.budget_given = budget_opt->count() > 0;
+      render.geomorph_given = geomorph_opt->count() > 0;
       return crowdbake::cli::run_render(render);
     }
   } catch (const crowdbake::Error& e) {

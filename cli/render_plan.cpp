@@ -60,6 +60,9 @@ void check_settings(const RenderSettings& s) {
   if (s.budget_given && (s.budget < 1 || s.budget > int64_t{0xFFFFFFFF}))
     throw usage("--budget",
                 "must be a vertex count in 1..4294967295, got " + std::to_string(s.budget));
+  if (s.geomorph_given && !(s.geomorph >= 0.0 && s.geomorph < 1.0))
+    throw usage("--geomorph",
+                "must be a fraction in [0, 1) (0: off), got " + std::to_string(s.geomorph));
   if (!s.lod.empty() && s.lod != "error" && s.lod != "budget" && s.lod != "continuous" &&
       s.lod != "discrete" && s.lod != "full")
     throw usage("--lod",
@@ -144,6 +147,7 @@ RenderPlan plan_render(const RenderSettings& s) {
 
   runtime::Scene& scene = plan.scene;
   if (s.budget_given) scene.lod.budget = static_cast<uint32_t>(s.budget);
+  if (s.geomorph_given) scene.lod.geomorph = static_cast<float>(s.geomorph);
   if (s.lod == "error") scene.lod.mode = runtime::LodMode::kError;
   if (s.lod == "continuous" || s.lod == "budget") scene.lod.mode = runtime::LodMode::kContinuous;
   if (s.lod == "discrete") scene.lod.mode = runtime::LodMode::kDiscrete;

@@ -10,8 +10,8 @@
 # whose change differs from full resolution's by more than 24 (visible pops), and the mean
 # change |dLoD - dFull| on 4x-shrunk images (lower = less popping).
 # datafile: one block per size (columns: mode, budget, frame_ms, psnr, triangles, psnr_4x);
-# popfile: pair, then per sequence (continuous, discrete equal, discrete same budget, full)
-# three columns: change_4x, error jump, popping pixels (%).
+# popfile: pair, then per sequence (continuous, discrete equal, discrete same budget, full,
+# continuous with geomorphs) three columns: change_4x, error jump, popping pixels (%).
 if (!exists("datafile")) datafile = 'docs/data/render-bench.dat'
 if (!exists("popfile")) popfile = ''
 if (!exists("outfile")) outfile = 'docs/render-bench.png'
@@ -59,6 +59,7 @@ if (has_pop) {
   set y2range [0:*]
   plot popfile using 1:4 with lines lw 2 lc rgb "#1f77b4" title "continuous: popping pixels", \
        '' using 1:7 with lines lw 2 lc rgb "#d62728" title "discrete: popping pixels", \
+       '' using 1:16 with lines lw 1 lc rgb "#9467bd" title "continuous with geomorphs: popping pixels", \
        '' using 1:2 axes x1y2 with lines lw 1 dt 2 lc rgb "#1f77b4" title "continuous: mean change (right)", \
        '' using 1:5 axes x1y2 with lines lw 1 dt 2 lc rgb "#d62728" title "discrete: mean change (right)"
 }

@@ -118,6 +118,8 @@ TEST_F(RenderCommand, InstanceWithAClipThatDoesNotExist) {
 TEST_F(RenderCommand, BudgetZero) {
   expect_error({"render", scene_, "-o", out("a.png"), "--budget", "0"}, 2, "--budget");
   expect_error({"render", scene_, "-o", out("a.png"), "--budget", "-5"}, 2, "--budget");
+  expect_error({"render", scene_, "-o", out("a.png"), "--geomorph", "1"}, 2, "--geomorph");
+  expect_error({"render", scene_, "-o", out("a.png"), "--geomorph", "-0.1"}, 2, "--geomorph");
   const std::string scene = write_scene(
       "budget0.json",
       std::regex_replace(scene_json(pack_), std::regex("\"budget\": 20000"), "\"budget\": 0"));

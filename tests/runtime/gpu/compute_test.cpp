@@ -47,8 +47,9 @@ class ComputeTest : public test::GpuTest {
                       << state_.morph[i];
     }
     EXPECT_EQ(mismatched, 0u);
-    if (state_.lod_mode == LodMode::kContinuous || state_.lod_mode == LodMode::kError)
+    if (state_.lod_mode == LodMode::kContinuous || state_.lod_mode == LodMode::kError) {
       EXPECT_GT(morphing, 0u);
+    }
   }
 
   // Every instance: selected count and geomorph count identical; drawn instances: corners

@@ -408,6 +408,7 @@ TEST_F(RendererTest, GeomorphedVerticesMatchTheCpuReference) {
   scene.camera.width = 64;
   scene.camera.height = 64;
   scene.lod.mode = runtime::LodMode::kContinuous;
+  scene.lod.geomorph = 0.25f;
   make_renderer(scene);
   if (HasFatalFailure()) return;
   const PackContents& pack = scene.types[0].pack.contents();

@@ -97,8 +97,10 @@ struct LodSettings {
   float max_pixel_error = 1.0f;  // error mode: P, pixels, > 0 and finite
   // Geomorphs (geomorph.h): the window over which a vertex glides onto its collapse target,
   // as a fraction f of the continuous count, in [0, 1); 0 turns them off. Budget and error
-  // modes only (discrete and full levels do not morph).
-  float geomorph = 0.25f;
+  // modes only (discrete and full levels do not morph). Off by default: at equal triangles
+  // they cost accuracy and, on the popping dolly, more changed pixels than they remove
+  // (docs/performance.md, "Geomorphs").
+  float geomorph = 0.0f;
   // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
   std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
   uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels
