@@ -75,7 +75,7 @@ uint16_t BehaviourFsm::pick_idle_next(uint16_t state, double u) const {
   return idle_to_[first + PickCumulative(idle_cumulative_.data() + first, count, u)];
 }
 
-Status BuildBehaviourFsm(const BehaviourFsmDef& def, BehaviourFsm* out) {
+Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   const size_t n = def.states.size();
   if (n == 0) return FsmError("the FSM has no states");
   if (n > kMaxStates)
@@ -260,11 +260,11 @@ Status BuildBehaviourFsm(const BehaviourFsmDef& def, BehaviourFsm* out) {
     fsm.reaction_decay_.push_back(re.decay_s);
   }
 
-  *out = std::move(fsm);
+  out = std::move(fsm);
   return Status();
 }
 
-BehaviourFsmDef DefaultStadiumFsm() {
+BehaviourFsmDef default_stadium_fsm() {
   BehaviourFsmDef def;
   auto state = [&](const char* name, const char* in, const char* out,
                    std::vector<std::pair<float, float>> clips, bool rest, bool interruptible,

@@ -9,7 +9,7 @@
 
 namespace crowdbake::crowd {
 
-Status ValidateGroupMix(const GroupMix& mix) {
+Status validate_group_mix(const GroupMix& mix) {
   auto bad = [](const char* field, float v, const char* rule) {
     return Status(StatusCode::kInvalidArgument, std::string("group mix: ") + field + " = " +
                                                     std::to_string(v) + " must be " + rule);
@@ -32,7 +32,7 @@ Status ValidateGroupMix(const GroupMix& mix) {
   return Status();
 }
 
-std::vector<uint8_t> DrawGroupSizes(const GroupMix& mix, int people, uint64_t seed) {
+std::vector<uint8_t> draw_group_sizes(const GroupMix& mix, int people, uint64_t seed) {
   std::vector<uint8_t> sizes;
   if (people <= 0) return sizes;
   detail::Rng rng(seed, detail::kStreamGroups);

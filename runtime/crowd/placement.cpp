@@ -83,7 +83,7 @@ double MinPairDistance(const std::vector<dvec2>& points, double cell,
 
 }  // namespace
 
-Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
+Status place_crowd(const PlacementOptions& o, Placement& result) {
   // Options.
   if (o.people < 0 || o.people > kMaxPeople)
     return BadOption("people = " + std::to_string(o.people) + " must be in [0, " +
@@ -93,7 +93,7 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   if (!std::isfinite(o.group_spacing_m) || o.group_spacing_m < o.min_distance_m)
     return BadOption("group_spacing_m = " + Num(o.group_spacing_m) +
                      " must be finite and >= min_distance_m (" + Num(o.min_distance_m) + ")");
-  if (Status s = ValidateGroupMix(o.groups); !s.ok()) return BadOption(s.message());
+  if (Status s = validate_group_mix(o.groups); !s.ok()) return BadOption(s.message());
   if (o.max_iterations < 0) return BadOption("max_iterations must be >= 0");
   if (o.weight_iterations < 0) return BadOption("weight_iterations must be >= 0");
   if (!std::isfinite(o.capacity_tolerance) || o.capacity_tolerance <= 0.0)
@@ -117,12 +117,12 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   Placement out;
   out.backend = detail::PowerBackendName();
   if (o.people == 0) {
-    *result = std::move(out);
+    result = std::move(out);
     return Status();
   }
 
   // Groups and their capacities (paper eq. 7: patch area ∝ people in it).
-  out.group_size = DrawGroupSizes(o.groups, o.people, o.seed);
+  out.group_size = draw_group_sizes(o.groups, o.people, o.seed);
   const size_t groups = out.group_size.size();
   std::vector<double> capacity(groups);  // local units: the region has area 1
   for (size_t g = 0; g < groups; ++g)
@@ -279,7 +279,7 @@ Status PlaceCrowd(const PlacementOptions& o, Placement* result) {
   out.min_pair_distance = out.positions.size() < 2
                               ? 0.0
                               : MinPairDistance(out.positions, std::max(2.0 * d, scale * spacing));
-  *result = std::move(out);
+  result = std::move(out);
   return Status();
 }
 

@@ -125,7 +125,7 @@ void RadiusNeighbours(const std::vector<IndividualDef>& people, float radius,
 }
 
 // Probability that the next draw of a sequential group fill is a single, so that singles
-// make up `single_fraction` of the people (see PlaceSeatGrid).
+// make up `single_fraction` of the people (see place_seat_grid).
 double SingleDrawProbability(const GroupMix& mix) {
   const double w2 = mix.pairs, w3 = mix.triples, w4 = static_cast<double>(mix.fours) + mix.larger;
   const double total = w2 + w3 + w4;
@@ -137,8 +137,8 @@ double SingleDrawProbability(const GroupMix& mix) {
 
 }  // namespace
 
-Status BuildSpectatorScene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
-                           SpectatorScene* out) {
+Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
+                             SpectatorScene& out) {
   uint16_t home = 0;
   if (Status s = CheckParams(fsm, def.params, &home); !s.ok()) return s;
 
@@ -261,12 +261,12 @@ Status BuildSpectatorScene(const BehaviourFsm& fsm, const SpectatorSceneDef& def
   scene.params_ = p;
   scene.home_state_ = home;
   scene.events_ = std::move(events);
-  *out = std::move(scene);
+  out = std::move(scene);
   return Status();
 }
 
-Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
-                     std::vector<IndividualDef>* individuals) {
+Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
+                       std::vector<IndividualDef>& individuals) {
   auto bad = [](const std::string& field, double v, const char* rule) {
     return SceneError("seat grid: " + field + " = " + Num(v) + " must be " + rule);
   };
@@ -287,7 +287,7 @@ Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
   if (!std::isfinite(def.empty_probability) || def.empty_probability < 0.0f ||
       def.empty_probability > 1.0f)
     return bad("empty_probability", def.empty_probability, "in [0, 1]");
-  if (Status s = ValidateGroupMix(def.groups); !s.ok())
+  if (Status s = validate_group_mix(def.groups); !s.ok())
     return SceneError("seat grid: " + s.message());
   if (def.sections.empty()) return SceneError("seat grid: no sections (every seat would be empty)");
 
@@ -367,8 +367,8 @@ Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
     }
   }
   // note: a group cut short by a gap keeps its id; singles are groups of one here, which
-  // BuildSpectatorScene treats the same as kNoGroup.
-  *individuals = std::move(out);
+  // build_spectator_scene treats the same as kNoGroup.
+  individuals = std::move(out);
   return Status();
 }
 

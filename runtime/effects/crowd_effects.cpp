@@ -179,7 +179,7 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   for (const runtime::EffectReaction& r : decl.reactions)
     def.reactions.push_back({r.event, r.supporters, r.opponents, r.decay});
   fsm = std::make_unique<crowd::BehaviourFsm>();
-  if (crowd::Status s = crowd::BuildBehaviourFsm(def, fsm.get()); !s.ok())
+  if (crowd::Status s = crowd::build_behaviour_fsm(def, *fsm); !s.ok())
     return invalid("effects.spectators: " + s.message());
 
   fsm_state_of_decl.resize(decl.states.size());
@@ -240,7 +240,7 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   sp.restart_delay_s = p.restart_delay;
   sp.seed = p.seed;
   crowd = std::make_unique<crowd::SpectatorScene>();
-  if (crowd::Status s = crowd::BuildSpectatorScene(*fsm, sdef, crowd.get()); !s.ok())
+  if (crowd::Status s = crowd::build_spectator_scene(*fsm, sdef, *crowd); !s.ok())
     return invalid("effects.spectators: " + s.message());
   fsm_state.Reset(*fsm, *crowd);
   const size_t n = crowd->size();

@@ -1,4 +1,4 @@
-// The "relaxation" scene generator's placer: crowdbake_crowd's PlaceCrowd (crowd-patches
+// The "relaxation" scene generator's placer: crowdbake_crowd's place_crowd (crowd-patches
 // Lloyd relaxation of a power diagram), handed to load_scene through SceneLoadOptions so the
 // runtime core itself never links the placement code.
 #include <chrono>
@@ -22,7 +22,7 @@ runtime::Status place_relaxed(const runtime::RelaxationRequest& request,
   options.max_iterations = request.iterations;
   options.seed = request.seed;
   crowd::Placement placement;
-  const crowd::Status s = crowd::PlaceCrowd(options, &placement);
+  const crowd::Status s = crowd::place_crowd(options, placement);
   if (!s.ok()) return {runtime::StatusCode::kInvalidScene, "relaxation: " + s.message()};
   result.positions.clear();
   result.yaw_degrees.clear();

@@ -30,10 +30,10 @@ void EraseTransitions(BehaviourFsmDef& def, const std::string& from, const std::
 // the output must stay untouched.
 void ExpectFsmError(const std::function<void(BehaviourFsmDef&)>& edit,
                     const std::vector<std::string>& needles) {
-  BehaviourFsmDef def = DefaultStadiumFsm();
+  BehaviourFsmDef def = default_stadium_fsm();
   edit(def);
   BehaviourFsm fsm;
-  const Status status = BuildBehaviourFsm(def, &fsm);
+  const Status status = build_behaviour_fsm(def, fsm);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
   EXPECT_EQ(status.code(), StatusCode::kInvalidFsm);
   for (const std::string& needle : needles)
@@ -44,7 +44,7 @@ void ExpectFsmError(const std::function<void(BehaviourFsmDef&)>& edit,
 
 TEST(BehaviourFsm, StadiumFsmBuilds) {
   BehaviourFsm fsm;
-  const Status status = BuildBehaviourFsm(DefaultStadiumFsm(), &fsm);
+  const Status status = build_behaviour_fsm(default_stadium_fsm(), fsm);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(fsm.state_count(), 10);
   EXPECT_EQ(fsm.reaction_count(), 3);
@@ -68,7 +68,7 @@ TEST(BehaviourFsm, StadiumFsmBuilds) {
 
 TEST(BehaviourFsm, StandIsTheHubBetweenSitAndCheer) {
   BehaviourFsm fsm;
-  ASSERT_TRUE(BuildBehaviourFsm(DefaultStadiumFsm(), &fsm).ok());
+  ASSERT_TRUE(build_behaviour_fsm(default_stadium_fsm(), fsm).ok());
   std::vector<std::string> path{"sit"};
   uint16_t s = fsm.find_state("sit");
   const uint16_t cheer = fsm.find_state("cheer");
@@ -84,11 +84,11 @@ TEST(BehaviourFsm, StandIsTheHubBetweenSitAndCheer) {
 }
 
 TEST(BehaviourFsm, ClipVariantsArePickedByWeight) {
-  BehaviourFsmDef def = DefaultStadiumFsm();
+  BehaviourFsmDef def = default_stadium_fsm();
   Find(def, "cheer")->clips = {
       {"cheer_a", 0.5f, 1.0f}, {"cheer_b", 0.5f, 0.0f}, {"cheer_c", 0.5f, 3.0f}};
   BehaviourFsm fsm;
-  ASSERT_TRUE(BuildBehaviourFsm(def, &fsm).ok());
+  ASSERT_TRUE(build_behaviour_fsm(def, fsm).ok());
   const uint16_t cheer = fsm.find_state("cheer");
   int counts[3] = {0, 0, 0};
   const int samples = 4000;
@@ -105,7 +105,7 @@ TEST(BehaviourFsm, ClipVariantsArePickedByWeight) {
 
 TEST(BehaviourFsm, IdleWalkUsesOnlyWeightedEdges) {
   BehaviourFsm fsm;
-  ASSERT_TRUE(BuildBehaviourFsm(DefaultStadiumFsm(), &fsm).ok());
+  ASSERT_TRUE(build_behaviour_fsm(default_stadium_fsm(), fsm).ok());
   const uint16_t sit = fsm.find_state("sit");
   int seen_look = 0, seen_sit = 0, seen_stand_up = 0;
   for (int k = 0; k < 10000; ++k) {
@@ -234,7 +234,7 @@ TEST(BehaviourFsmErrors, ClipsAndWeights) {
 
 TEST(BehaviourFsmErrors, EmptyFsm) {
   BehaviourFsm fsm;
-  const Status status = BuildBehaviourFsm(BehaviourFsmDef(), &fsm);
+  const Status status = build_behaviour_fsm(BehaviourFsmDef(), fsm);
   EXPECT_EQ(status.code(), StatusCode::kInvalidFsm);
   EXPECT_EQ(status.message(), "the FSM has no states");
 }

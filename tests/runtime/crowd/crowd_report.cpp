@@ -32,8 +32,8 @@ struct Sim {
   std::vector<uint16_t> out_state, out_clip;
   std::vector<float> out_time;
   explicit Sim(const SpectatorSceneDef& def) {
-    Status s = BuildBehaviourFsm(DefaultStadiumFsm(), &fsm);
-    if (s.ok()) s = BuildSpectatorScene(fsm, def, &scene);
+    Status s = build_behaviour_fsm(default_stadium_fsm(), fsm);
+    if (s.ok()) s = build_spectator_scene(fsm, def, scene);
     if (!s.ok()) {
       std::fprintf(stderr, "error: %s\n", s.message().c_str());
       std::exit(2);
@@ -76,7 +76,7 @@ SpectatorSceneDef Block(int side, float embarrassment, std::vector<SceneEvent> e
   grid.rows = grid.columns = side;
   grid.empty_probability = 0.0f;
   grid.sections = {{"A", 0, side}};
-  PlaceSeatGrid(grid, def.teams, &def.individuals);
+  place_seat_grid(grid, def.teams, def.individuals);
   def.events = std::move(events);
   return def;
 }
@@ -88,7 +88,7 @@ void Goal() {
   grid.rows = 20;
   grid.columns = 40;
   grid.sections = {{"A", 0, 20}, {"B", 20, 20}};
-  PlaceSeatGrid(grid, def.teams, &def.individuals);
+  place_seat_grid(grid, def.teams, def.individuals);
   def.events = {{"goal", 12.0, "A", 1.0f}};
   Sim sim(def);
   const uint16_t arm_up = sim.fsm.find_state("arm_up"), cheer = sim.fsm.find_state("cheer"),
@@ -226,7 +226,7 @@ void PlacementReport() {
   o.seed = 7;
   Placement p;
   const auto t0 = Clock::now();
-  Status s = PlaceCrowd(o, &p);
+  Status s = place_crowd(o, p);
   const double ms = Ms(t0, Clock::now());
   if (!s.ok()) {
     std::fprintf(stderr, "error: %s\n", s.message().c_str());
@@ -272,7 +272,7 @@ void PlacementReport() {
     q.seed = 7;
     Placement r;
     const auto a = Clock::now();
-    s = PlaceCrowd(q, &r);
+    s = place_crowd(q, r);
     const double t = Ms(a, Clock::now());
     if (!s.ok()) {
       std::printf("| %s | %d | error: %s |\n", c.name, c.people, s.message().c_str());

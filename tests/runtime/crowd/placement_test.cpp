@@ -100,7 +100,7 @@ void CheckPlacement(const PlacementOptions& o, const Placement& p) {
 TEST(Placement, SquareOf400) {
   const PlacementOptions o = Options(Square(30.0), 400);
   Placement p;
-  const Status s = PlaceCrowd(o, &p);
+  const Status s = place_crowd(o, p);
   ASSERT_TRUE(s.ok()) << s.message();
   CheckPlacement(o, p);
   EXPECT_TRUE(p.converged);
@@ -113,7 +113,7 @@ TEST(Placement, SquareOf400) {
 TEST(Placement, NonConvexRegion) {
   const PlacementOptions o = Options(LShape(30.0), 300, 3);
   Placement p;
-  const Status s = PlaceCrowd(o, &p);
+  const Status s = place_crowd(o, p);
   ASSERT_TRUE(s.ok()) << s.message();
   CheckPlacement(o, p);
 }
@@ -123,8 +123,8 @@ TEST(Placement, ClockwiseAndFarFromOriginGiveTheSameCrowd) {
   PlacementOptions far = Options(Square(20.0, dvec2(1e5, -2e5)), 150);
   std::reverse(far.region.begin(), far.region.end());
   Placement a, b;
-  ASSERT_TRUE(PlaceCrowd(near, &a).ok());
-  ASSERT_TRUE(PlaceCrowd(far, &b).ok());
+  ASSERT_TRUE(place_crowd(near, a).ok());
+  ASSERT_TRUE(place_crowd(far, b).ok());
   CheckPlacement(far, b);
   ASSERT_EQ(a.positions.size(), b.positions.size());
   // note: the region is normalised first, but the random start samples the reversed polygon's
@@ -135,9 +135,9 @@ TEST(Placement, ClockwiseAndFarFromOriginGiveTheSameCrowd) {
 
 TEST(Placement, DeterministicForASeed) {
   Placement a, b, c;
-  ASSERT_TRUE(PlaceCrowd(Options(Square(25.0), 200, 11), &a).ok());
-  ASSERT_TRUE(PlaceCrowd(Options(Square(25.0), 200, 11), &b).ok());
-  ASSERT_TRUE(PlaceCrowd(Options(Square(25.0), 200, 12), &c).ok());
+  ASSERT_TRUE(place_crowd(Options(Square(25.0), 200, 11), a).ok());
+  ASSERT_TRUE(place_crowd(Options(Square(25.0), 200, 11), b).ok());
+  ASSERT_TRUE(place_crowd(Options(Square(25.0), 200, 12), c).ok());
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.energy, b.energy);
   EXPECT_NE(a.positions, c.positions);
@@ -149,7 +149,7 @@ TEST(Placement, DenseCrowdKeepsTheMinimumDistance) {
   o.min_distance_m = 0.6;
   o.group_spacing_m = 0.6;
   Placement p;
-  const Status s = PlaceCrowd(o, &p);
+  const Status s = place_crowd(o, p);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_GE(BruteMinDistance(p.positions), o.min_distance_m * (1.0 - 1e-9));
   for (const dvec2& x : p.positions) EXPECT_TRUE(detail::Inside(o.region, x));
@@ -157,14 +157,14 @@ TEST(Placement, DenseCrowdKeepsTheMinimumDistance) {
 
 TEST(Placement, TinyCrowds) {
   Placement p;
-  ASSERT_TRUE(PlaceCrowd(Options(Square(5.0), 0), &p).ok());
+  ASSERT_TRUE(place_crowd(Options(Square(5.0), 0), p).ok());
   EXPECT_TRUE(p.positions.empty());
   PlacementOptions one = Options(Square(5.0), 1);
-  ASSERT_TRUE(PlaceCrowd(one, &p).ok());
+  ASSERT_TRUE(place_crowd(one, p).ok());
   ASSERT_EQ(p.positions.size(), 1u);
   EXPECT_NEAR(p.positions[0].x, 2.5, 1e-6);  // the centroid of the square
   EXPECT_NEAR(p.positions[0].y, 2.5, 1e-6);
-  ASSERT_TRUE(PlaceCrowd(Options(Square(5.0), 3), &p).ok());
+  ASSERT_TRUE(place_crowd(Options(Square(5.0), 3), p).ok());
   EXPECT_EQ(p.positions.size(), 3u);
 }
 
@@ -172,7 +172,7 @@ void ExpectPlacementError(const PlacementOptions& o, StatusCode code,
                           const std::vector<std::string>& needles) {
   Placement p;
   p.iterations = 42;
-  const Status s = PlaceCrowd(o, &p);
+  const Status s = place_crowd(o, p);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), code) << s.message();
   for (const std::string& needle : needles)

@@ -32,7 +32,7 @@ SeatGridDef Stand() {
 const BehaviourFsm& StadiumFsm() {
   static const BehaviourFsm* fsm = [] {
     auto* f = new BehaviourFsm;
-    EXPECT_TRUE(BuildBehaviourFsm(DefaultStadiumFsm(), f).ok());
+    EXPECT_TRUE(build_behaviour_fsm(default_stadium_fsm(), *f).ok());
     return f;
   }();
   return *fsm;
@@ -41,7 +41,7 @@ const BehaviourFsm& StadiumFsm() {
 SpectatorSceneDef SmallScene() {
   SpectatorSceneDef def;
   def.teams = TwoTeams();
-  EXPECT_TRUE(PlaceSeatGrid(Stand(), def.teams, &def.individuals).ok());
+  EXPECT_TRUE(place_seat_grid(Stand(), def.teams, def.individuals).ok());
   def.events = {{"goal", 12.0, "A", 1.0f}};
   return def;
 }
@@ -51,7 +51,7 @@ void ExpectSceneError(const std::function<void(SpectatorSceneDef&)>& edit,
   SpectatorSceneDef def = SmallScene();
   edit(def);
   SpectatorScene scene;
-  const Status status = BuildSpectatorScene(StadiumFsm(), def, &scene);
+  const Status status = build_spectator_scene(StadiumFsm(), def, scene);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
   EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   for (const std::string& needle : needles)
@@ -65,7 +65,7 @@ void ExpectSeatError(const std::function<void(SeatGridDef&)>& edit,
   SeatGridDef grid = Stand();
   edit(grid);
   std::vector<IndividualDef> people(3);
-  const Status status = PlaceSeatGrid(grid, TwoTeams(), &people);
+  const Status status = place_seat_grid(grid, TwoTeams(), people);
   ASSERT_FALSE(status.ok()) << "expected an error containing " << needles.front();
   EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   for (const std::string& needle : needles)
@@ -77,7 +77,7 @@ void ExpectSeatError(const std::function<void(SeatGridDef&)>& edit,
 TEST(SeatGrid, RowsColumnsEmptySeatsAndSections) {
   const SeatGridDef grid = Stand();
   std::vector<IndividualDef> people;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &people).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), people).ok());
   const int seats = grid.rows * 38;
   // 760 sectioned seats at 15% empty: 646 expected, σ ≈ 9.8.
   EXPECT_NEAR(static_cast<double>(people.size()), seats * 0.85, 5 * std::sqrt(seats * 0.85 * 0.15));
@@ -100,10 +100,10 @@ TEST(SeatGrid, RowsColumnsEmptySeatsAndSections) {
 TEST(SeatGrid, DeterministicInTheSeed) {
   SeatGridDef grid = Stand();
   std::vector<IndividualDef> a, b, c;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &a).ok());
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &b).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), a).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), b).ok());
   grid.seed = 4;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &c).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), c).ok());
   ASSERT_EQ(a.size(), b.size());
   bool differs = a.size() != c.size();
   for (size_t i = 0; i < a.size(); ++i) {
@@ -118,10 +118,10 @@ TEST(SeatGrid, EmptyProbabilityExtremes) {
   SeatGridDef grid = Stand();
   std::vector<IndividualDef> people;
   grid.empty_probability = 0.0f;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &people).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), people).ok());
   EXPECT_EQ(people.size(), 20u * 38u);
   grid.empty_probability = 1.0f;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &people).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), people).ok());
   EXPECT_TRUE(people.empty());
 }
 
@@ -129,7 +129,7 @@ TEST(SeatGrid, FriendsSitSideBySide) {
   SeatGridDef grid = Stand();
   grid.rows = 200;  // enough groups for the mix
   std::vector<IndividualDef> people;
-  ASSERT_TRUE(PlaceSeatGrid(grid, TwoTeams(), &people).ok());
+  ASSERT_TRUE(place_seat_grid(grid, TwoTeams(), people).ok());
   std::map<uint32_t, std::vector<const IndividualDef*>> groups;
   for (const IndividualDef& p : people) groups[p.group].push_back(&p);
   size_t singles_people = 0, multi = 0, by_size[5] = {0, 0, 0, 0, 0};
@@ -155,8 +155,8 @@ TEST(SeatGrid, FriendsSitSideBySide) {
 
 TEST(GroupMix, SizesSumToPeopleWithTheObservedMix) {
   const GroupMix mix;
-  ASSERT_TRUE(ValidateGroupMix(mix).ok());
-  const std::vector<uint8_t> sizes = DrawGroupSizes(mix, 20000, 9);
+  ASSERT_TRUE(validate_group_mix(mix).ok());
+  const std::vector<uint8_t> sizes = draw_group_sizes(mix, 20000, 9);
   int total = 0, count[5] = {0, 0, 0, 0, 0};
   for (uint8_t s : sizes) {
     ASSERT_GE(s, 1);
@@ -170,22 +170,22 @@ TEST(GroupMix, SizesSumToPeopleWithTheObservedMix) {
   EXPECT_NEAR(count[2] / groups, 0.71, 0.02);
   EXPECT_NEAR(count[3] / groups, 0.21, 0.02);
   EXPECT_NEAR(count[4] / groups, 0.08, 0.015);  // fours + "larger"
-  EXPECT_EQ(DrawGroupSizes(mix, 20000, 9), sizes);
-  EXPECT_TRUE(DrawGroupSizes(mix, 0, 9).empty());
+  EXPECT_EQ(draw_group_sizes(mix, 20000, 9), sizes);
+  EXPECT_TRUE(draw_group_sizes(mix, 0, 9).empty());
 }
 
 TEST(GroupMix, BadMixes) {
   GroupMix mix;
   mix.single_fraction = 1.5f;
-  EXPECT_NE(ValidateGroupMix(mix).message().find("single_fraction"), std::string::npos);
+  EXPECT_NE(validate_group_mix(mix).message().find("single_fraction"), std::string::npos);
   mix = GroupMix();
   mix.triples = -0.1f;
-  EXPECT_NE(ValidateGroupMix(mix).message().find("triples"), std::string::npos);
+  EXPECT_NE(validate_group_mix(mix).message().find("triples"), std::string::npos);
   mix = GroupMix();
   mix.pairs = mix.triples = mix.fours = mix.larger = 0.0f;
-  EXPECT_FALSE(ValidateGroupMix(mix).ok());
+  EXPECT_FALSE(validate_group_mix(mix).ok());
   mix.single_fraction = 1.0f;
-  EXPECT_TRUE(ValidateGroupMix(mix).ok());
+  EXPECT_TRUE(validate_group_mix(mix).ok());
 }
 
 TEST(SpectatorScene, NeighboursWithinRadiusAndGroupMembers) {
@@ -204,7 +204,7 @@ TEST(SpectatorScene, NeighboursWithinRadiusAndGroupMembers) {
   def.individuals[0].group = 7;
   def.params.neighbour_radius_m = 1.5f;
   SpectatorScene scene;
-  ASSERT_TRUE(BuildSpectatorScene(StadiumFsm(), def, &scene).ok());
+  ASSERT_TRUE(build_spectator_scene(StadiumFsm(), def, scene).ok());
   EXPECT_EQ(scene.neighbour_count(4), 8u);  // the centre sees the whole ring
   EXPECT_EQ(scene.neighbour_count(8), 3u);  // a corner sees three
   // Individual 0 (corner) and 9 (100 m away) are friends: always neighbours.
@@ -219,7 +219,7 @@ TEST(SpectatorScene, EventsAreSortedAndTeamsResolved) {
   SpectatorSceneDef def = SmallScene();
   def.events = {{"goal", 30.0, "B", 1.0f}, {"applause", 5.0, "", 0.4f}, {"goal", 12.0, "A", 1.0f}};
   SpectatorScene scene;
-  ASSERT_TRUE(BuildSpectatorScene(StadiumFsm(), def, &scene).ok());
+  ASSERT_TRUE(build_spectator_scene(StadiumFsm(), def, scene).ok());
   ASSERT_EQ(scene.events().size(), 3u);
   EXPECT_EQ(scene.events()[0].time_s, 5.0);
   EXPECT_EQ(scene.events()[0].team, SpectatorScene::kAnyTeam);
@@ -298,11 +298,11 @@ TEST(SpectatorSceneErrors, HomeMustBeReachableBack) {
                 {"stand", "stand", "stand", {{"stand_1", 1.0f, 1.0f}}, true}};
   def.transitions = {{"sit", "stand_up", 1.0f}, {"stand_up", "stand", 0.0f}};
   BehaviourFsm fsm;
-  ASSERT_TRUE(BuildBehaviourFsm(def, &fsm).ok());
+  ASSERT_TRUE(build_behaviour_fsm(def, fsm).ok());
   SpectatorSceneDef scene_def = SmallScene();
   scene_def.events.clear();
   SpectatorScene scene;
-  const Status status = BuildSpectatorScene(fsm, scene_def, &scene);
+  const Status status = build_spectator_scene(fsm, scene_def, scene);
   EXPECT_EQ(status.code(), StatusCode::kInvalidScene);
   EXPECT_NE(status.message().find("state 'stand_up' can be reached from it but has no path back"),
             std::string::npos)

@@ -24,10 +24,11 @@ struct Sim {
   std::vector<uint16_t> out_state, out_clip;
   std::vector<float> out_time;
 
-  explicit Sim(const SpectatorSceneDef& def, const BehaviourFsmDef& fsm_def = DefaultStadiumFsm()) {
-    Status s = BuildBehaviourFsm(fsm_def, &fsm);
+  explicit Sim(const SpectatorSceneDef& def,
+               const BehaviourFsmDef& fsm_def = default_stadium_fsm()) {
+    Status s = build_behaviour_fsm(fsm_def, fsm);
     EXPECT_TRUE(s.ok()) << s.message();
-    s = BuildSpectatorScene(fsm, def, &scene);
+    s = build_spectator_scene(fsm, def, scene);
     EXPECT_TRUE(s.ok()) << s.message();
     state.Reset(fsm, scene);
     out_state.resize(scene.size());
@@ -71,7 +72,7 @@ SpectatorSceneDef Stadium(uint64_t seed = 1) {
   grid.columns = 40;
   grid.sections = {{"A", 0, 20}, {"B", 20, 20}};
   grid.seed = seed;
-  EXPECT_TRUE(PlaceSeatGrid(grid, def.teams, &def.individuals).ok());
+  EXPECT_TRUE(place_seat_grid(grid, def.teams, def.individuals).ok());
   def.events = {{"goal", 12.0, "A", 1.0f}};
   def.params.seed = seed;
   return def;
@@ -85,7 +86,7 @@ SpectatorSceneDef Block(int side, float embarrassment, std::vector<SceneEvent> e
   grid.rows = grid.columns = side;
   grid.empty_probability = 0.0f;
   grid.sections = {{"A", 0, side}};
-  EXPECT_TRUE(PlaceSeatGrid(grid, def.teams, &def.individuals).ok());
+  EXPECT_TRUE(place_seat_grid(grid, def.teams, def.individuals).ok());
   def.events = std::move(events);
   return def;
 }

@@ -127,7 +127,7 @@ struct InstanceRange {
   uint32_t first = 0, count = 0;
 };
 
-// A "relaxation" generator's request (crowd-patches placement, crowdbake_crowd's PlaceCrowd).
+// A "relaxation" generator's request (crowd-patches placement, crowdbake_crowd's place_crowd).
 // The runtime core does not place crowds itself: SceneLoadOptions::relaxation does.
 struct RelaxationRequest {
   std::vector<std::array<float, 2>> region;  // (x, z) polygon, >= 3 vertices

@@ -8,8 +8,8 @@
 // the first frame of cheer share one default pose). So "stand" is the hub between sitting and
 // cheering: sit →stand_up→ stand →arm_up→ cheer.
 //
-// Raw → builder → runtime: fill a BehaviourFsmDef, call BuildBehaviourFsm(), and use the
-// compiled BehaviourFsm (indices, shortest-path routing table, clip table). DefaultStadiumFsm()
+// Raw → builder → runtime: fill a BehaviourFsmDef, call build_behaviour_fsm(), and use the
+// compiled BehaviourFsm (indices, shortest-path routing table, clip table). default_stadium_fsm()
 // returns the definition the tests, docs and the stadium sample use.
 #pragma once
 
@@ -63,7 +63,7 @@ struct BehaviourFsmDef {
   std::vector<ReactionDef> reactions;
 };
 
-// The compiled FSM: move-only data built by BuildBehaviourFsm(), read-only afterwards.
+// The compiled FSM: move-only data built by build_behaviour_fsm(), read-only afterwards.
 class BehaviourFsm {
  public:
   static constexpr uint16_t kNone = 0xffff;
@@ -109,7 +109,7 @@ class BehaviourFsm {
   float reaction_decay(uint16_t r) const { return reaction_decay_[r]; }
 
  private:
-  friend Status BuildBehaviourFsm(const BehaviourFsmDef& def, BehaviourFsm* out);
+  friend Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out);
   enum : uint8_t { kRest = 1, kInterruptible = 2, kContagious = 4 };
 
   std::vector<std::string> state_names_;
@@ -130,8 +130,8 @@ class BehaviourFsm {
   std::vector<float> reaction_decay_;
 };
 
-// Checks `def` and compiles it into *out. On error returns kInvalidFsm with a message naming
-// the offending state, clip, transition or reaction, and leaves *out unchanged. The rules:
+// Checks `def` and compiles it into `out`. On error returns kInvalidFsm with a message naming
+// the offending state, clip, transition or reaction, and leaves `out` unchanged. The rules:
 //  - at least one state; names unique and not empty; poses not empty;
 //  - each state has >= 1 clip; clip names not empty; durations finite and > 0 ("negative
 //    times"); weights finite and >= 0, not all 0;
@@ -143,13 +143,13 @@ class BehaviourFsm {
 //  - reactions: event unique and not empty, states known, decay_s finite and > 0, and each
 //    reaction state reachable from every rest state;
 //  - at most 1024 states (the routing table is states²) and 65534 clips.
-Status BuildBehaviourFsm(const BehaviourFsmDef& def, BehaviourFsm* out);
+Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out);
 
 // The stadium FSM (docs/crowd-behaviour.md draws it): rest states sit and stand; sit ↔
 // look_around, look_down (seated disappointment); sit →stand_up→ stand →sit_down→ sit;
 // stand → clap → stand; stand →arm_up→ cheer →arm_down→ stand. Reactions: "goal" (cheer /
 // look_down, decay 6 s), "applause" (clap / none, decay 5 s), "miss" (look_down / none, 3 s).
 // Clip names are "<state>_<n>"; durations 0.4–2.5 s.
-BehaviourFsmDef DefaultStadiumFsm();
+BehaviourFsmDef default_stadium_fsm();
 
 }  // namespace crowdbake::crowd

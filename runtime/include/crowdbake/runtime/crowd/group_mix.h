@@ -24,12 +24,12 @@ struct GroupMix {
 };
 
 // Checks the mix; kInvalidArgument naming the bad field.
-Status ValidateGroupMix(const GroupMix& mix);
+Status validate_group_mix(const GroupMix& mix);
 
 // Splits `people` into group sizes (1–4) that sum to exactly `people`, deterministic in
 // `seed`: round(single_fraction · people) singles, then groups drawn from the mix until the
 // people run out (a last draw larger than what is left is cut down to the rest; a cut to 1
 // becomes a single). Sizes come out shuffled. The mix must be valid; people >= 0.
-std::vector<uint8_t> DrawGroupSizes(const GroupMix& mix, int people, uint64_t seed);
+std::vector<uint8_t> draw_group_sizes(const GroupMix& mix, int people, uint64_t seed);
 
 }  // namespace crowdbake::crowd

@@ -77,6 +77,6 @@ struct Placement {
 // vertices, not finite, zero area, self-intersecting edges i and j); kInfeasible when the
 // region is smaller than hexagonal packing at min_distance_m needs, or the min-distance pass
 // cannot separate every pair; kInternal when the power-diagram backend fails.
-Status PlaceCrowd(const PlacementOptions& options, Placement* result);
+Status place_crowd(const PlacementOptions& options, Placement& result);
 
 }  // namespace crowdbake::crowd

@@ -3,7 +3,7 @@
 // seat-grid placement of a stadium stand.
 //
 // Raw → builder → runtime: fill a SpectatorSceneDef (teams, individuals, events, params),
-// build it against a compiled BehaviourFsm with BuildSpectatorScene(), then drive it frame
+// build it against a compiled BehaviourFsm with build_spectator_scene(), then drive it frame
 // by frame with SpectatorUpdateJob (spectator_update_job.h).
 //
 // Reaction model (docs/crowd-behaviour.md derives it from the thesis §3.1.3–3.2.3 and the
@@ -53,7 +53,7 @@ struct IndividualDef {
   float yaw = 0.0f;               // radians about +y; facing (sin yaw, 0, cos yaw); renderer only
   uint16_t team = 0;              // index into SpectatorSceneDef::teams
   uint32_t group = kNoGroup;      // individuals with the same id form a group; kNoGroup = alone
-  int32_t row = -1, column = -1;  // seat, when placed by PlaceSeatGrid; -1 otherwise
+  int32_t row = -1, column = -1;  // seat, when placed by place_seat_grid; -1 otherwise
 };
 
 struct SceneEvent {
@@ -89,7 +89,7 @@ struct SpectatorSceneDef {
 };
 
 // The compiled scene: per-individual parallel arrays plus the neighbour graph (CSR).
-// Move-only; filled by BuildSpectatorScene() only.
+// Move-only; filled by build_spectator_scene() only.
 class SpectatorScene {
  public:
   SpectatorScene() = default;
@@ -129,8 +129,8 @@ class SpectatorScene {
   const std::vector<Event>& events() const { return events_; }
 
  private:
-  friend Status BuildSpectatorScene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
-                                    SpectatorScene* out);
+  friend Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
+                                      SpectatorScene& out);
   std::vector<std::string> team_names_;
   SpectatorParams params_;
   uint16_t home_state_ = 0;
@@ -142,13 +142,13 @@ class SpectatorScene {
 };
 
 // Checks `def` against `fsm` and compiles it. On error returns kInvalidScene naming the item
-// and leaves *out unchanged. Rules: teams non-empty, names unique and not empty, embarrassment
+// and leaves `out` unchanged. Rules: teams non-empty, names unique and not empty, embarrassment
 // values finite and >= 0; individuals' team in range and positions finite; events: kind is a
 // reaction of the FSM, team is "" or a team of the crowd ("event for a missing team"), time
 // and excitement finite and >= 0 ("negative times"); params in the ranges above; home_state
 // is a rest state of the FSM; at most 2^32 - 2 individuals.
-Status BuildSpectatorScene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
-                           SpectatorScene* out);
+Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
+                             SpectatorScene& out);
 
 // A stand's seat grid: `rows` × `columns` seats, row 0 nearest the pitch. Seat (r, c) sits at
 // origin + (c · seat_spacing_m, r · row_rise_m, r · row_spacing_m); spectators face -z (yaw π).
@@ -172,12 +172,12 @@ struct SeatGridDef {
   uint64_t seed = 1;
 };
 
-// Fills *individuals (replacing its contents) with one spectator per occupied seat, in
+// Fills `individuals` (replacing its contents) with one spectator per occupied seat, in
 // row-major seat order, deterministic in def.seed. Groups: each row's runs of consecutive
 // occupied seats of one section are cut into groups drawn from def.groups. On error returns
 // kInvalidScene naming the bad field or section (unknown team, out of the grid, overlapping
-// another section) and leaves *individuals unchanged.
-Status PlaceSeatGrid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
-                     std::vector<IndividualDef>* individuals);
+// another section) and leaves `individuals` unchanged.
+Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
+                       std::vector<IndividualDef>& individuals);
 
 }  // namespace crowdbake::crowd

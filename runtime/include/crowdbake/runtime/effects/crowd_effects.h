@@ -101,7 +101,7 @@ class CrowdEffects {
   std::unique_ptr<Impl> impl_;
 };
 
-// SceneLoadOptions whose relaxation placer is crowdbake_crowd's PlaceCrowd (power-diagram
+// SceneLoadOptions whose relaxation placer is crowdbake_crowd's place_crowd (power-diagram
 // Lloyd relaxation): load scenes with "relaxation" generators through this.
 runtime::SceneLoadOptions crowd_scene_load_options(runtime::SceneLoadOptions options = {});
 
