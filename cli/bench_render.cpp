@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 
@@ -261,6 +262,17 @@ void draw_plot(const BenchRenderSettings& s, const std::string& data, const std:
   }
   std::string sizes;
   for (uint32_t n : s.sizes) sizes += (sizes.empty() ? "" : " ") + std::to_string(n);
+  if (s.pop_only) {
+    // note: the table's data is an earlier run's: plot the sizes it has ("# block k: N ...").
+    sizes.clear();
+    std::ifstream in(data);
+    std::string line;
+    while (std::getline(in, line)) {
+      unsigned block = 0, n = 0;
+      if (std::sscanf(line.c_str(), "# block %u: %u instances", &block, &n) == 2)
+        sizes += (sizes.empty() ? "" : " ") + std::to_string(n);
+    }
+  }
   char title[160];
   std::snprintf(title, sizeof title, "%ux%u, %s", result.width, result.height,
                 result.device.c_str());

@@ -109,6 +109,22 @@ struct RenderSettings {
 
 int run_render(const RenderSettings& settings);
 
+// `crowdbake preview PACK -o sheet.png`: a contact sheet of a baked character, one row per LoD
+// level, one column per sampled frame of its clips, each cell labelled with the level's vertex
+// and triangle counts and its measured error (LERR, % of the bind-box diagonal).
+struct PreviewSettings {
+  std::string pack;
+  std::string output;                                                 // a .png
+  std::vector<std::string> clips;                                     // empty: every clip
+  std::vector<std::string> levels{"1", "0.5", "0.25", "0.1", "min"};  // fractions or "min"
+  uint32_t frames = 3;                                                // per clip, evenly spaced
+  uint32_t cell_width = 160, cell_height = 240;
+  uint32_t msaa = 4;
+  bool quiet = false;
+};
+
+int run_preview(const PreviewSettings& settings);
+
 // `crowdbake bench render`: frame time, triangles and image error against full resolution of
 // continuous LoD at several budgets, discrete LoD and full resolution, for seat-grid stands of
 // the generated spectator; and popping over a camera dolly (docs/performance.md).

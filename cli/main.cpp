@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/render_plan.h"
 #include "crowdbake/pipeline/error.h"
 
 namespace {
@@ -177,6 +178,9 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("--report", bake.report,
                        "Write a JSON report (stats, timings, settings, chunk sizes)");
   bake_cmd->add_flag("--quiet", bake.quiet, "No progress and no summary");
+  std::string bake_preview;
+  bake_cmd->add_option("--preview", bake_preview,
+                       "Also write the pack's contact sheet (crowdbake preview) to this .png");
   add_import_options(*bake_cmd, bake.import);
 
   crowdbake::cli::DiffSettings diff;
@@ -253,6 +257,23 @@ int main(int argc, char** argv) {
                        "Enable the Vulkan validation layer; any validation error fails the run");
   render_cmd->add_flag("--quiet", render.quiet, "Print nothing on success");
 
+  crowdbake::cli::PreviewSettings preview;
+  CLI::App* preview_cmd = app.add_subcommand(
+      "preview",
+      "Contact sheet of a baked character: one row per LoD level, one column per sampled frame "
+      "of its clips, each cell labelled with vertices, triangles and the level's error");
+  preview_cmd->add_option("PACK", preview.pack, "Baked .crowdpack")->required();
+  preview_cmd->add_option("-o,--output", preview.output, "Output .png")->required();
+  preview_cmd->add_option("--clip", preview.clips, "Clips to show (default: every clip)");
+  preview_cmd->add_option("--levels", preview.levels,
+                          "Levels as fractions of the vertices in (0, 1] or 'min' (default "
+                          "1 0.5 0.25 0.1 min)");
+  preview_cmd->add_option("--frames", preview.frames, "Frames per clip (default 3)");
+  std::string preview_cell;
+  preview_cmd->add_option("--cell", preview_cell, "Cell size WIDTHxHEIGHT (default 160x240)");
+  preview_cmd->add_option("--msaa", preview.msaa, "Samples per pixel (default 4)");
+  preview_cmd->add_flag("--quiet", preview.quiet, "Print nothing on success");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -267,7 +288,23 @@ int main(int argc, char** argv) {
   try {
     if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
     if (*lod_cmd) return crowdbake::cli::run_lod(lod);
-    if (*bake_cmd) return crowdbake::cli::run_bake(bake);
+    if (*bake_cmd) {
+      if (!bake_preview.empty() && !crowdbake::cli::is_png_path(bake_preview))
+        throw crowdbake::Error(crowdbake::Error::Kind::kUsage, "--preview",
+                               "must name a .png file, got '" + bake_preview + "'");
+      const int baked = crowdbake::cli::run_bake(bake);
+      if (baked != 0 || bake_preview.empty()) return baked;
+      crowdbake::cli::PreviewSettings sheet;
+      sheet.pack = bake.output;
+      sheet.output = bake_preview;
+      sheet.quiet = bake.quiet;
+      return crowdbake::cli::run_preview(sheet);
+    }
+    if (*preview_cmd) {
+      if (!preview_cell.empty())
+        crowdbake::cli::parse_size("--cell", preview_cell, preview.cell_width, preview.cell_height);
+      return crowdbake::cli::run_preview(preview);
+    }
     if (*diff_cmd) return crowdbake::cli::run_diff(diff);
     if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
     if (*bench_scale_cmd) return crowdbake::cli::run_bench_scale(bench_scale);

@@ -22,12 +22,6 @@ Error output_error(const std::string& path, const std::string& message) {
   return Error(Error::Kind::kOutput, path, message);
 }
 
-bool ends_with_png(const std::string& path) {
-  const std::string ext = fs::path(path).extension().string();
-  return ext.size() == 4 && std::tolower(ext[1]) == 'p' && std::tolower(ext[2]) == 'n' &&
-         std::tolower(ext[3]) == 'g';
-}
-
 // The loader's messages start with the file name; main prints the file first already.
 std::string without_prefix(const std::string& message, const std::string& file) {
   const std::string prefix = file + ": ";
@@ -69,32 +63,42 @@ void check_settings(const RenderSettings& s) {
                 "must be error, budget (= continuous), discrete or full, got '" + s.lod + "'");
   if (!s.contact_sheet.empty() && !s.frames_given)
     throw usage("--contact-sheet", "only applies with --frames");
-  if (!s.contact_sheet.empty() && !ends_with_png(s.contact_sheet))
+  if (!s.contact_sheet.empty() && !is_png_path(s.contact_sheet))
     throw usage("--contact-sheet", "must name a .png file, got '" + s.contact_sheet + "'");
-  if (!s.frames_given && !ends_with_png(s.output))
+  if (!s.frames_given && !is_png_path(s.output))
     throw usage("-o", "must name a .png file, got '" + s.output +
                           "' (a sequence, --frames N, writes into a folder)");
-  if (s.frames_given && ends_with_png(s.output))
+  if (s.frames_given && is_png_path(s.output))
     throw usage("-o", "with --frames names a folder for the frames, got '" + s.output + "'");
 }
 
 }  // namespace
 
+bool is_png_path(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  return ext.size() == 4 && std::tolower(ext[1]) == 'p' && std::tolower(ext[2]) == 'n' &&
+         std::tolower(ext[3]) == 'g';
+}
+
 void parse_resolution(const std::string& text, uint32_t& width, uint32_t& height) {
+  parse_size("--resolution", text, width, height);
+}
+
+void parse_size(const std::string& option, const std::string& text, uint32_t& width,
+                uint32_t& height) {
   const size_t x = text.find_first_of("xX");
   auto number = [&](const std::string& part, const char* what) -> uint32_t {
     if (part.empty() || part.size() > 9 ||
         part.find_first_not_of("0123456789") != std::string::npos)
-      throw usage("--resolution", "must be WIDTHxHEIGHT, e.g. 1280x720, got '" + text + "'");
+      throw usage(option, "must be WIDTHxHEIGHT, e.g. 1280x720, got '" + text + "'");
     const unsigned long v = std::stoul(part);
     if (v < 1 || v > runtime::kMaxResolution)
-      throw usage("--resolution", std::string(what) + " must be in 1.." +
-                                      std::to_string(runtime::kMaxResolution) + " pixels, got " +
-                                      part);
+      throw usage(option, std::string(what) + " must be in 1.." +
+                              std::to_string(runtime::kMaxResolution) + " pixels, got " + part);
     return static_cast<uint32_t>(v);
   };
   if (x == std::string::npos)
-    throw usage("--resolution", "must be WIDTHxHEIGHT, e.g. 1280x720, got '" + text + "'");
+    throw usage(option, "must be WIDTHxHEIGHT, e.g. 1280x720, got '" + text + "'");
   width = number(text.substr(0, x), "width");
   height = number(text.substr(x + 1), "height");
 }

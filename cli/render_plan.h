@@ -21,8 +21,14 @@ struct RenderPlan {
 };
 
 // "WxH" → width and height, each 1..runtime::kMaxResolution.
-// Throws crowdbake::Error (kUsage) naming --resolution and the problem.
+// Throws crowdbake::Error (kUsage) naming `option` and the problem.
+void parse_size(const std::string& option, const std::string& text, uint32_t& width,
+                uint32_t& height);
+// parse_size for --resolution.
 void parse_resolution(const std::string& text, uint32_t& width, uint32_t& height);
+
+// Whether a path ends in .png (any case).
+bool is_png_path(const std::string& path);
 
 // Checks the settings, loads the scene (packs and all), applies the overrides and checks the
 // camera at every frame time and the outputs' folders.

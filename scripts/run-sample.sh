@@ -18,8 +18,9 @@ mkdir -p out
 
 "$BUILD/samples/spectator/make_spectator" -o out/spectator.glb
 "$crowdbake" inspect out/spectator.glb
-"$crowdbake" bake out/spectator.glb -o out/spectator.crowdpack --report out/spectator.bake.json
-echo "baked out/spectator.crowdpack ($(wc -c < out/spectator.crowdpack) bytes); report in out/spectator.bake.json"
+"$crowdbake" bake out/spectator.glb -o out/spectator.crowdpack --report out/spectator.bake.json \
+  --preview out/spectator-preview.png --quiet
+echo "baked out/spectator.crowdpack ($(wc -c < out/spectator.crowdpack) bytes); report in out/spectator.bake.json; levels x clips in out/spectator-preview.png"
 "$crowdbake" lod out/spectator.glb --ratio 0.25 -o out/spectator-lod25.glb
 # note: --quick measures every 6th frame with fewer settings; the full table over every
 # shared asset is `crowdbake bench simplify` (docs/accuracy.md).
