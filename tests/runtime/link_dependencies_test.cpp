@@ -1,6 +1,7 @@
 // The runtime links no importer and nothing from the pipeline (docs/design.md §2):
-//   1. CMake's view: every target crowdbake_runtime reaches through its link libraries
-//      (written at configure time by tests/runtime/CMakeLists.txt);
+//   1. CMake's view: every target each runtime library reaches through its link libraries
+//      (written at configure time by tests/runtime/CMakeLists.txt), which also keeps the
+//      layers apart (core, crowd, effects, scene effects, GPU);
 //   2. the linker's view: this test binary links crowdbake_runtime (and formats, GTest), so
 //      its ELF dynamic section must not need libassimp, libOpenMesh or libtinygltf, and its
 //      symbol table must hold no Assimp, OpenMesh, tinygltf or pipeline code.
@@ -26,18 +27,64 @@ std::string lower(std::string s) {
 const char* const kForbiddenLibraries[] = {"assimp", "openmesh", "tinygltf", "crowdbake_pipeline",
                                            "crowdbake_spectator"};
 
-TEST(LinkDependencies, CMakeLinkClosureOfTheRuntime) {
-  std::ifstream in(RUNTIME_LINK_CLOSURE);
-  ASSERT_TRUE(in) << "missing " << RUNTIME_LINK_CLOSURE << " (written when CMake configures)";
+// Every target `library` reaches through its link libraries (written when CMake configures);
+// empty when the library is not part of this build (e.g. no GPU library without Vulkan).
+std::vector<std::string> link_closure(const std::string& library) {
+  std::ifstream in(std::string(LINK_CLOSURE_DIR) + "/link_closure_" + library + ".txt");
   std::vector<std::string> targets;
   for (std::string line; std::getline(in, line);)
     if (!line.empty()) targets.push_back(line);
-  ASSERT_FALSE(targets.empty());
+  return targets;
+}
+
+bool reaches(const std::vector<std::string>& closure, const std::string& target) {
+  return std::find(closure.begin(), closure.end(), target) != closure.end();
+}
+
+TEST(LinkDependencies, CMakeLinkClosureOfTheRuntime) {
+  const std::vector<std::string> targets = link_closure("crowdbake_runtime");
+  ASSERT_FALSE(targets.empty()) << "missing " << LINK_CLOSURE_DIR
+                                << "/link_closure_crowdbake_runtime.txt (written by CMake)";
   EXPECT_EQ(targets.front(), "crowdbake_runtime");
-  EXPECT_NE(std::find(targets.begin(), targets.end(), "crowdbake_formats"), targets.end());
-  for (const std::string& t : targets)
-    for (const char* bad : kForbiddenLibraries)
-      EXPECT_EQ(lower(t).find(bad), std::string::npos) << "crowdbake_runtime links " << t;
+  EXPECT_TRUE(reaches(targets, "crowdbake_formats"));
+}
+
+// Each runtime library reaches no importer and nothing of the pipeline, and only the layers
+// below it: the core knows no crowd, effect or GPU code; crowd and effects are independent of
+// the core and of each other; the GPU library builds on the core only; scene effects tie the
+// core, crowd and effects together.
+TEST(LinkDependencies, EveryRuntimeLibraryKeepsToItsLayer) {
+  struct Rule {
+    const char* library;
+    std::vector<const char*> must_not_reach;
+  };
+  const Rule rules[] = {
+      {"crowdbake_runtime",
+       {"crowdbake_crowd", "crowdbake_effects", "crowdbake_scene_effects", "crowdbake_gpu",
+        "Vulkan::Vulkan"}},
+      {"crowdbake_crowd",
+       {"crowdbake_runtime", "crowdbake_effects", "crowdbake_scene_effects", "crowdbake_gpu",
+        "Vulkan::Vulkan"}},
+      {"crowdbake_effects",
+       {"crowdbake_runtime", "crowdbake_crowd", "crowdbake_scene_effects", "crowdbake_gpu",
+        "Vulkan::Vulkan"}},
+      {"crowdbake_scene_effects", {"crowdbake_gpu", "Vulkan::Vulkan"}},
+      {"crowdbake_gpu", {"crowdbake_crowd", "crowdbake_effects", "crowdbake_scene_effects"}},
+  };
+  int checked = 0;
+  for (const Rule& rule : rules) {
+    const std::vector<std::string> targets = link_closure(rule.library);
+    if (targets.empty()) continue;  // note: not in this build
+    ++checked;
+    EXPECT_EQ(targets.front(), rule.library);
+    for (const std::string& t : targets)
+      for (const char* bad : kForbiddenLibraries)
+        EXPECT_EQ(lower(t).find(bad), std::string::npos) << rule.library << " links " << t;
+    for (const char* below : rule.must_not_reach)
+      EXPECT_FALSE(reaches(targets, below)) << rule.library << " reaches " << below;
+  }
+  EXPECT_GE(checked, 4) << "the core, crowd, effects and scene effects are always built";
+  EXPECT_TRUE(reaches(link_closure("crowdbake_scene_effects"), "crowdbake_crowd"));
 }
 
 TEST(LinkDependencies, DynamicSectionOfARuntimeBinary) {
