@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "cli/image_png.h"
 #include "cli/image_sheet.h"
 #include "cli/image_text.h"
+#include "cli/pack_file.h"
 #include "cli/render_device.h"
 #include "cli/render_plan.h"
 #include "crowdbake/pipeline/error.h"
@@ -77,11 +77,6 @@ float level_error(const PackLevelErrors& e, uint32_t n) {
 Error pack_error(const std::string& path, const std::string& message) {
   const std::string prefix = path + ": ";
   return input_error(path, message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message);
-}
-
-std::string upper_case(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace
@@ -177,9 +172,7 @@ int run_preview(const PreviewSettings& s) {
 
   auto context = open_vulkan(false);
   auto renderer = make_renderer(*context, scene, true, s.msaa, s.pack);
-  const float diagonal = std::sqrt((b.max[0] - b.min[0]) * (b.max[0] - b.min[0]) +
-                                   (b.max[1] - b.min[1]) * (b.max[1] - b.min[1]) +
-                                   (b.max[2] - b.min[2]) * (b.max[2] - b.min[2]));
+  const double diagonal = bbox_diagonal(c);
   const bool progress = !s.quiet && ::isatty(2);
   std::vector<RgbaImage> cells;
   TextStyle style;
@@ -199,17 +192,17 @@ int run_preview(const PreviewSettings& s) {
       if (r == 0) {
         char head[96];
         std::snprintf(head, sizeof head, "%s %.2fS",
-                      upper_case(scene.clips[columns[k].clip].clip->name).substr(0, 24).c_str(),
+                      scene.clips[columns[k].clip].clip->name.substr(0, 24).c_str(),
                       static_cast<double>(columns[k].time));
         draw_text(cell, 0, 0, head, style);
       }
       char counts[64], error[64];
       std::snprintf(counts, sizeof counts, "%uV %uT", levels[r].vertices, levels[r].triangles);
-      if (levels[r].error < 0.0f || !(diagonal > 0.0f))
+      if (levels[r].error < 0.0f || !(diagonal > 0.0))
         std::snprintf(error, sizeof error, "ERR N/A");
       else
         std::snprintf(error, sizeof error, "ERR %.2f%%",
-                      100.0 * static_cast<double>(levels[r].error / diagonal));
+                      100.0 * static_cast<double>(levels[r].error) / diagonal);
       const int32_t bottom = static_cast<int32_t>(cell.height);
       draw_text(cell, 0, bottom - 2 * line, counts, style);
       draw_text(cell, 0, bottom - line, error, style);

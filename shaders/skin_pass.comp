@@ -74,6 +74,7 @@ SkinnedVertex skin_listed(GpuInstance inst, uint v, uint first) {
 // (Mesa 22.3) where neighbouring lanes went on down their chains.
 SkinnedVertex morph_listed(GpuInstance inst, uint v, uint first, float x) {
   SkinnedVertex s = skin_listed(inst, v, first);
+  if (!(params.geomorph > 0.0) || !(x > 0.0)) return s;  // note: off (the default): no table read
   uvec2 entry = morph_table[v];
   float m = geomorph_weight(entry, x, params.geomorph);
   if (m == 0.0) return s;

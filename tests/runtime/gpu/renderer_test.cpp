@@ -105,6 +105,17 @@ void crowd_scene(Scene& scene) {
   scene.camera.height = 144;
 }
 
+// One spectator close up, its LoD chosen by budget (the geomorph tests).
+void close_up_scene(Scene& scene, uint32_t width, uint32_t height) {
+  ASSERT_TRUE(test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator()).ok());
+  test::add_grid(scene, 0, 1, 1, 1.0f);
+  scene.camera.position = {0.0f, 1.2f, 2.0f};
+  scene.camera.target = {0.0f, 0.9f, 0.0f};
+  scene.camera.width = width;
+  scene.camera.height = height;
+  scene.lod.mode = runtime::LodMode::kContinuous;
+}
+
 class RendererTest : public test::GpuTest {
  protected:
   void make_renderer(const Scene& scene, const RenderOptions& options = {}) {
@@ -377,13 +388,8 @@ TEST_F(RendererTest, MultisamplingSmoothsEdgesOnly) {
 TEST_F(RendererTest, GeomorphsMoveVerticesOnlyInsideTheirWindow) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  ASSERT_TRUE(test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator()).ok());
-  test::add_grid(scene, 0, 1, 1, 1.0f);
-  scene.camera.position = {0.0f, 1.2f, 2.0f};
-  scene.camera.target = {0.0f, 0.9f, 0.0f};
-  scene.camera.width = 256;
-  scene.camera.height = 144;
-  scene.lod.mode = runtime::LodMode::kContinuous;
+  close_up_scene(scene, 256, 144);
+  if (HasFatalFailure()) return;
   make_renderer(scene);
   if (HasFatalFailure()) return;
   for (uint32_t budget : {100000u, 300u}) {
@@ -401,13 +407,8 @@ TEST_F(RendererTest, GeomorphsMoveVerticesOnlyInsideTheirWindow) {
 TEST_F(RendererTest, GeomorphedVerticesMatchTheCpuReference) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   Scene scene;
-  ASSERT_TRUE(test::add_pack_file(scene, "spectator", test::BakedPacks::get().spectator()).ok());
-  test::add_grid(scene, 0, 1, 1, 1.0f);
-  scene.camera.position = {0.0f, 1.2f, 2.0f};
-  scene.camera.target = {0.0f, 0.9f, 0.0f};
-  scene.camera.width = 64;
-  scene.camera.height = 64;
-  scene.lod.mode = runtime::LodMode::kContinuous;
+  close_up_scene(scene, 64, 64);
+  if (HasFatalFailure()) return;
   scene.lod.geomorph = 0.25f;
   make_renderer(scene);
   if (HasFatalFailure()) return;
