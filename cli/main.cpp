@@ -33,6 +33,9 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
       .add_option("--import-memory", options.limits.memory_mib,
                   "Address space in MiB the importing process may use (0: no limit)")
       ->capture_default_str();
+  command.add_flag("--strict-textures", options.strict_textures,
+                   "A base colour texture that cannot be stored (missing, not PNG/JPEG, "
+                   "corrupt, too large) is an error instead of a warning");
   command.add_flag("!--import-in-process", options.limits.isolate,
                    "Import in crowdbake's own process (no limits; a crash in the importer "
                    "ends crowdbake): for debugging importers");

@@ -316,15 +316,47 @@ DiffSection diff_materials(const PackContents& a, const PackContents& b, const C
     if (ma.name != mb.name) differ(s, name + " name " + arrow(ma.name, mb.name));
     if (ma.base_color_texture != mb.base_color_texture)
       differ(s, name + " texture " + arrow(ma.base_color_texture, mb.base_color_texture));
-    double d = 0.0;
+    if (ma.base_color_image != mb.base_color_image)
+      differ(s, name + " image " + arrow(ma.base_color_image, mb.base_color_image));
+    if (ma.alpha_mode != mb.alpha_mode)
+      differ(s, name + " alpha mode " +
+                    arrow(std::string(alpha_mode_name(ma.alpha_mode)),
+                          std::string(alpha_mode_name(mb.alpha_mode))));
+    if (ma.double_sided != mb.double_sided)
+      differ(s, name + " double-sided " + arrow(ma.double_sided, mb.double_sided));
+    double d = 0.0, t = std::abs(double{ma.alpha_cutoff} - mb.alpha_cutoff);
     for (int k = 0; k < 4; ++k)
       d = std::max(d, std::abs(double{ma.base_color[k]} - mb.base_color[k]));
+    for (int k = 0; k < 6; ++k)
+      t = std::max(t, std::abs(double{ma.uv_transform[k]} - mb.uv_transform[k]));
     if (cmp.beyond(d)) differ(s, name + " base colour differs by " + num(d));
+    if (cmp.beyond(t)) differ(s, name + " texture transform or alpha cutoff differs by " + num(t));
     color.add(d, static_cast<int64_t>(i));
   }
-  s.summary =
-      std::to_string(a.materials.size()) + " materials; base colour max diff " + num(color.value);
+  // Images: compared by their stored bytes (they are never re-encoded, so equal images are
+  // equal bytes).
+  if (a.images.size() != b.images.size())
+    differ(s, "image count " + arrow(a.images.size(), b.images.size()));
+  size_t images_differ = 0;
+  for (size_t i = 0; i < std::min(a.images.size(), b.images.size()); ++i) {
+    const PackImage& ia = a.images[i];
+    const PackImage& ib = b.images[i];
+    const std::string name = "image " + std::to_string(i);
+    if (ia.name != ib.name) differ(s, name + " name " + arrow(ia.name, ib.name));
+    if (ia.width != ib.width || ia.height != ib.height)
+      differ(s, name + " size " +
+                    arrow(std::to_string(ia.width) + "x" + std::to_string(ia.height),
+                          std::to_string(ib.width) + "x" + std::to_string(ib.height)));
+    else if (ia.data != ib.data) {
+      differ(s, name + " bytes differ (" + arrow(ia.data.size(), ib.data.size()) + " bytes)");
+      ++images_differ;
+    }
+  }
+  s.summary = std::to_string(a.materials.size()) + " materials, " +
+              std::to_string(a.images.size()) + " images; base colour max diff " + num(color.value);
   s.figures = {{"materials", {a.materials.size(), b.materials.size()}},
+               {"images", {a.images.size(), b.images.size()}},
+               {"images_differ", images_differ},
                {"base_color_max_diff", color.value}};
   return s;
 }

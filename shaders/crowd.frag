@@ -1,7 +1,9 @@
-// Colour pass: the partition region (the pack's mask in UV space, docs/design.md §3.7) picks the
-// instance's texture variant for that region; the variant's swatch (generated, the packs carry
-// no images) gets the instance's HSB variation, then Lambert + ambient light with the
-// directional shadow map.
+// Colour pass. Material shading: the vertex's pack material (its image × factor, alpha-tested
+// where the material says so). Swatch shading: the partition region (the pack's mask in UV
+// space, docs/design.md §3.7) picks the instance's texture variant for that region, a generated
+// swatch. Either gets the instance's HSB variation (with material shading the head region keeps
+// its hue and saturation: skin tones shifted in hue look ill), then Lambert + ambient light
+// with the directional shadow map.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -15,6 +17,14 @@ layout(set = 0, binding = 3) uniform sampler2DShadow shadow_map;
 layout(set = 0, binding = 4) uniform sampler2DArray swatches;
 // The pack's PartitionMask (R8_UINT, row 0 = v in [0, 1/height)).
 layout(set = SKIN_SET, binding = 4) uniform usampler2D partition_mask;
+// The type's materials (crowd_draw.h GpuMaterial) and their images as one array (layer 0 white).
+struct GpuMaterial {
+  vec4 color;  // factor, display space
+  vec4 uv_u;   // u' = dot(xyz, (u, v, 1)); w: image layer (-1: untextured)
+  vec4 uv_v;   // v' likewise; w: alpha cutoff (-1: opaque)
+};
+layout(std430, set = SKIN_SET, binding = 6) readonly buffer MaterialBlock { GpuMaterial materials[]; };
+layout(set = SKIN_SET, binding = 7) uniform sampler2DArray material_images;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
@@ -23,6 +33,7 @@ layout(location = 3) in float in_height;
 layout(location = 4) flat in uint in_textures;
 layout(location = 5) flat in vec4 in_color;
 layout(location = 6) flat in vec2 in_partition;
+layout(location = 7) flat in uint in_material;
 
 layout(location = 0) out vec4 out_color;
 
@@ -83,13 +94,27 @@ void main() {
     albedo = frame.ground_color.rgb;
   } else {
     const uint region = partition_region();
-    const uint variant = (in_textures >> (8u * region)) & 0xFFu;
-    const uint per_region = max(type_block.variants.w, 1u);
-    const float layer = float(region * per_region + variant % per_region);
-    albedo = texture(swatches, vec3(in_uv * frame.ambient.w, layer)).rgb;
+    const bool material_shading = type_block.waist_mask.w > 0.5;
+    if (material_shading) {
+      const GpuMaterial m = materials[in_material];
+      vec4 texel = vec4(1.0);
+      if (m.uv_u.w >= 0.0) {
+        const vec3 uv1 = vec3(in_uv, 1.0);
+        texel = texture(material_images, vec3(dot(m.uv_u.xyz, uv1), dot(m.uv_v.xyz, uv1), m.uv_u.w));
+      }
+      if (m.uv_v.w >= 0.0 && texel.a * m.color.a < m.uv_v.w) discard;
+      albedo = texel.rgb * m.color.rgb;
+    } else {
+      const uint variant = (in_textures >> (8u * region)) & 0xFFu;
+      const uint per_region = max(type_block.variants.w, 1u);
+      const float layer = float(region * per_region + variant % per_region);
+      albedo = texture(swatches, vec3(in_uv * frame.ambient.w, layer)).rgb;
+    }
     vec3 hsv = rgb_to_hsv(albedo);
-    hsv.x = fract(hsv.x + in_color.x / 360.0);
-    hsv.y = clamp(hsv.y * in_color.y, 0.0, 1.0);
+    if (!material_shading || region != kHead) {
+      hsv.x = fract(hsv.x + in_color.x / 360.0);
+      hsv.y = clamp(hsv.y * in_color.y, 0.0, 1.0);
+    }
     hsv.z = clamp(hsv.z * in_color.z, 0.0, 1.0);
     albedo = hsv_to_rgb(hsv);
   }

@@ -18,6 +18,7 @@ layout(location = 3) out float out_height;  // bind-pose height along the pack's
 layout(location = 4) flat out uint out_textures;
 layout(location = 5) flat out vec4 out_color;      // hue shift, saturation, brightness, mode
 layout(location = 6) flat out vec2 out_partition;  // the instance's neck and waist heights
+layout(location = 7) flat out uint out_material;   // index into the type's materials
 
 void main() {
   if (kDrawMode == kDrawGround) {
@@ -29,6 +30,7 @@ void main() {
     out_textures = 0u;
     out_color = vec4(0.0, 1.0, 1.0, float(kDrawGround));
     out_partition = vec2(0.0);
+    out_material = 0u;
     gl_Position = frame.view_proj * vec4(p, 1.0);
     return;
   }
@@ -56,6 +58,7 @@ void main() {
     out_textures = 0u;
     out_color = vec4(0.0);
     out_partition = vec2(0.0);
+    out_material = 0u;
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
     return;
   }
@@ -64,5 +67,6 @@ void main() {
   out_textures = inst.textures;
   out_color = vec4(inst.color.xyz, float(kDrawCrowd));
   out_partition = vec2(inst.neck_height, inst.waist_height);
+  out_material = v.joints_v.w >> 16;
   gl_Position = frame.view_proj * vec4(out_world, 1.0);
 }

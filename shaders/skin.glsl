@@ -30,7 +30,7 @@ layout(std430, set = SKIN_SET, binding = 0) readonly buffer TypeBlock {
   vec4 decode_center;    // kQuantized decode params: center (tx, ty, tz, s)
   vec4 decode_half;      // and half range
   vec4 up_neck;          // the pack's up axis, its neck height
-  vec4 waist_mask;       // the pack's waist height, mask width, mask height, unused
+  vec4 waist_mask;       // the pack's waist height, mask width, mask height, 1 = material shading
   uvec4 variants;        // texture variants: head, upper body, trousers; swatches per region
 }
 type_block;
@@ -40,7 +40,8 @@ struct GpuVertex {
   vec4 position_height;  // bind-pose position, its height along the up axis
   vec4 normal_u;         // normal, texture u
   vec4 weights;          // the four joint weights
-  uvec4 joints_v;        // joint0 | joint1 << 16, joint2 | joint3 << 16, bits of v, 1 = unskinned
+  // joint0 | joint1 << 16, joint2 | joint3 << 16, bits of v, (1 = unskinned) | material << 16
+  uvec4 joints_v;
 };
 
 layout(std430, set = SKIN_SET, binding = 1) readonly buffer VertexBlock { GpuVertex vertices[]; };
@@ -322,7 +323,7 @@ Affine blend_joints(GpuInstance inst, GpuVertex v) {
 
 // The rest of SkinJob::Run for one vertex: world · (M · v), and the normal.
 SkinnedVertex place_vertex(GpuInstance inst, GpuVertex v, Affine m) {
-  if (v.joints_v.w != 0u) {  // a mesh without joints is only placed (SkinJob's identity)
+  if ((v.joints_v.w & 1u) != 0u) {  // a mesh without joints is only placed (SkinJob's identity)
     m.r0 = vec4(1.0, 0.0, 0.0, 0.0);
     m.r1 = vec4(0.0, 1.0, 0.0, 0.0);
     m.r2 = vec4(0.0, 0.0, 1.0, 0.0);

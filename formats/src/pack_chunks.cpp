@@ -161,6 +161,16 @@ void encode_materials(const std::vector<PackMaterial>& materials, ByteWriter& ou
   }
 }
 
+// note: MATL and MATX fill different fields of the same materials, in whichever order a
+// reader meets them; each sizes the list to its count, and a different count is an error.
+bool size_materials(ByteReader& in, uint32_t count, std::vector<PackMaterial>& out) {
+  if (!out.empty() && out.size() != count)
+    return in.fail("holds " + std::to_string(count) + " materials, the other material chunk " +
+                   std::to_string(out.size()));
+  out.resize(count);
+  return true;
+}
+
 bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out) {
   constexpr size_t kMinMaterialBytes = 4 + 16 + 4;
   uint32_t count = 0;
@@ -168,7 +178,7 @@ bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out) {
   if (count > kMaxMaterials)
     return in.fail("material count " + std::to_string(count) + " exceeds the limit");
   if (!in.count_fits(count, kMinMaterialBytes, "materials")) return false;
-  out.assign(count, PackMaterial{});
+  if (!size_materials(in, count, out)) return false;
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
     in.set_item("material", i);
     in.string(out[i].name, kMaxStringBytes, "name");
@@ -177,6 +187,99 @@ bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out) {
   }
   in.clear_item();
   return in.expect_end() && checked(in, check_materials(out));
+}
+
+// --- MATX ------------------------------------------------------------------------------
+
+void encode_material_extras(const std::vector<PackMaterial>& materials, ByteWriter& out) {
+  out.u32(static_cast<uint32_t>(materials.size()));
+  for (const PackMaterial& m : materials) {
+    out.i32(m.base_color_image);
+    put_floats(out, m.uv_transform);
+    out.u32(static_cast<uint32_t>(m.alpha_mode));
+    out.f32(m.alpha_cutoff);
+    out.u32(m.double_sided ? 1 : 0);
+  }
+}
+
+bool decode_material_extras(ByteReader& in, std::vector<PackMaterial>& out) {
+  constexpr size_t kExtraBytes = 4 + 24 + 4 + 4 + 4;
+  uint32_t count = 0;
+  if (!in.u32(count, "material count")) return false;
+  if (count > kMaxMaterials)
+    return in.fail("material count " + std::to_string(count) + " exceeds the limit");
+  if (!in.count_fits(count, kExtraBytes, "materials")) return false;
+  if (!size_materials(in, count, out)) return false;
+  for (uint32_t i = 0; i < count && in.ok(); ++i) {
+    PackMaterial& m = out[i];
+    uint32_t alpha_mode = 0, double_sided = 0;
+    in.set_item("material", i);
+    in.i32(m.base_color_image, "image index");
+    get_floats(in, m.uv_transform, "texture transform");
+    in.u32(alpha_mode, "alpha mode");
+    in.f32(m.alpha_cutoff, "alpha cutoff");
+    in.u32(double_sided, "double-sided");
+    if (!in.ok()) break;
+    if (alpha_mode > static_cast<uint32_t>(AlphaMode::kBlend))
+      return in.fail("unknown alpha mode " + std::to_string(alpha_mode));
+    if (double_sided > 1) return in.fail("double-sided flag " + std::to_string(double_sided));
+    m.alpha_mode = static_cast<AlphaMode>(alpha_mode);
+    m.double_sided = double_sided == 1;
+  }
+  in.clear_item();
+  return in.expect_end() && checked(in, check_materials(out));
+}
+
+// True when some material has more than MATL's fields (the writer then adds MATX).
+bool has_material_extras(const std::vector<PackMaterial>& materials) {
+  const PackMaterial plain;
+  for (const PackMaterial& m : materials)
+    if (m.base_color_image != plain.base_color_image || m.uv_transform != plain.uv_transform ||
+        m.alpha_mode != plain.alpha_mode || m.alpha_cutoff != plain.alpha_cutoff ||
+        m.double_sided != plain.double_sided)
+      return true;
+  return false;
+}
+
+// --- IMGS ------------------------------------------------------------------------------
+
+void encode_images(const std::vector<PackImage>& images, ByteWriter& out) {
+  out.u32(static_cast<uint32_t>(images.size()));
+  for (const PackImage& m : images) {
+    out.string(m.name, kMaxStringBytes, "image name");
+    out.string(m.mime_type, kMaxStringBytes, "image type");
+    out.u32(m.width);
+    out.u32(m.height);
+    out.u32(static_cast<uint32_t>(m.data.size()));
+    out.array(m.data);
+  }
+}
+
+bool decode_images(ByteReader& in, std::vector<PackImage>& out) {
+  constexpr size_t kMinImageBytes = 4 + 4 + 12;
+  uint32_t count = 0;
+  if (!in.u32(count, "image count")) return false;
+  if (count > kMaxImages)
+    return in.fail("image count " + std::to_string(count) + " exceeds the limit");
+  if (!in.count_fits(count, kMinImageBytes, "images")) return false;
+  out.assign(count, PackImage{});
+  for (uint32_t i = 0; i < count && in.ok(); ++i) {
+    PackImage& m = out[i];
+    uint32_t bytes = 0;
+    in.set_item("image", i);
+    in.string(m.name, kMaxStringBytes, "name");
+    in.string(m.mime_type, kMaxStringBytes, "type");
+    in.u32(m.width, "width");
+    in.u32(m.height, "height");
+    in.u32(bytes, "size");
+    if (!in.ok()) break;
+    if (bytes > kMaxImageBytes)
+      return in.fail(std::to_string(bytes) + " bytes exceed the limit of " +
+                     std::to_string(kMaxImageBytes));
+    in.read_array(m.data, bytes, "bytes");
+  }
+  in.clear_item();
+  return in.expect_end() && checked(in, check_images(out));
 }
 
 // --- BNDS ------------------------------------------------------------------------------

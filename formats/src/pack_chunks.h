@@ -30,6 +30,12 @@ bool decode_clips(ByteReader& in, std::vector<PackClip>& out);
 
 void encode_materials(const std::vector<PackMaterial>& materials, ByteWriter& out);
 bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out);
+// MATX (1.2): the fields of PackMaterial after MATL's (image, transform, alpha, sides).
+void encode_material_extras(const std::vector<PackMaterial>& materials, ByteWriter& out);
+bool decode_material_extras(ByteReader& in, std::vector<PackMaterial>& out);
+bool has_material_extras(const std::vector<PackMaterial>& materials);
+void encode_images(const std::vector<PackImage>& images, ByteWriter& out);
+bool decode_images(ByteReader& in, std::vector<PackImage>& out);
 
 void encode_bounds(const PackBounds& bounds, ByteWriter& out);
 bool decode_bounds(ByteReader& in, PackBounds& out);

@@ -42,10 +42,10 @@ struct KnownChunk {
   bool required = true;
 };
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion},        {kTagSkel, kSkelVersion}, {kTagClip, kClipVersion},
-    {kTagMatl, kMatlVersion},        {kTagBnds, kBndsVersion}, {kTagProg, kProgVersion},
-    {kTagLerr, kLerrVersion, false}, {kTagGeom, kGeomVersion}, {kTagAnim, kAnimVersion},
-    {kTagPart, kPartVersion},
+    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion},        {kTagClip, kClipVersion},
+    {kTagMatl, kMatlVersion}, {kTagMatx, kMatxVersion, false}, {kTagBnds, kBndsVersion},
+    {kTagProg, kProgVersion}, {kTagLerr, kLerrVersion, false}, {kTagGeom, kGeomVersion},
+    {kTagAnim, kAnimVersion}, {kTagPart, kPartVersion},        {kTagImgs, kImgsVersion, false},
 };
 
 const KnownChunk* find_known(uint32_t tag) {
@@ -180,6 +180,9 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
     case kTagMatl:
       ok = pack_io::decode_materials(in, out.materials);
       break;
+    case kTagMatx:
+      ok = pack_io::decode_material_extras(in, out.materials);
+      break;
     case kTagBnds:
       ok = pack_io::decode_bounds(in, out.bounds);
       break;
@@ -197,6 +200,9 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
       break;
     case kTagPart:
       ok = pack_io::decode_partition(in, out.partition);
+      break;
+    case kTagImgs:
+      ok = pack_io::decode_images(in, out.images);
       break;
   }
   if (!ok) return error(in.ok() ? name + ": invalid" : in.error());

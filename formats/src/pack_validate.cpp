@@ -1,5 +1,6 @@
 #include "pack_validate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -76,8 +77,43 @@ std::string check_materials(const std::vector<PackMaterial>& materials) {
     if (m.name.size() > kMaxStringBytes || m.base_color_texture.size() > kMaxStringBytes)
       return "material " + std::to_string(i) + ": name or texture reference exceeds " +
              std::to_string(kMaxStringBytes) + " bytes";
-    if (!all_finite(m.base_color))
-      return "material " + std::to_string(i) + ": base colour is not finite";
+    const std::string what = "material " + std::to_string(i) + ": ";
+    if (!all_finite(m.base_color)) return what + "base colour is not finite";
+    if (m.base_color_image < -1)
+      return what + "image index " + std::to_string(m.base_color_image) + " is negative";
+    if (!all_finite(m.uv_transform)) return what + "texture transform is not finite";
+    if (static_cast<uint32_t>(m.alpha_mode) > static_cast<uint32_t>(AlphaMode::kBlend))
+      return what + "unknown alpha mode " + std::to_string(static_cast<uint32_t>(m.alpha_mode));
+    if (!(m.alpha_cutoff >= 0.0f && m.alpha_cutoff <= 1.0f))
+      return what + "alpha cutoff is not in [0, 1]";
+  }
+  return "";
+}
+
+std::string image_type(const std::vector<uint8_t>& bytes) {
+  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin())) return "image/png";
+  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
+    return "image/jpeg";
+  return "";
+}
+
+std::string check_images(const std::vector<PackImage>& images) {
+  if (images.size() > kMaxImages) return too_many("images", images.size(), kMaxImages);
+  for (size_t i = 0; i < images.size(); ++i) {
+    const PackImage& m = images[i];
+    const std::string what = "image " + std::to_string(i) + ": ";
+    if (m.name.size() > kMaxStringBytes || m.mime_type.size() > kMaxStringBytes)
+      return what + "name or type exceeds " + std::to_string(kMaxStringBytes) + " bytes";
+    if (m.data.size() > kMaxImageBytes)
+      return what + std::to_string(m.data.size()) + " bytes exceed the limit of " +
+             std::to_string(kMaxImageBytes);
+    const std::string type = image_type(m.data);
+    if (type.empty()) return what + "the bytes are neither PNG nor JPEG";
+    if (type != m.mime_type) return what + "says " + m.mime_type + " but the bytes are " + type;
+    if (m.width == 0 || m.height == 0 || m.width > kMaxImageSide || m.height > kMaxImageSide)
+      return what + std::to_string(m.width) + "x" + std::to_string(m.height) +
+             " is empty or larger than " + std::to_string(kMaxImageSide) + " on a side";
   }
   return "";
 }
@@ -234,6 +270,11 @@ std::string check_cross_references(const PackContents& c) {
       return "GEOM: triangle " + std::to_string(t) + " uses material " +
              std::to_string(g.triangle_material[t]) + ", there are " +
              std::to_string(c.materials.size());
+  for (size_t i = 0; i < c.materials.size(); ++i)
+    if (c.materials[i].base_color_image >= static_cast<int64_t>(c.images.size()))
+      return "MATL: material " + std::to_string(i) + " uses image " +
+             std::to_string(c.materials[i].base_color_image) + ", there are " +
+             std::to_string(c.images.size());
   const PackProgressive& p = c.progressive;
   if (!c.level_errors.vertices.empty() && c.level_errors.vertices.back() > g.vertex_count())
     return "LERR: a sample has " + std::to_string(c.level_errors.vertices.back()) +

@@ -12,6 +12,9 @@ namespace crowdbake::pack_io {
 std::string check_joints(const std::vector<PackJoint>& joints);
 std::string check_clips(const std::vector<PackClip>& clips);
 std::string check_materials(const std::vector<PackMaterial>& materials);
+std::string check_images(const std::vector<PackImage>& images);
+// "image/png", "image/jpeg" from the bytes' signature; empty for anything else.
+std::string image_type(const std::vector<uint8_t>& bytes);
 std::string check_bounds(const PackBounds& bounds);
 std::string check_progressive(const PackProgressive& progressive);
 std::string check_level_errors(const PackLevelErrors& errors);

@@ -37,6 +37,18 @@ void check_options(const PackWriteOptions& o) {
 
 }  // namespace
 
+const char* alpha_mode_name(AlphaMode mode) {
+  switch (mode) {
+    case AlphaMode::kOpaque:
+      return "opaque";
+    case AlphaMode::kMask:
+      return "mask";
+    case AlphaMode::kBlend:
+      return "blend";
+  }
+  return "unknown";
+}
+
 const char* geometry_codec_name(GeometryCodec codec) {
   switch (codec) {
     case GeometryCodec::kDraco:
@@ -64,6 +76,7 @@ PackStatus validate_pack_contents(const PackContents& c) {
       {"GEOM", check_geometry(c.geometry)},
       {"ANIM", check_animation(c.animation)},
       {"PART", check_partition(c.partition)},
+      {"IMGS", check_images(c.images)},
   };
   for (const auto& [tag, problem] : checks)
     if (!problem.empty()) return {false, std::string("chunk ") + tag + ": " + problem};
@@ -86,6 +99,8 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_skeleton(contents.joints, add(kTagSkel, kSkelVersion));
   pack_io::encode_clips(contents.clips, add(kTagClip, kClipVersion));
   pack_io::encode_materials(contents.materials, add(kTagMatl, kMatlVersion));
+  if (pack_io::has_material_extras(contents.materials))
+    pack_io::encode_material_extras(contents.materials, add(kTagMatx, kMatxVersion));
   pack_io::encode_bounds(contents.bounds, add(kTagBnds, kBndsVersion));
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
   if (!contents.level_errors.vertices.empty())
@@ -93,6 +108,8 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
   pack_io::encode_animation(contents.animation, add(kTagAnim, kAnimVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
+  if (!contents.images.empty())
+    pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));
 
   ByteWriter file;
   file.raw(kMagic.data(), kMagic.size());

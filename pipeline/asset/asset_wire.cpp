@@ -100,6 +100,19 @@ std::string encode_asset(const SkinnedAsset& a) {
     w.text(m.name);
     w.pod(m.base_color);
     w.text(m.base_color_texture);
+    w.pod(m.base_color_image);
+    w.pod(m.uv_transform);
+    w.pod(m.alpha_mode);
+    w.pod(m.alpha_cutoff);
+    w.pod(m.double_sided);
+  }
+  w.pod<uint64_t>(a.images.size());
+  for (const PackImage& i : a.images) {
+    w.text(i.name);
+    w.text(i.mime_type);
+    w.pod(i.width);
+    w.pod(i.height);
+    w.array(i.data);
   }
   w.pod<uint64_t>(a.primitives.size());
   for (const Primitive& p : a.primitives) {
@@ -146,7 +159,16 @@ bool decode_asset(const std::string& bytes, SkinnedAsset& a) {
   if (!r.count(n, 8)) return false;
   a.materials.resize(n);
   for (Material& m : a.materials)
-    if (!r.text(m.name) || !r.pod(m.base_color) || !r.text(m.base_color_texture)) return false;
+    if (!r.text(m.name) || !r.pod(m.base_color) || !r.text(m.base_color_texture) ||
+        !r.pod(m.base_color_image) || !r.pod(m.uv_transform) || !r.pod(m.alpha_mode) ||
+        !r.pod(m.alpha_cutoff) || !r.pod(m.double_sided))
+      return false;
+  if (!r.count(n, 8)) return false;
+  a.images.resize(n);
+  for (PackImage& i : a.images)
+    if (!r.text(i.name) || !r.text(i.mime_type) || !r.pod(i.width) || !r.pod(i.height) ||
+        !r.array(i.data))
+      return false;
   if (!r.count(n, 8)) return false;
   a.primitives.resize(n);
   for (Primitive& p : a.primitives)

@@ -129,6 +129,13 @@ void validate_asset(const SkinnedAsset& asset) {
   if (asset.materials.size() > pack_format::kMaxMaterials)
     fail(std::to_string(asset.materials.size()) + " materials exceed the limit of " +
          std::to_string(pack_format::kMaxMaterials));
+  if (asset.images.size() > pack_format::kMaxImages)
+    fail(std::to_string(asset.images.size()) + " images exceed the limit of " +
+         std::to_string(pack_format::kMaxImages));
+  for (const Material& m : asset.materials)
+    if (m.base_color_image < -1 || m.base_color_image >= static_cast<int>(asset.images.size()))
+      fail("material '" + m.name + "' uses image " + std::to_string(m.base_color_image) + " of " +
+           std::to_string(asset.images.size()));
   for (const Primitive& p : asset.primitives) {
     const std::string who = "mesh '" + p.name + "'";
     const size_t n = p.positions.size();

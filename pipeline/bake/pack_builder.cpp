@@ -237,10 +237,19 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
                          partition.warnings.end());
   clock.done("partition");
 
-  for (const Material& m : asset.materials)
-    pack.materials.push_back({m.name,
-                              {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a},
-                              m.base_color_texture});
+  for (const Material& m : asset.materials) {
+    PackMaterial out;
+    out.name = m.name;
+    out.base_color = {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a};
+    out.base_color_texture = m.base_color_texture;
+    out.base_color_image = m.base_color_image;
+    out.uv_transform = m.uv_transform;
+    out.alpha_mode = m.alpha_mode;
+    out.alpha_cutoff = m.alpha_cutoff;
+    out.double_sided = m.double_sided;
+    pack.materials.push_back(std::move(out));
+  }
+  pack.images = asset.images;
   fill_geometry(asset, pm, partition.vertex_regions, pack.materials, pack.geometry);
   for (const Joint& j : asset.skeleton.joints) {
     PackJoint out;

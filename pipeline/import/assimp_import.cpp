@@ -28,6 +28,7 @@
 #include "import/assimp_convert.h"
 #include "import/assimp_scene.h"
 #include "import/influences.h"
+#include "import/material_images.h"
 #include "import/name_list.h"
 #include "import/node_transform.h"
 
@@ -359,7 +360,7 @@ void add_skin_weights(const aiMesh& mesh, const NodeTable& table,
 
 glm::vec4 to_vec4(const aiColor4D& c) { return {c.r, c.g, c.b, c.a}; }
 
-Material convert_material(const aiScene& scene, const aiMaterial& in) {
+Material convert_material(const aiScene& scene, const aiMaterial& in, MaterialImages& images) {
   Material out;
   aiString name;
   if (in.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
@@ -369,19 +370,33 @@ Material convert_material(const aiScene& scene, const aiMaterial& in) {
     out.base_color = to_vec4(color);
   for (int k = 0; k < 4; ++k)
     if (!std::isfinite(out.base_color[k])) out.base_color = glm::vec4(1.0f);
+  int two_sided = 0;
+  if (in.Get(AI_MATKEY_TWOSIDED, two_sided) == AI_SUCCESS) out.double_sided = two_sided != 0;
   for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
     aiString texture;
     if (in.GetTextureCount(type) == 0 || in.GetTexture(type, 0, &texture) != AI_SUCCESS) continue;
     out.base_color_texture = texture.C_Str();
-    // Embedded images are named "*N": use the file name the exporter kept, else "imageN"
-    // as the glTF importer names unnamed images.
-    const auto [embedded, index] = texture.C_Str()[0] == '*'
-                                       ? scene.GetEmbeddedTextureAndIndex(texture.C_Str())
-                                       : std::pair<const aiTexture*, int>(nullptr, -1);
+    // Embedded images are named "*N" (or, in FBX, by the file name they were embedded from):
+    // use the file name the exporter kept, else "imageN" as the glTF importer names them.
+    const auto [embedded, index] = scene.GetEmbeddedTextureAndIndex(texture.C_Str());
     if (embedded && embedded->mFilename.length > 0)
       out.base_color_texture = embedded->mFilename.C_Str();
     else if (embedded && index >= 0)
       out.base_color_texture = "image" + std::to_string(index);
+    if (out.base_color_texture.empty()) break;
+    if (embedded && embedded->mHeight == 0 && embedded->pcData)
+      out.base_color_image =
+          images.add_bytes(out.name, out.base_color_texture,
+                           std::vector<uint8_t>(reinterpret_cast<const uint8_t*>(embedded->pcData),
+                                                reinterpret_cast<const uint8_t*>(embedded->pcData) +
+                                                    embedded->mWidth));
+    else if (embedded)
+      out.base_color_image = images.add_bytes(out.name, out.base_color_texture, {});
+    else
+      out.base_color_image = images.add_file(out.name, texture.C_Str());
+    // note: Assimp keeps UVs with v up (row 0 of the image at v = 1); packs sample images
+    // with row 0 at v = 0, as glTF does.
+    out.uv_transform = {1, 0, 0, 0, -1, 1};
     break;
   }
   return out;
@@ -460,9 +475,10 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
   for (int m : character.skinned_meshes) note_material(m);
   for (const auto& [m, node] : character.rigid_meshes) note_material(m);
   std::vector<int> material_slot(scene.mNumMaterials, -1);
+  MaterialImages images(asset, path, options.strict_textures);
   for (unsigned index : used) {
     material_slot[index] = static_cast<int>(asset.materials.size());
-    asset.materials.push_back(convert_material(scene, *scene.mMaterials[index]));
+    asset.materials.push_back(convert_material(scene, *scene.mMaterials[index], images));
     // note: external textures are dependencies of a bake; embedded ones ("*N") are not files.
     aiString texture;
     for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})

@@ -18,6 +18,7 @@
 #include "import/animated_nodes.h"
 #include "import/gltf_accessor.h"
 #include "import/influences.h"
+#include "import/material_images.h"
 #include "import/name_list.h"
 #include "import/node_transform.h"
 #include "import/tinygltf.h"
@@ -25,17 +26,22 @@
 namespace crowdbake {
 namespace {
 
-// note: images are kept as references only; pixels are never decoded at import.
-bool keep_image_undecoded(tg::Image*, const int, std::string*, std::string*, int, int,
-                          const unsigned char*, int, void*) {
+using EmbeddedImages = std::map<int, std::vector<uint8_t>>;
+
+// note: tinygltf hands embedded images (buffer views, data URIs) to this callback; their
+// encoded bytes are kept as they are (MaterialImages checks them), never decoded here.
+bool keep_image_bytes(tg::Image*, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+  if (bytes && size > 0) (*static_cast<EmbeddedImages*>(user))[index].assign(bytes, bytes + size);
   return true;
 }
 
-tg::Model load_model(const std::string& path, std::vector<std::string>& warnings) {
+tg::Model load_model(const std::string& path, std::vector<std::string>& warnings,
+                     EmbeddedImages& embedded) {
   char magic[4] = {};
   std::ifstream(path, std::ios::binary).read(magic, 4);
   tg::TinyGLTF loader;
-  loader.SetImageLoader(keep_image_undecoded, nullptr);
+  loader.SetImageLoader(keep_image_bytes, &embedded);
   tg::Model model;
   std::string err, warn;
   const bool binary = std::memcmp(magic, "glTF", 4) == 0;
@@ -170,7 +176,7 @@ class GltfImporter {
   GltfImporter(const std::string& path, const ImportOptions& options)
       : path_(path), options_(options) {
     asset_.source = path;
-    model_ = load_model(path, asset_.warnings);
+    model_ = load_model(path, asset_.warnings, embedded_);
     tree_ = build_tree(model_, path);
   }
 
@@ -410,12 +416,20 @@ class GltfImporter {
   }
 
   void read_materials() {
+    MaterialImages images(asset_, path_, options_.strict_textures);
     for (const tg::Material& m : model_.materials) {
       Material out;
       out.name = m.name;
       const std::vector<double>& c = m.pbrMetallicRoughness.baseColorFactor;
       if (c.size() == 4) out.base_color = glm::vec4(c[0], c[1], c[2], c[3]);
-      const int tex = m.pbrMetallicRoughness.baseColorTexture.index;
+      out.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::kMask
+                       : m.alphaMode == "BLEND" ? AlphaMode::kBlend
+                                                : AlphaMode::kOpaque;
+      if (std::isfinite(m.alphaCutoff))
+        out.alpha_cutoff = static_cast<float>(std::clamp(m.alphaCutoff, 0.0, 1.0));
+      out.double_sided = m.doubleSided;
+      const tg::TextureInfo& info = m.pbrMetallicRoughness.baseColorTexture;
+      const int tex = info.index;
       if (tex >= 0 && tex < static_cast<int>(model_.textures.size())) {
         const int img = model_.textures[tex].source;
         if (img >= 0 && img < static_cast<int>(model_.images.size())) {
@@ -423,10 +437,50 @@ class GltfImporter {
           out.base_color_texture = !image.uri.empty()    ? image.uri
                                    : !image.name.empty() ? image.name
                                                          : "image" + std::to_string(img);
+          const std::string who =
+              m.name.empty() ? "#" + std::to_string(asset_.materials.size()) : m.name;
+          if (auto it = embedded_.find(img); it != embedded_.end())
+            out.base_color_image = images.add_bytes(who, out.base_color_texture, it->second);
+          else if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0)
+            out.base_color_image = images.add_file(who, image.uri);
+          else
+            out.base_color_image = images.add_bytes(who, out.base_color_texture, {});
         }
+        out.uv_transform = texture_transform(info);
       }
       asset_.materials.push_back(out);
     }
+  }
+
+  // KHR_texture_transform of a texture reference: uv' = offset + R(rotation) · (scale ∘ uv),
+  // with the rotation's sign as the extension defines it (identity when absent or malformed).
+  std::array<float, 6> texture_transform(const tg::TextureInfo& info) {
+    std::array<float, 6> t{1, 0, 0, 0, 1, 0};
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext == info.extensions.end() || !ext->second.IsObject()) return t;
+    const tg::Value& v = ext->second;
+    auto pair = [&](const char* key, double& x, double& y) {
+      if (!v.Has(key)) return;
+      const tg::Value& a = v.Get(key);
+      if (a.IsArray() && a.ArrayLen() == 2 && a.Get(0).IsNumber() && a.Get(1).IsNumber()) {
+        x = a.Get(0).GetNumberAsDouble();
+        y = a.Get(1).GetNumberAsDouble();
+      }
+    };
+    double ox = 0, oy = 0, sx = 1, sy = 1, r = 0;
+    pair("offset", ox, oy);
+    pair("scale", sx, sy);
+    if (v.Has("rotation") && v.Get("rotation").IsNumber())
+      r = v.Get("rotation").GetNumberAsDouble();
+    if (v.Has("texCoord"))
+      asset_.warnings.push_back(
+          "KHR_texture_transform texCoord is not supported; TEXCOORD_0 is used");
+    const double cr = std::cos(r), sr = std::sin(r);
+    const double m[6] = {cr * sx, sr * sy, ox, -sr * sx, cr * sy, oy};
+    for (int k = 0; k < 6; ++k)
+      if (!std::isfinite(m[k])) return {1, 0, 0, 0, 1, 0};
+    for (int k = 0; k < 6; ++k) t[k] = static_cast<float>(m[k]);
+    return t;
   }
 
   void read_meshes() {
@@ -691,6 +745,7 @@ class GltfImporter {
 
   std::string path_;
   ImportOptions options_;
+  EmbeddedImages embedded_;
   tg::Model model_;
   NodeTree tree_;
   SkinnedAsset asset_;

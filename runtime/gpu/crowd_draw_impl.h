@@ -36,8 +36,8 @@ void normalize3(float v[3]);
 void multiply4(const float a[16], const float b[16], float out[16]);
 
 struct TypeResources {
-  GpuBuffer constants, vertices, animation, poses, morphs;
-  GpuImage mask;
+  GpuBuffer constants, vertices, animation, poses, morphs, materials;
+  GpuImage mask, images;
   VkDescriptorSet set = VK_NULL_HANDLE;
   uint32_t vertex_count = 0, joints = 0;
   uint32_t encoding = 0;  // AnimationEncoding
@@ -69,7 +69,7 @@ struct CrowdDraw::Impl {
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet frame_set = VK_NULL_HANDLE;
   VkSampler swatch_sampler = VK_NULL_HANDLE, mask_sampler = VK_NULL_HANDLE,
-            shadow_sampler = VK_NULL_HANDLE;
+            shadow_sampler = VK_NULL_HANDLE, material_sampler = VK_NULL_HANDLE;
   VkShaderModule crowd_vert = VK_NULL_HANDLE, crowd_frag = VK_NULL_HANDLE,
                  shadow_vert = VK_NULL_HANDLE;
 
@@ -118,7 +118,10 @@ struct CrowdDraw::Impl {
   // draw_resources.cpp
   Status create_layouts();
   Status create_samplers();
-  Status upload_image(GpuImage& image, const void* data, VkDeviceSize bytes);
+  // `data`: every layer of level 0, then every layer of level 1, ...; level_offsets[l] is
+  // where level l starts (empty: one level at 0).
+  Status upload_image(GpuImage& image, const void* data, VkDeviceSize bytes,
+                      Span<const VkDeviceSize> level_offsets = {});
   Status create_type(const CharacterType& type, TypeResources& out);
   Status create_swatches();
   void write_frame_set();

@@ -36,6 +36,7 @@ CrowdDraw::Impl::~Impl() {
   vkDestroyShaderModule(d, crowd_frag, nullptr);
   vkDestroyShaderModule(d, shadow_vert, nullptr);
   vkDestroySampler(d, swatch_sampler, nullptr);
+  vkDestroySampler(d, material_sampler, nullptr);
   vkDestroySampler(d, mask_sampler, nullptr);
   vkDestroySampler(d, shadow_sampler, nullptr);
   vkDestroyDescriptorPool(d, pool, nullptr);
@@ -64,6 +65,8 @@ Status CrowdDraw::Impl::create_layouts() {
       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
   };
   if (Status s = create_set_layout(d, frame_bindings, frame_layout); !s) return s;
   if (Status s = create_set_layout(d, type_bindings, type_layout); !s) return s;
@@ -74,8 +77,8 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 5 * type_count + 8},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + type_count},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 6 * type_count + 8},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + 2 * type_count},
   };
   if (Status s = create_descriptor_pool(d, sizes, 2 + type_count, pool); !s) return s;
   if (Status s = allocate_set(d, pool, frame_layout, frame_set); !s) return s;
@@ -94,6 +97,14 @@ Status CrowdDraw::Impl::create_samplers() {
   info.maxLod = 0.0f;
   if (Status s = check(vkCreateSampler(d, &info, nullptr, &swatch_sampler), "vkCreateSampler"); !s)
     return s;
+  // note: material images repeat (glTF's default wrap) and are trilinearly filtered.
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  if (Status s = check(vkCreateSampler(d, &info, nullptr, &material_sampler), "vkCreateSampler");
+      !s)
+    return s;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.maxLod = 0.0f;
   info.magFilter = info.minFilter = VK_FILTER_NEAREST;
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   if (Status s = check(vkCreateSampler(d, &info, nullptr, &mask_sampler), "vkCreateSampler"); !s)
@@ -108,7 +119,8 @@ Status CrowdDraw::Impl::create_samplers() {
   return check(vkCreateSampler(d, &info, nullptr, &shadow_sampler), "vkCreateSampler");
 }
 
-Status CrowdDraw::Impl::upload_image(GpuImage& image, const void* data, VkDeviceSize bytes) {
+Status CrowdDraw::Impl::upload_image(GpuImage& image, const void* data, VkDeviceSize bytes,
+                                     Span<const VkDeviceSize> level_offsets) {
   GpuBuffer staging;
   if (Status s = GpuBuffer::create(*context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                    MemoryKind::kHostVisible, staging);
@@ -119,11 +131,15 @@ Status CrowdDraw::Impl::upload_image(GpuImage& image, const void* data, VkDevice
   return context->submit_and_wait([&](VkCommandBuffer cmd) {
     transition_image(cmd, image.image(), desc.aspect, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {desc.aspect, 0, 0, desc.layers};
-    copy.imageExtent = {desc.width, desc.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer(), image.image(),
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    // note: level l of every layer starts at level_offsets[l] (level 0 at 0 when none given).
+    for (uint32_t level = 0; level < desc.mip_levels; ++level) {
+      VkBufferImageCopy copy{};
+      copy.bufferOffset = level < level_offsets.size() ? level_offsets[level] : 0;
+      copy.imageSubresource = {desc.aspect, level, 0, desc.layers};
+      copy.imageExtent = {std::max(desc.width >> level, 1u), std::max(desc.height >> level, 1u), 1};
+      vkCmdCopyBufferToImage(cmd, staging.buffer(), image.image(),
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    }
     transition_image(cmd, image.image(), desc.aspect, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   });
@@ -159,6 +175,7 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
                         mask.texels.size() == static_cast<size_t>(mask.width) * mask.height;
   k.waist_mask[1] = has_mask ? static_cast<float>(mask.width) : 0.0f;
   k.waist_mask[2] = has_mask ? static_cast<float>(mask.height) : 0.0f;
+  k.waist_mask[3] = resolved_shading(type) == Shading::kMaterial ? 1.0f : 0.0f;
   k.variants[0] = type.texture_variants.head;
   k.variants[1] = type.texture_variants.upper_body;
   k.variants[2] = type.texture_variants.trousers;
@@ -204,6 +221,26 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   if (Status s = GpuBuffer::create(*context, 48, storage, MemoryKind::kHostVisible, out.poses); !s)
     return s;
 
+  GpuMaterials materials;
+  if (Status s = make_gpu_materials(c, materials); !s)
+    return {s.code(), "character type '" + type.name + "': " + s.message()};
+  if (Status s = create_filled_buffer(
+          *context, storage, MemoryKind::kDeviceLocal, materials.materials.data(),
+          materials.materials.size() * sizeof(GpuMaterial), out.materials);
+      !s)
+    return s;
+  ImageDesc images_desc;
+  images_desc.width = materials.width;
+  images_desc.height = materials.height;
+  images_desc.layers = materials.layers;
+  images_desc.mip_levels = static_cast<uint32_t>(materials.level_offsets.size());
+  images_desc.array_view = true;
+  if (Status s = GpuImage::create(*context, images_desc, out.images); !s) return s;
+  if (Status s = upload_image(out.images, materials.rgba.data(), materials.rgba.size(),
+                              materials.level_offsets);
+      !s)
+    return s;
+
   ImageDesc mask_desc;
   mask_desc.width = has_mask ? mask.width : 1;
   mask_desc.height = has_mask ? mask.height : 1;
@@ -244,6 +281,8 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
       .buffer(3, t.poses.descriptor())
       .image(4, {mask_sampler, t.mask.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL})
       .buffer(5, t.morphs.descriptor())
+      .buffer(6, t.materials.descriptor())
+      .image(7, {material_sampler, t.images.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL})
       .apply(context->device());
 }
 
@@ -253,7 +292,10 @@ uint64_t image_bytes(const GpuImage& image) {
   if (!image.valid()) return 0;
   const ImageDesc& d = image.desc();
   const uint64_t texel = d.format == VK_FORMAT_R8_UINT ? 1 : 4;  // R8 masks; RGBA8 and D32
-  return uint64_t{d.width} * d.height * d.layers * texel;
+  uint64_t texels = 0;
+  for (uint32_t l = 0; l < d.mip_levels; ++l)
+    texels += uint64_t{std::max(d.width >> l, 1u)} * std::max(d.height >> l, 1u);
+  return texels * d.layers * texel;
 }
 
 }  // namespace
@@ -263,7 +305,8 @@ CrowdDraw::Memory CrowdDraw::memory() const {
   Memory out;
   for (const TypeResources& t : m.types)
     out.per_type.push_back(t.constants.size() + t.vertices.size() + t.animation.size() +
-                           t.poses.size() + t.morphs.size() + image_bytes(t.mask));
+                           t.poses.size() + t.morphs.size() + t.materials.size() +
+                           image_bytes(t.mask) + image_bytes(t.images));
   for (const GpuBuffer* b :
        {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})
     out.skinning += b->size();

@@ -163,7 +163,7 @@ Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage&
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = desc.format;
   info.extent = {desc.width, desc.height, 1};
-  info.mipLevels = 1;
+  info.mipLevels = desc.mip_levels;
   info.arrayLayers = desc.layers;
   info.samples = desc.samples;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -190,9 +190,10 @@ Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage&
   VkImageViewCreateInfo view{};
   view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
   view.image = img.image_;
-  view.viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  view.viewType =
+      desc.layers > 1 || desc.array_view ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   view.format = desc.format;
-  view.subresourceRange = {desc.aspect, 0, 1, 0, desc.layers};
+  view.subresourceRange = {desc.aspect, 0, desc.mip_levels, 0, desc.layers};
   r = vkCreateImageView(d, &view, nullptr, &img.view_);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateImageView", r);
   out = std::move(img);

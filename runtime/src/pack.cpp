@@ -144,6 +144,11 @@ struct Pack::Impl {
     // note: LERR is optional (packs of 1.0 have none); it is a small table when present.
     if (find(pack_format::kTagLerr))
       if (Status s = read_chunk(pack_format::kTagLerr); !s) return s;
+    // note: MATX and IMGS (1.2) are optional too; IMGS holds encoded PNG/JPEG images, a
+    // texture's worth, read with the tables because type creation needs them.
+    for (uint32_t tag : {pack_format::kTagMatx, pack_format::kTagImgs})
+      if (find(tag))
+        if (Status s = read_chunk(tag); !s) return s;
     return check_tables();
   }
 
@@ -160,6 +165,11 @@ struct Pack::Impl {
       return count_mismatch("CLIP", "clips", counts.clips, p.clips.size());
     if (p.materials.size() != counts.materials)
       return count_mismatch("MATL", "materials", counts.materials, p.materials.size());
+    for (size_t i = 0; i < p.materials.size(); ++i)
+      if (p.materials[i].base_color_image >= static_cast<int64_t>(p.images.size()))
+        return fail("chunk MATL: material " + std::to_string(i) + " uses image " +
+                    std::to_string(p.materials[i].base_color_image) + ", the pack has " +
+                    std::to_string(p.images.size()));
     for (size_t i = 0; i < p.clips.size(); ++i) {
       const PackClip& clip = p.clips[i];
       if (uint64_t{clip.first_row} + clip.frame_count > counts.animation_rows)

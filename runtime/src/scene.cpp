@@ -76,6 +76,12 @@ int32_t Scene::find_clip(uint32_t type, std::string_view name) const {
 
 Camera Scene::camera_at_time(float time) const { return camera_at(camera, camera_path, time); }
 
+Shading resolved_shading(const CharacterType& type) {
+  if (type.shading != Shading::kAuto) return type.shading;
+  const TextureVariants& v = type.texture_variants;
+  return v.head > 1 || v.upper_body > 1 || v.trousers > 1 ? Shading::kSwatches : Shading::kMaterial;
+}
+
 Status add_character_type(Scene& scene, std::string name, Pack pack,
                           const TextureVariants& variants, uint32_t* index) {
   if (name.empty()) return {StatusCode::kInvalidArgument, "character type name is empty"};

@@ -199,6 +199,7 @@ struct RawColor {
 struct RawType {
   std::string name, pack, path;
   TextureVariants variants;
+  Shading shading = Shading::kAuto;
 };
 
 // Attributes shared by listed instances and generators (generators allow ranges).
@@ -436,7 +437,7 @@ void parse_types(const json& v, RawScene& s) {
   if (arr.empty()) fail(path, "needs at least one character type");
   for (size_t i = 0; i < arr.size(); ++i) {
     const std::string tp = item_path(path, i);
-    check_object(arr[i], tp, {"name", "pack", "texture_variants"});
+    check_object(arr[i], tp, {"name", "pack", "texture_variants", "shading"});
     RawType t;
     t.path = tp;
     t.name = string(require(arr[i], "name", tp), tp + ".name");
@@ -454,6 +455,18 @@ void parse_types(const json& v, RawScene& s) {
       for (int k = 0; k < 3; ++k)
         if (const json* q = find(*p, names[k]))
           *fields[k] = static_cast<uint32_t>(integer(*q, vp + "." + names[k], 1, 256));
+    }
+    if (const json* p = find(arr[i], "shading")) {
+      const std::string mode = string(*p, tp + ".shading");
+      if (mode == "auto")
+        t.shading = Shading::kAuto;
+      else if (mode == "material")
+        t.shading = Shading::kMaterial;
+      else if (mode == "swatches")
+        t.shading = Shading::kSwatches;
+      else
+        fail(tp + ".shading",
+             "unknown shading \"" + mode + "\" (expected auto, material or swatches)");
     }
     s.types.push_back(std::move(t));
   }
@@ -1204,6 +1217,7 @@ void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoa
     uint32_t index = 0;
     const Status added = add_character_type(scene, t.name, std::move(pack), t.variants, &index);
     if (!added) fail(t.path, added.message());
+    scene.types[index].shading = t.shading;
   }
 }
 

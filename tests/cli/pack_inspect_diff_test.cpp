@@ -10,6 +10,7 @@
 #include "cli/cli_runner.h"
 #include "crowdbake/formats/pack.h"
 #include "gltf_test_builder.h"
+#include "test_png.h"
 
 namespace crowdbake {
 namespace {
@@ -478,6 +479,73 @@ TEST_F(PackCommands, DiffNamesEachEditedSection) {
     EXPECT_EQ(differences(j), std::vector<std::string>{"clips"}) << j.dump(1);
     EXPECT_EQ(j["sections"]["clips"]["differences"].size(), 2u) << j.dump(1);
   }
+}
+
+// The tube with one material whose base colour texture is `image` (a glTF image object);
+// `png` (when given) is embedded as a buffer view and `image` may refer to it as view -1.
+test::GltfBuilder textured_tube(json image, const std::vector<uint8_t>& png = {}) {
+  test::GltfBuilder b = tube_character();
+  if (!png.empty()) image["bufferView"] = b.add_view(png.data(), png.size());
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.doc["materials"] = json::array(
+      {json{{"name", "cloth"},
+            {"alphaMode", "MASK"},
+            {"pbrMetallicRoughness",
+             {{"baseColorFactor", {1.0, 0.5, 0.5, 1.0}}, {"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["textures"] = json::array({json{{"source", 0}}});
+  b.doc["images"] = json::array({image});
+  return b;
+}
+
+TEST_F(PackCommands, TexturedBakeShowsItsImageAndDiffComparesIt) {
+  const std::vector<uint8_t> png = test::solid_image(4, 4, {200, 100, 50, 255});
+  const fs::path input = dir_ / "textured.gltf";
+  textured_tube({{"name", "cloth_albedo"}, {"mimeType", "image/png"}}, png).write(input);
+  const fs::path pack = dir_ / "textured.crowdpack";
+  test::CommandResult r = run_crowdbake({"bake", input.string(), "-o", pack.string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_crowdbake({"inspect", pack.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("IMGS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("texture cloth_albedo (image 0)  alpha mask"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("images     1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("image/png 4 x 4, " + std::to_string(png.size()) + " bytes"),
+            std::string::npos)
+      << r.out;
+  r = run_crowdbake({"inspect", pack.string(), "--json"});
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["materials"][0]["image"], 0);
+  EXPECT_EQ(j["materials"][0]["alpha_mode"], "mask");
+  EXPECT_EQ(j["images"][0]["width"], 4);
+  EXPECT_EQ(j["images"][0]["bytes"], png.size());
+
+  PackContents c = read(pack);
+  ASSERT_EQ(c.images.size(), 1u);
+  EXPECT_EQ(c.images[0].data, png);
+  c.images[0].data = test::solid_image(4, 4, {10, 100, 50, 255});
+  const json d = diff_json(pack, write("repainted", c));
+  EXPECT_EQ(differences(d), std::vector<std::string>{"materials"}) << d.dump(1);
+  EXPECT_EQ(d["sections"]["materials"]["images_differ"], 1) << d.dump(1);
+}
+
+TEST_F(PackCommands, MissingTextureWarnsOrFailsWithStrictTextures) {
+  const fs::path input = dir_ / "missing_texture.gltf";
+  textured_tube({{"uri", "nowhere.png"}}).write(input);
+  const fs::path pack = dir_ / "missing_texture.crowdpack";
+  const fs::path report = dir_ / "report.json";
+  test::CommandResult r = run_crowdbake(
+      {"bake", input.string(), "-o", pack.string(), "--report", report.string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string warnings = json::parse(test::slurp(report))["warnings"].dump();
+  EXPECT_NE(warnings.find("texture 'nowhere.png' of material 'cloth'"), std::string::npos)
+      << warnings;
+  EXPECT_TRUE(read(pack).images.empty());
+  fs::remove(pack);
+  r = run_crowdbake({"bake", input.string(), "-o", pack.string(), "--strict-textures", "--quiet"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.rfind("error: " + input.string() + ": ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("nowhere.png"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(pack)) << "nothing half-written";
 }
 
 // ---- diff errors: exit 2, one line ---------------------------------------------------

@@ -79,6 +79,19 @@ inline void expect_same_contents(const PackContents& a, const PackContents& b,
     EXPECT_EQ(a.materials[i].name, b.materials[i].name);
     EXPECT_EQ(a.materials[i].base_color, b.materials[i].base_color);
     EXPECT_EQ(a.materials[i].base_color_texture, b.materials[i].base_color_texture);
+    EXPECT_EQ(a.materials[i].base_color_image, b.materials[i].base_color_image);
+    EXPECT_EQ(a.materials[i].uv_transform, b.materials[i].uv_transform);
+    EXPECT_EQ(a.materials[i].alpha_mode, b.materials[i].alpha_mode);
+    EXPECT_EQ(a.materials[i].alpha_cutoff, b.materials[i].alpha_cutoff);
+    EXPECT_EQ(a.materials[i].double_sided, b.materials[i].double_sided);
+  }
+  ASSERT_EQ(a.images.size(), b.images.size());
+  for (size_t i = 0; i < a.images.size(); ++i) {
+    EXPECT_EQ(a.images[i].name, b.images[i].name);
+    EXPECT_EQ(a.images[i].mime_type, b.images[i].mime_type);
+    EXPECT_EQ(a.images[i].width, b.images[i].width);
+    EXPECT_EQ(a.images[i].height, b.images[i].height);
+    EXPECT_EQ(a.images[i].data, b.images[i].data) << "image " << i;
   }
   const PackGeometry &ga = a.geometry, &gb = b.geometry;
   const auto check_floats = [](const std::vector<float>& x, const std::vector<float>& y,

@@ -330,7 +330,38 @@ TEST(Scene, DocumentedExampleLoads) {
   EXPECT_EQ(scene.types[0].texture_variants.upper_body, 6u);
 }
 
+TEST(SceneFile, ShadingChoosesMaterialsOrSwatches) {
+  const char* cases[][2] = {
+      {"", "material"},
+      {R"(, "shading": "swatches")", "swatches"},
+      {R"(, "texture_variants": {"head": 2})", "swatches"},
+      {R"(, "texture_variants": {"head": 2}, "shading": "material")", "material"}};
+  for (const auto& [extra, expected] : cases) {
+    SCOPED_TRACE(extra);
+    SceneFiles files;
+    Scene scene;
+    const Status s = files.load(
+        scene_with("", kCamera,
+                   std::string(
+                       R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack")") +
+                       extra + "}]"),
+        scene);
+    ASSERT_TRUE(s) << s.message();
+    EXPECT_EQ(
+        resolved_shading(scene.types[0]) == runtime::Shading::kMaterial ? "material" : "swatches",
+        std::string(expected));
+  }
+}
+
 // ---- Bad scene files ------------------------------------------------------------------
+
+TEST(SceneErrors, UnknownShading) {
+  expect_error(
+      scene_with("", kCamera,
+                 R"("character_types": [{"name": "a", "pack": "packs/small.crowdpack",
+                              "shading": "toon"}])"),
+      {"character_types[0].shading: ", "unknown shading \"toon\"", "auto, material or swatches"});
+}
 
 TEST(SceneErrors, MissingPack) {
   expect_error(scene_with("", kCamera,

@@ -69,10 +69,31 @@ struct PartitionMask {
   std::array<float, 3> up_axis{0, 1, 0};
 };
 
+// How a material's alpha is used (glTF alphaMode). The renderer draws kBlend as kOpaque.
+enum class AlphaMode : uint32_t { kOpaque = 0, kMask = 1, kBlend = 2 };
+
 struct PackMaterial {
   std::string name;
-  std::array<float, 4> base_color{1, 1, 1, 1};
-  std::string base_color_texture;  // image name or URI; empty when untextured
+  std::array<float, 4> base_color{1, 1, 1, 1};  // linear RGBA factor
+  std::string base_color_texture;  // image name or URI as the source names it; empty: none
+  // Index into PackContents::images of the base colour texture; -1 when there is none or its
+  // image could not be stored (missing file, unsupported format): the factor alone then.
+  int32_t base_color_image = -1;
+  // Texture coordinates the image is sampled at: u' = t[0]·u + t[1]·v + t[2],
+  // v' = t[3]·u + t[4]·v + t[5] (glTF KHR_texture_transform; identity when absent).
+  std::array<float, 6> uv_transform{1, 0, 0, 0, 1, 0};
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;  // kMask: texels with alpha below it are not drawn
+  bool double_sided = false;
+};
+
+// An image as the source file held it: PNG or JPEG bytes, never re-encoded (docs/pack-format.md
+// "IMGS" says why).
+struct PackImage {
+  std::string name;                // the source's reference (URI, embedded name)
+  std::string mime_type;           // "image/png" or "image/jpeg", from the bytes' signature
+  uint32_t width = 0, height = 0;  // from the image's header
+  std::vector<uint8_t> data;
 };
 
 struct PackGeometry {
@@ -118,6 +139,7 @@ struct PackContents {
   std::vector<PackJoint> joints;
   std::vector<PackClip> clips;
   std::vector<PackMaterial> materials;
+  std::vector<PackImage> images;  // IMGS (1.2, optional): the materials' base colour images
   PackGeometry geometry;
   PackProgressive progressive;
   PackLevelErrors level_errors;
@@ -188,6 +210,9 @@ PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackC
 // GEOM chunk decodes to at most pack_format::kGeomExpansionRatio times its size plus
 // pack_format::kGeomExpansionSlack). On failure `out` holds partial contents.
 PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out);
+
+// "opaque", "mask", "blend".
+const char* alpha_mode_name(AlphaMode mode);
 
 // Short names for reports: "draco", "meshopt", "raw".
 const char* geometry_codec_name(GeometryCodec codec);

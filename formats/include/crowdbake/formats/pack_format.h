@@ -11,7 +11,7 @@
 namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-constexpr uint16_t kPackVersionMinor = 1;  // compatible additions (new optional chunks)
+constexpr uint16_t kPackVersionMinor = 2;  // compatible additions (new optional chunks)
 
 namespace pack_format {
 
@@ -34,12 +34,15 @@ constexpr uint32_t kTagHead = make_tag('H', 'E', 'A', 'D');  // name, settings, 
 constexpr uint32_t kTagSkel = make_tag('S', 'K', 'E', 'L');  // joints
 constexpr uint32_t kTagClip = make_tag('C', 'L', 'I', 'P');  // clip table, root motion
 constexpr uint32_t kTagMatl = make_tag('M', 'A', 'T', 'L');  // materials
+constexpr uint32_t kTagMatx =
+    make_tag('M', 'A', 'T', 'X');  // material images, alpha (1.2, optional)
 constexpr uint32_t kTagBnds = make_tag('B', 'N', 'D', 'S');  // bounds
 constexpr uint32_t kTagProg = make_tag('P', 'R', 'O', 'G');  // ProgressiveMesh arrays
 constexpr uint32_t kTagLerr = make_tag('L', 'E', 'R', 'R');  // level errors (1.1, optional)
 constexpr uint32_t kTagGeom = make_tag('G', 'E', 'O', 'M');  // vertices and triangles
 constexpr uint32_t kTagAnim = make_tag('A', 'N', 'I', 'M');  // animation texture
 constexpr uint32_t kTagPart = make_tag('P', 'A', 'R', 'T');  // partition mask
+constexpr uint32_t kTagImgs = make_tag('I', 'M', 'G', 'S');  // material images (1.2, optional)
 
 // Layout version of each chunk's payload this build writes and reads (it reads exactly
 // these; any other version of a known chunk is rejected).
@@ -53,6 +56,8 @@ constexpr uint32_t kLerrVersion = 1;
 constexpr uint32_t kGeomVersion = 1;
 constexpr uint32_t kAnimVersion = 1;
 constexpr uint32_t kPartVersion = 1;
+constexpr uint32_t kMatxVersion = 1;
+constexpr uint32_t kImgsVersion = 1;
 
 // Header flags: bits 0-15 are required features (a reader rejects a pack with a bit it
 // does not know), bits 16-31 optional hints (ignored when unknown). v1.0 defines none.
@@ -69,8 +74,11 @@ constexpr uint32_t kMaxMaterials = 65535;  // material indices are uint16
 constexpr uint32_t kMaxVertices = 1u << 24;
 constexpr uint32_t kMaxTriangles = 1u << 25;
 constexpr uint32_t kMaxDecodeParams = 4096;
-constexpr uint32_t kMaxTextureSide = 16384;    // partition mask width/height
-constexpr uint32_t kMaxQuantizationBits = 24;  // 0 = unquantised float
+constexpr uint32_t kMaxTextureSide = 16384;  // partition mask width/height
+constexpr uint32_t kMaxImages = 4096;
+constexpr uint32_t kMaxImageSide = 8192;        // material image width/height
+constexpr uint32_t kMaxImageBytes = 64u << 20;  // one stored (encoded) image
+constexpr uint32_t kMaxQuantizationBits = 24;   // 0 = unquantised float
 // A compressed GEOM chunk may not decode to more than this many bytes of arrays plus
 // kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
 constexpr uint64_t kGeomExpansionSlack = 1u << 20;

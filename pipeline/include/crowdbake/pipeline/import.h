@@ -26,6 +26,9 @@ struct ImportOptions {
   // -1 picks the one with the most skinned vertices; the choice is reported as a warning.
   int character = -1;
   ImportLimits limits;
+  // A base colour texture that cannot be stored (missing file, not PNG/JPEG, corrupt, over
+  // pack_format::kMaxImageSide): false warns and keeps the colour factor, true is an error.
+  bool strict_textures = false;
 };
 
 // Reads a character. Throws crowdbake::Error naming the file, the problem and the fix.

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/formats/pack.h"  // AlphaMode, PackImage
+
 namespace crowdbake {
 
 struct Transform {
@@ -51,8 +53,16 @@ struct Skeleton {
 
 struct Material {
   std::string name;
-  glm::vec4 base_color{1.0f};
+  glm::vec4 base_color{1.0f};      // linear RGBA factor
   std::string base_color_texture;  // image name or URI, empty when untextured
+  // Index into SkinnedAsset::images; -1 when untextured or when the image could not be read
+  // (the import then warns, and the factor alone colours the material).
+  int base_color_image = -1;
+  // u' = t[0]·u + t[1]·v + t[2], v' = t[3]·u + t[4]·v + t[5] (PackMaterial::uv_transform).
+  std::array<float, 6> uv_transform{1, 0, 0, 0, 1, 0};
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
 };
 
 // One draw's worth of skinned geometry (a glTF primitive, an Assimp mesh).
@@ -117,6 +127,7 @@ struct SkinnedAsset {
   std::vector<std::string> files;
   Skeleton skeleton;
   std::vector<Material> materials;
+  std::vector<PackImage> images;  // the materials' images, encoded as the source held them
   std::vector<Primitive> primitives;
   std::vector<Clip> clips;
   ImportStats stats;

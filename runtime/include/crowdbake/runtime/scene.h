@@ -34,15 +34,26 @@ struct TextureVariants {
   uint32_t head = 1, upper_body = 1, trousers = 1;  // each 1..256
 };
 
+// Where a character type's colours come from (docs/scene-format.md "shading"): its pack's own
+// materials (base colour texture × factor), or the generated swatches, whose per-region
+// variants give a crowd of one character many looks (seed Algorithm 3). Auto: swatches when the
+// type has more than one texture variant in some region, its materials otherwise. The
+// instance's HSB variation applies on top of either.
+enum class Shading : uint8_t { kAuto, kMaterial, kSwatches };
+
 // note: Scene::clips points into each type's pack: add types with add_character_type and do
 // not replace a type's pack afterwards.
 struct CharacterType {
   std::string name;
   std::string pack_path;  // as opened (scene files: resolved against the scene's folder)
   TextureVariants texture_variants;
+  Shading shading = Shading::kAuto;
   Pack pack;
   uint32_t first_clip = 0;  // index of the type's clip 0 in Scene::clips
 };
+
+// kMaterial or kSwatches: what kAuto means for this type.
+Shading resolved_shading(const CharacterType& type);
 
 struct AnimationSettings {
   FrameFilter filter = FrameFilter::kNearest;  // nearest (seed Algorithm 2) or interpolated

@@ -106,7 +106,7 @@ struct TypeConstants {
   float decode_center[4];
   float decode_half[4];
   float up_neck[4];      // up axis, pack neck height
-  float waist_mask[4];   // pack waist height, mask width, mask height, 0
+  float waist_mask[4];   // pack waist height, mask width, mask height, 1 = material shading
   uint32_t variants[4];  // head, upper body, trousers, swatch layers per region
 };
 
@@ -114,11 +114,38 @@ struct GpuVertex {
   float position_height[4];
   float normal_u[4];
   float weights[4];
-  uint32_t joints_v[4];  // j0 | j1 << 16, j2 | j3 << 16, bits of v, 1 = unskinned
+  // j0 | j1 << 16, j2 | j3 << 16, bits of v, (1 = unskinned) | material << 16
+  uint32_t joints_v[4];
 };
 
-// The bind-pose vertex records of a pack (geometry must be loaded).
+// The bind-pose vertex records of a pack (geometry must be loaded). A vertex's material is
+// that of the first triangle using it (a vertex is a wedge of one primitive).
 std::vector<GpuVertex> make_gpu_vertices(const PackContents& pack);
+
+// One pack material as crowd.frag reads it (std430, 48 bytes). Colours are in the display space
+// the renderer shades in (sRGB values: the colour target is UNORM and lighting is not gamma
+// correct), so the glTF factor, which is linear, is converted.
+struct GpuMaterial {
+  float color[4];  // base colour factor (sRGB rgb, alpha)
+  float uv_u[4];   // u' = a·u + b·v + c; w: image layer (-1: untextured)
+  float uv_v[4];   // v' = d·u + e·v + f; w: alpha cutoff (-1: opaque)
+};
+
+// A type's materials and their images: image i of the pack is layer i of one RGBA8 array, each
+// resampled to the array's size (the largest image's, at most kMaxMaterialImageSide a side),
+// with a full mip chain (far characters are a few pixels tall). A pack without images gets one
+// white 1x1 layer, which no material samples.
+struct GpuMaterials {
+  std::vector<GpuMaterial> materials;  // at least one
+  uint32_t width = 1, height = 1, layers = 1;
+  std::vector<uint8_t> rgba;                // level 0 (all layers), level 1, ...
+  std::vector<VkDeviceSize> level_offsets;  // where each level starts in rgba
+};
+
+constexpr uint32_t kMaxMaterialImageSide = 1024;
+
+// Fails (kInvalidPack) when an image of the pack does not decode.
+Status make_gpu_materials(const PackContents& pack, GpuMaterials& out);
 
 // The orthographic light transform (column-major, Vulkan depth 0..1) whose box covers the
 // given world spheres (4 floats each: centre, radius), seen along -light_direction.

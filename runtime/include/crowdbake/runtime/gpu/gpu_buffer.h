@@ -71,6 +71,8 @@ struct ImageDesc {
   VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // > 1: a multisampled attachment
+  bool array_view = false;  // a 2D-array view even with one layer (sampler2DArray)
+  uint32_t mip_levels = 1;
 };
 
 class GpuImage {
