@@ -1,5 +1,6 @@
-// The swatch texture array: simple, recognisable colours per region and variant (the packs
-// carry no images), sampled by crowd.frag.
+// The swatch texture array: simple, recognisable colours per region and variant, sampled by
+// crowd.frag for types with swatch shading (texture variants for characters without images of
+// their own, such as the generated spectator).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -21,7 +22,7 @@ void hsv_to_rgb(float h, float s, float v, float rgb[3]) {
 
 }  // namespace
 
-// Simple, recognisable swatches (the packs carry no images): skin tones for the head, shirts of
+// Simple, recognisable swatches: skin tones for the head, shirts of
 // well-spread hues with stripes on odd variants, dark trousers with a faint weave.
 std::vector<uint8_t> make_swatches(uint32_t per_region) {
   const uint32_t n = kSwatchSize;
