@@ -161,9 +161,16 @@ void encode_materials(const std::vector<PackMaterial>& materials, ByteWriter& ou
   }
 }
 
-// note: MATL and MATX fill different fields of the same materials, in whichever order a
-// reader meets them; each sizes the list to its count, and a different count is an error.
-bool size_materials(ByteReader& in, uint32_t count, std::vector<PackMaterial>& out) {
+// Reads the material count that starts MATL and MATX (each item at least `item_bytes`) and
+// sizes `out` to it. note: MATL and MATX fill different fields of the same materials, in
+// whichever order a reader meets them; each sizes the list to its count, and a different count
+// is an error.
+bool read_material_count(ByteReader& in, size_t item_bytes, std::vector<PackMaterial>& out,
+                         uint32_t& count) {
+  if (!in.u32(count, "material count")) return false;
+  if (count > kMaxMaterials)
+    return in.fail("material count " + std::to_string(count) + " exceeds the limit");
+  if (!in.count_fits(count, item_bytes, "materials")) return false;
   if (!out.empty() && out.size() != count)
     return in.fail("holds " + std::to_string(count) + " materials, the other material chunk " +
                    std::to_string(out.size()));
@@ -174,11 +181,7 @@ bool size_materials(ByteReader& in, uint32_t count, std::vector<PackMaterial>& o
 bool decode_materials(ByteReader& in, std::vector<PackMaterial>& out) {
   constexpr size_t kMinMaterialBytes = 4 + 16 + 4;
   uint32_t count = 0;
-  if (!in.u32(count, "material count")) return false;
-  if (count > kMaxMaterials)
-    return in.fail("material count " + std::to_string(count) + " exceeds the limit");
-  if (!in.count_fits(count, kMinMaterialBytes, "materials")) return false;
-  if (!size_materials(in, count, out)) return false;
+  if (!read_material_count(in, kMinMaterialBytes, out, count)) return false;
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
     in.set_item("material", i);
     in.string(out[i].name, kMaxStringBytes, "name");
@@ -205,11 +208,7 @@ void encode_material_extras(const std::vector<PackMaterial>& materials, ByteWrit
 bool decode_material_extras(ByteReader& in, std::vector<PackMaterial>& out) {
   constexpr size_t kExtraBytes = 4 + 24 + 4 + 4 + 4;
   uint32_t count = 0;
-  if (!in.u32(count, "material count")) return false;
-  if (count > kMaxMaterials)
-    return in.fail("material count " + std::to_string(count) + " exceeds the limit");
-  if (!in.count_fits(count, kExtraBytes, "materials")) return false;
-  if (!size_materials(in, count, out)) return false;
+  if (!read_material_count(in, kExtraBytes, out, count)) return false;
   for (uint32_t i = 0; i < count && in.ok(); ++i) {
     PackMaterial& m = out[i];
     uint32_t alpha_mode = 0, double_sided = 0;

@@ -25,10 +25,10 @@ int MaterialImages::add_bytes(const std::string& material, const std::string& na
   PackImage image;
   std::string why;
   if (!make_pack_image(name, std::move(bytes), image, why)) return refuse(material, name, why);
-  const int index = static_cast<int>(asset_.images.size());
   if (asset_.images.size() >= pack_format::kMaxImages)
     return refuse(material, name,
                   "more than " + std::to_string(pack_format::kMaxImages) + " images");
+  const int index = static_cast<int>(asset_.images.size());
   asset_.images.push_back(std::move(image));
   by_name_[name] = index;
   return index;

@@ -1,6 +1,7 @@
 // CrowdDraw's long-lived resources: descriptor set layouts, pool and sets, samplers, each
-// character type's buffers (constants, vertices, animation words, poses, geomorph table) and
-// partition mask, and the swatch array; plus the descriptor writes that point the sets at them.
+// character type's buffers (constants, vertices, animation words, poses, geomorph table,
+// materials), partition mask and material image array, and the swatch array; plus the descriptor
+// writes that point the sets at them.
 #include <algorithm>
 #include <string>
 

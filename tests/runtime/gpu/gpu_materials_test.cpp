@@ -148,6 +148,8 @@ void green_texture(PackContents& c) {
 void cut_out(PackContents& c) {
   c.images = {image_of(16, 16, {0, 230, 0, 40})};
   for (PackMaterial& m : c.materials) {
+    // note: white factors, so texels the mask failed to cut would show up green.
+    m.base_color = {1.0f, 1.0f, 1.0f, 1.0f};
     m.base_color_image = 0;
     m.alpha_mode = AlphaMode::kMask;
     m.alpha_cutoff = 0.5f;

@@ -1,13 +1,14 @@
 // CrowdDraw: the graphics side of the GPU crowd path. Per character type it keeps the pack's
 // bind-pose vertices, its animation texture (the raw bytes, decoded by shaders/skin.glsl
-// exactly as formats/animation_codec.h), its partition mask and a pose buffer; per frame it
+// exactly as formats/animation_codec.h), its partition mask, its materials and their images
+// (gpu_materials.cpp) and a pose buffer; per frame it
 // records the directional shadow-map pass and the colour pass, each ONE vkCmdDrawIndirect per
 // character type over the corner buffer that CrowdCompute wrote (never one draw per instance:
 // software Vulkan pays per draw), plus one draw for the ground under the crowd.
 //
 // Descriptor sets (shaders/crowd_frame.glsl, shaders/skin.glsl): set 0 = the frame (instances,
 // corners, FrameConstants, shadow map, swatches), set 1 = the type (TypeConstants, vertices,
-// animation words, pose buffer, partition mask).
+// animation words, pose buffer, partition mask, geomorph table, materials, material images).
 #pragma once
 
 #include <vulkan/vulkan.h>
