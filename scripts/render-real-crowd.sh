@@ -45,8 +45,7 @@ for column, name in enumerate(names):
                                       (pick("wave", "run", "punch", "attack"), -3.2)]):
         instances.append({"type": name, "position": [1.1 * (column - (len(names) - 1) / 2), 0, z],
                           "scale": scale, "clip": clip, "time_offset": 0.3 * (row + column)})
-# note: full resolution: 27 close-up characters need no LoD (and a continuous-LoD frame of six
-# or more of these types hangs on lavapipe with the default 64 MiB level cache; issue 11 note).
+# note: full resolution: 27 close-up characters need no LoD.
 scene = {"version": 1, "lod": {"mode": "full"},
          "camera": {"position": [0.0, 1.9, 5.6], "target": [0.0, 0.85, -1.4], "fov_degrees": 50,
                     "near": 0.1, "far": 100, "resolution": [1280, 720]},

@@ -11,6 +11,7 @@
 const uint kGroupSize = 256u;        // instances per workgroup in the per-instance passes
 const uint kChunk = 256u;            // corners per reconstruction chunk (one instance, 64 threads)
 const uint kChunksPerGroup = 4u;     // chunks per reconstruction workgroup
+const uint kBuildCorners = 2048u;    // corners of a cached level per reconstruction workgroup
 const uint kMaxTypes = 1024u;        // scan keys (lod_assign's shared running sums)
 const uint kMaxLevels = 8u;          // static levels per type (kMaxDiscreteLevels)
 const uint kSaturated = 0x7FFFFFFFu;  // corner sums saturate here (never fit the buffer)
@@ -68,6 +69,7 @@ struct Stats {
   uint drawn_corners, selected_lo, selected_hi, requested_lo;
   uint requested_hi, chunks, levels_drawn, levels_built;  // chunks: reconstruction workgroups
   uint coarser, error_step;  // coarser: instances drawn at a coarser cached level (cache full)
+  uint build_corners, pad6;  // the most corners of a level built this frame
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
@@ -90,7 +92,8 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint cached;  // 1: a continuous frame drawn instanced from the level cache
   uint frame;   // frame number of the level cache's use marks (never 0)
   float max_pixel_error;  // error mode: P
-  uint pad3, pad4, pad5;
+  uint key_total;         // level-cache keys of all types
+  uint pad4, pad5;
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };
@@ -117,17 +120,21 @@ layout(std430, set = 0, binding = 15) readonly buffer LevelRanges { uvec2 level_
 layout(std430, set = 0, binding = 16) buffer IndexedArgs { uint indexed_args[]; };
 layout(std430, set = 0, binding = 17) buffer InstanceList { uint instance_list[]; };
 // Level cache. Per key: this frame's instance count (cleared every frame); (slot or
-// kNotDrawn, first instance-list entry) — the slot persists across frames. Per slot: (key or
-// kNotDrawn, frame last drawn), persistent. This frame's levels to reconstruct: (slot, key,
-// type, 0). The cached indices. Per type: the clock hand of its slots, persistent.
+// kNotDrawn, first instance-list entry, rank in miss_keys, type) — the slot persists across
+// frames, the type is fixed. Per slot: (key or kNotDrawn, frame last drawn), persistent. This
+// frame's levels to reconstruct: (slot, key, type, 0). The cached indices. Per type: the clock
+// hand of its slots, persistent; this frame's (used slots, kNotDrawn − coarsest drawn key with
+// a slot), cleared every frame. This frame's drawn keys without a slot, in key order.
 layout(std430, set = 0, binding = 18) buffer KeyCounts { uint key_counts[]; };
-layout(std430, set = 0, binding = 19) buffer KeyStates { uvec2 key_states[]; };
+layout(std430, set = 0, binding = 19) buffer KeyStates { uvec4 key_states[]; };
 layout(std430, set = 0, binding = 20) buffer SlotStates { uvec2 slot_states[]; };
 layout(std430, set = 0, binding = 21) buffer BuildList { uvec4 build_list[]; };
 layout(std430, set = 0, binding = 22) buffer LevelCache { uint level_cache[]; };
 layout(std430, set = 0, binding = 23) buffer CacheHands { uint cache_hands[]; };
 // Error mode: Σ n_i at each ladder step, as (lo, hi) 32-bit halves, cleared every frame.
 layout(std430, set = 0, binding = 24) buffer LadderSums { uvec2 ladder_sums[]; };
+layout(std430, set = 0, binding = 25) buffer TypeMarks { uvec2 type_marks[]; };
+layout(std430, set = 0, binding = 26) buffer MissKeys { uint miss_keys[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
 

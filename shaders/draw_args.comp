@@ -24,7 +24,7 @@ void main() {
     draw_args[4u * t + 2u] = base;
     draw_args[4u * t + 3u] = 0u;
   }
-  // note: level-cache frames get their indexed commands from level_cache.comp.
+  // note: level-cache frames get their indexed commands from level_cache_commands.comp.
   for (uint s = lid; s < params.indexed_slots && params.cached == 0u; s += 64u) {
     const uvec2 level = instanced ? level_ranges[s] : uvec2(0u);
     indexed_args[5u * s + 0u] = level.y;
@@ -34,11 +34,12 @@ void main() {
     indexed_args[5u * s + 4u] = instanced ? ranges[s].draw_base : 0u;
   }
   if (lid == 0u && params.cached != 0u) {
-    // One reconstruction workgroup per level to build (drawn_corners: level_cache.comp).
+    // Reconstruction workgroups: per level to build (in rows of at most 65535), one per
+    // kBuildCorners of the largest one's corners (drawn_corners: level_cache_commands.comp).
     const uint groups = stats.levels_built;
     dispatch_args[0] = min(groups, 65535u);
     dispatch_args[1] = (groups + 65534u) / 65535u;
-    dispatch_args[2] = 1u;
+    dispatch_args[2] = (stats.build_corners + kBuildCorners - 1u) / kBuildCorners;
   } else if (lid == 0u) {
     uint total = 0u;
     if (instanced) {

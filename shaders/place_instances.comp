@@ -18,7 +18,7 @@ void main() {
   const InstanceLod lod = lods[i];
   uint offset = kNotDrawn;
   if (params.cached != 0u) {
-    // Level cache: the key's first entry (level_cache.comp) + the rank lod_assign took.
+    // Level cache: the key's first entry (level_cache_commands.comp) + the rank lod_assign took.
     if (lod.selected > 0u) {
       const uint key = types[instances[i].type].key_base + lod.usable;
       instance_list[key_states[key].y + lod.local_draw] = i;

@@ -6,7 +6,9 @@
 // Corner c's vertex is the pack's triangle corner walked down the collapse chain
 // (`while v >= n'`, ReconstructJob); the thread writes uvec2(instance, vertex) at the
 // instance's first corner + c. Level-cache frames instead build each newly cached level n'
-// once (build_list, written by level_cache.comp) into its slot of the level cache.
+// once (build_list, written by level_cache_assign.comp) into its slot of the level cache,
+// kBuildCorners corners per workgroup (workgroup z), so a lane's loop stays short however large
+// the level (lane_scan.glsl says why that matters).
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
@@ -16,14 +18,16 @@ void main() {
   const uint lid = gl_LocalInvocationID.x;
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   if (params.cached != 0u) {
-    // Level cache: one workgroup per level to build, its 3·T(n') corners into its slot.
+    // Level cache: workgroups (level to build, kBuildCorners of its 3·T(n') corners).
     if (group >= stats.levels_built) return;
     const uvec4 build = build_list[group];  // slot, key, type
     const TypeData t = types[build.z];
     const uint usable = build.y - t.key_base;
     const uint first = t.cache_base + (build.x - t.slot_base) * t.slot_stride;
-    const uint corners = 3u * level_triangles(t, usable);
-    for (uint c = lid; c < corners; c += 256u) level_cache[first + c] = level_corner(t, usable, c);
+    const uint begin = gl_WorkGroupID.z * kBuildCorners;
+    const uint end = min(begin + kBuildCorners, 3u * level_triangles(t, usable));
+    for (uint c = begin + lid; c < end; c += 256u)
+      level_cache[first + c] = level_corner(t, usable, c);
     return;
   }
   const uint chunk = group * kChunksPerGroup + lid / 64u;

@@ -13,7 +13,7 @@ namespace {
 
 constexpr uint32_t kGroupSize = 256;    // shaders/crowd_compute.glsl: kGroupSize
 constexpr uint32_t kMaxGroups = 65535;  // maxComputeWorkGroupCount[0] guaranteed minimum
-constexpr uint32_t kStatsBytes = 80;    // Stats in crowd_compute.glsl
+constexpr uint32_t kStatsBytes = 88;    // Stats in crowd_compute.glsl
 constexpr uint32_t kMaxTypes = 1024;    // crowd_compute.glsl: kMaxTypes (lod_assign shared memory)
 
 // C++ mirrors of shaders/crowd_compute.glsl (std430).
@@ -28,7 +28,8 @@ struct Params {
   uint32_t drop_below_min_t;
   uint32_t cached, frame;
   float max_pixel_error;
-  uint32_t pad[3];
+  uint32_t key_total;
+  uint32_t pad[2];
 };
 static_assert(sizeof(Params) == 208 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
@@ -56,16 +57,39 @@ struct StatsData {
   uint32_t drawn_corners, selected_lo, selected_hi, requested_lo;
   uint32_t requested_hi, chunks, levels_drawn, levels_built;
   uint32_t coarser, error_step;
+  uint32_t build_corners, pad;
 };
 static_assert(sizeof(StatsData) == kStatsBytes, "Stats must match crowd_compute.glsl");
 static_assert(sizeof(InstanceLod) == 36 && sizeof(TypeRange) == 32, "crowd_compute.glsl");
 
-constexpr uint32_t kKernels = CrowdCompute::kKernelCount;
-constexpr const char* kShaders[kKernels] = {
-    "lod_weights.comp", "lod_sum.comp",         "lod_assign.comp", "scan_types.comp",
-    "level_cache.comp", "place_instances.comp", "draw_args.comp",  "reconstruct.comp"};
-constexpr uint32_t kBindings = 25;
+// The kernels in recording order, how each is dispatched, and the timed pass it belongs to
+// (ComputeTimings::kNames; the level cache's four kernels are one pass).
+enum class Dispatch { kInstanceGroups, kOneGroup, kCacheKeys, kIndirect };
+struct Kernel {
+  const char* shader;
+  Dispatch dispatch;
+  uint32_t pass;
+  bool level_cache;  // recorded only in level-cache frames
+};
+constexpr Kernel kKernels[CrowdCompute::kKernelCount] = {
+    {"lod_weights.comp", Dispatch::kInstanceGroups, 0, false},
+    {"lod_sum.comp", Dispatch::kOneGroup, 1, false},
+    {"lod_assign.comp", Dispatch::kInstanceGroups, 2, false},
+    {"scan_types.comp", Dispatch::kOneGroup, 3, false},
+    {"level_cache_mark.comp", Dispatch::kCacheKeys, 4, true},
+    {"level_cache_misses.comp", Dispatch::kOneGroup, 4, true},
+    {"level_cache_assign.comp", Dispatch::kOneGroup, 4, true},
+    {"level_cache_commands.comp", Dispatch::kOneGroup, 4, true},
+    {"place_instances.comp", Dispatch::kInstanceGroups, 5, false},
+    {"draw_args.comp", Dispatch::kOneGroup, 6, false},
+    {"reconstruct.comp", Dispatch::kIndirect, 7, false}};
+constexpr uint32_t kBindings = 27;
 constexpr uint64_t kDefaultLevelCacheBytes = uint64_t{64} << 20;
+// note: bounds on the level cache's per-invocation loops (lane_scan.glsl): a lane of
+// level_cache_assign serves one type (the instanced path has at most 128) in about three
+// steps per slot, and the scans walk key_total / 256 keys per lane, twice.
+constexpr uint32_t kMaxSlotsPerType = 8192;
+constexpr uint64_t kMaxCacheKeys = uint64_t{256} * 16384;
 constexpr uint32_t kChunk = 256;  // crowd_compute.glsl: kChunk
 
 uint32_t groups_for(uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
@@ -183,13 +207,15 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
        indirect, MemoryKind::kDeviceLocal},
       {&c->instance_list_, VkDeviceSize{n} * 4, storage, MemoryKind::kDeviceLocal},
       {&c->key_counts_, VkDeviceSize{c->key_total_} * 4, storage, MemoryKind::kDeviceLocal},
-      {&c->key_states_, VkDeviceSize{c->key_total_} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->key_states_, VkDeviceSize{c->key_total_} * 16, storage, MemoryKind::kDeviceLocal},
       {&c->slot_states_, VkDeviceSize{c->slot_total_} * 8, storage, MemoryKind::kDeviceLocal},
       {&c->build_list_, VkDeviceSize{c->slot_total_} * 16, storage, MemoryKind::kDeviceLocal},
       {&c->level_cache_, VkDeviceSize{std::max<uint64_t>(c->cache_indices_, 1)} * 4,
        storage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
       {&c->cache_hands_, VkDeviceSize{types} * 4, storage, MemoryKind::kDeviceLocal},
       {&c->ladder_sums_, VkDeviceSize{kErrorLadderSteps} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->type_marks_, VkDeviceSize{types} * 8, storage, MemoryKind::kDeviceLocal},
+      {&c->miss_keys_, VkDeviceSize{c->key_total_} * 4, storage, MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;
@@ -202,15 +228,22 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     Status st = c->mesh_.upload(mesh.data(), mesh.size() * 4);
     if (!st.ok()) return st;
   }
-  for (uint32_t k = 0; k < kKernels; ++k) {
-    Status st = ComputeKernel::create(context, kShaders[k], kBindings, 0, c->kernels_[k]);
+  for (uint32_t k = 0; k < kKernelCount; ++k) {
+    Status st = ComputeKernel::create(context, kKernels[k].shader, kBindings, 0, c->kernels_[k]);
     if (!st.ok()) return st;
     c->kernels_[k].bind_buffers(0, bindings);
   }
   for (const Spec& spec : specs) c->gpu_bytes_ += spec.bytes;
-  // note: an empty cache: no key holds a slot, no slot a key, every hand at 0.
-  Status st = context.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, c->key_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
+  // note: an empty cache: no key holds a slot, no slot a key, every hand at 0; each key
+  // knows its type.
+  std::vector<uint32_t> key_states(size_t{c->key_total_} * 4, kNotDrawn);
+  for (uint32_t t = 0; t < c->type_count_ && c->instanced_levels_; ++t) {
+    const LevelCacheLayout& l = c->cache_layout_[t];
+    for (uint32_t k = 0; k <= c->vertex_counts_[t]; ++k) key_states[4 * (l.key_base + k) + 3] = t;
+  }
+  Status st = c->key_states_.upload(key_states.data(), key_states.size() * 4);
+  if (!st.ok()) return st;
+  st = context.submit_and_wait([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, c->slot_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
     vkCmdFillBuffer(cmd, c->cache_hands_.buffer(), 0, VK_WHOLE_SIZE, 0);
   });
@@ -248,6 +281,7 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.budget = scene.lod.budget;
   p.min_t = scene.lod.min_t;
   p.max_pixel_error = scene.lod.max_pixel_error;
+  p.key_total = key_total_;
   // note: the frame's mode (update_frame falls back to budget mode without level errors).
   const LodMode mode = state.lod_mode;
   p.drop_below_min_t = scene.lod.drop_below_min_t ? 1 : 0;
@@ -370,19 +404,34 @@ void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
   vkCmdFillBuffer(cmd, stats_.buffer(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, key_counts_.buffer(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, ladder_sums_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, type_marks_.buffer(), 0, VK_WHOLE_SIZE, 0);
   full_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, compute);
   stamp(0);
-  const uint32_t dispatches[kKernels - 1] = {groups, 1, groups, 1, 1, groups, 1};
-  for (uint32_t k = 0; k < kKernels - 1; ++k) {
-    kernels_[k].bind(cmd);
-    kernels_[k].dispatch(cmd, dispatches[k]);
-    full_barrier(cmd, compute, compute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT);
-    stamp(k + 1);
+  for (uint32_t k = 0; k < kKernelCount; ++k) {
+    const Kernel& kernel = kKernels[k];
+    if (!kernel.level_cache || cached_) {
+      kernels_[k].bind(cmd);
+      switch (kernel.dispatch) {
+        case Dispatch::kInstanceGroups:
+          kernels_[k].dispatch(cmd, groups);
+          break;
+        case Dispatch::kOneGroup:
+          kernels_[k].dispatch(cmd, 1);
+          break;
+        case Dispatch::kCacheKeys:
+          vkCmdDispatch(cmd, (max_keys_per_type_ + kGroupSize - 1) / kGroupSize, type_count_, 1);
+          break;
+        case Dispatch::kIndirect:
+          vkCmdDispatchIndirect(cmd, dispatch_args_.buffer(), 0);
+          break;
+      }
+      const VkPipelineStageFlags next =
+          k + 1 == kKernelCount ? VkPipelineStageFlags{VK_PIPELINE_STAGE_ALL_COMMANDS_BIT}
+                                : compute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;
+      full_barrier(cmd, compute, next);
+    }
+    if (k + 1 == kKernelCount || kKernels[k + 1].pass != kernel.pass) stamp(kernel.pass + 1);
   }
-  kernels_[kKernels - 1].bind(cmd);
-  vkCmdDispatchIndirect(cmd, dispatch_args_.buffer(), 0);
-  full_barrier(cmd, compute, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
-  stamp(kKernels);
 }
 
 Status CrowdCompute::run(const Scene& scene, const FrameState& state,
@@ -493,11 +542,17 @@ Status CrowdCompute::layout_level_cache(const VulkanContext& context,
     l.slot_stride = 3 * full_triangles_[t];
     l.cache_base = static_cast<uint32_t>(indices);
     const uint64_t fit = l.slot_stride ? share / (uint64_t{l.slot_stride} * 4) : key_count;
-    l.slot_count = static_cast<uint32_t>(std::clamp<uint64_t>(fit, 1, key_count));
+    l.slot_count = static_cast<uint32_t>(
+        std::clamp<uint64_t>(fit, 1, std::min<uint64_t>(key_count, kMaxSlotsPerType)));
+    max_keys_per_type_ = std::max(max_keys_per_type_, key_count);
     keys += key_count;
     slots += l.slot_count;
     indices += uint64_t{l.slot_count} * l.slot_stride;
   }
+  if (instanced_levels_ && keys > kMaxCacheKeys)
+    return invalid("the level cache handles at most " + std::to_string(kMaxCacheKeys) +
+                   " vertices over all character types; the scene's types have " +
+                   std::to_string(keys));
   if (instanced_levels_ && indices * 4 > binding)
     return invalid("the level cache needs " + std::to_string(indices * 4) +
                    " bytes for one slot per type, over the device's storage-buffer range of " +

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "crowdbake/runtime/cpu_reference.h"
 #include "crowdbake/runtime/gpu/crowd_compute.h"
+#include "crowdbake/runtime/reconstruct_job.h"
 #include "runtime/gpu/compute_test_scene.h"
 #include "runtime/gpu/gpu_test_support.h"
 
@@ -511,6 +513,56 @@ TEST_F(ComputeTest, LevelCacheKeepsLevelsAcrossFramesAndDegradesWhenFull) {
     } else {
       EXPECT_GT(coarser, 0u) << "a 300 kB cache cannot hold every level";
     }
+  }
+}
+
+// Many character types: the level cache's keys (one per type and vertex count) run to tens of
+// thousands, more than lavapipe lets one shader invocation loop over (65,535 iterations, then
+// every loop ends silently). A cache walked in one invocation left the last types' levels
+// without slots or commands: their instances vanished, and unwritten commands drew garbage.
+TEST_F(ComputeTest, LevelCacheServesEveryTypeOfAManyTypeScene) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 0, 1, continuous(400000)).ok());
+  uint64_t keys = 0;
+  for (const CharacterType& type : scene.types)
+    keys += progressive_view(type.pack.contents()).vertex_count + 1;
+  for (uint32_t copy = 0; keys < 40000; ++copy) {
+    ASSERT_LT(copy, 100u) << "the spectator pack is too small for this test";
+    Pack pack;
+    ASSERT_TRUE(Pack::open_file(test::BakedPacks::get().spectator(), pack, kPackAll).ok());
+    keys += progressive_view(pack.contents()).vertex_count + 1;
+    ASSERT_TRUE(add_character_type(scene, "copy" + std::to_string(copy), std::move(pack)).ok());
+  }
+  const uint32_t types = static_cast<uint32_t>(scene.types.size());
+  for (uint32_t i = 0; i < 4 * types; ++i) {
+    Instance in;
+    in.type = i % types;
+    const float distance = 3.0f + 0.5f * static_cast<float>(i);
+    const float angle = 0.4f * std::sin(static_cast<float>(i));
+    in.position = {distance * std::sin(angle), 0.0f, -distance * std::cos(angle)};
+    in.rotation = {0.0f, 0.0f, 0.0f, 1.0f};
+    in.scale = 1.0f;
+    in.clip = scene.types[in.type].first_clip;
+    in.textures = {0, 0, 0};
+    in.neck_height = 1.5f;
+    in.waist_height = 0.9f;
+    scene.instances.add(in);
+  }
+  CrowdComputeOptions options;
+  options.instanced_static_levels = true;
+  std::unique_ptr<CrowdCompute> compute;
+  ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+  for (int frame = 0; frame < 2; ++frame) {
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    run_frame(scene, 0.5f * static_cast<float>(frame), *compute);
+    if (HasFatalFailure()) return;
+    ASSERT_EQ(state_.lod.drawn, state_.lod.visible);
+    EXPECT_GT(state_.lod.drawn, 3 * types) << "most instances are in view";
+    EXPECT_EQ(expect_instanced_identical(scene, state_, *compute), 0u);
+    CrowdComputeStats stats;
+    ASSERT_TRUE(compute->read_stats(stats).ok());
+    EXPECT_EQ(stats.drawn_instances, state_.lod.drawn);
+    EXPECT_EQ(stats.coarser_instances, 0u);
   }
 }
 

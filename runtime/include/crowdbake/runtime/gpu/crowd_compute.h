@@ -48,11 +48,12 @@
 // Level cache (instanced_static_levels, continuous and error-mode frames): the reconstruction
 // of level n' never changes, so instances of one type that select the same usable count n'
 // share one index range. Keys are (type, n'); a type has `slots` index ranges of its finest
-// level's size (level_cache_bytes split between the types). level_cache.comp gives every key
-// drawn this frame a slot — kept from earlier frames when it has one, otherwise the next slot,
-// clockwise from the type's hand, that this frame does not use — queues the new ones, and
-// writes one VkDrawIndexedIndirectCommand per key with a slot; reconstruct.comp builds the
-// queued levels (one workgroup each), place_instances lists each instance under its key (its
+// level's size (level_cache_bytes split between the types, at most 8192 slots). The
+// level_cache_*.comp passes give every key drawn this frame a slot — kept from earlier frames
+// when it has one, otherwise the next slot, clockwise from the type's hand, that this frame
+// does not use — queue the new ones, and write one VkDrawIndexedIndirectCommand per key with a
+// slot, at the slot's index; reconstruct.comp builds the queued levels (2048 corners per
+// workgroup), place_instances lists each instance under its key (its
 // rank within the key taken by an atomic in lod_assign: order within a key is not fixed).
 // When a frame draws more distinct levels of a type than it has slots, the keys left over are
 // drawn with the nearest coarser key that has one (stats.coarser_instances): an instance's
@@ -161,7 +162,7 @@ struct ComputeTimings {
 
 class CrowdCompute {
  public:
-  static constexpr uint32_t kKernelCount = ComputeTimings::kPasses;
+  static constexpr uint32_t kKernelCount = 11;  // the level cache pass runs four
   // Timestamps record() writes when given queries: first_query .. first_query + kPasses.
   static constexpr uint32_t kTimestampCount = ComputeTimings::kPasses + 1;
 
@@ -250,9 +251,9 @@ class CrowdCompute {
   GpuBuffer params_, instances_, types_, mesh_, weights_, partials_, lods_, group_sums_, ranges_,
       draw_list_, corners_, draw_args_, dispatch_args_, stats_, chunk_table_, level_ranges_,
       indexed_args_, instance_list_, level_indices_, key_counts_, key_states_, slot_states_,
-      build_list_, level_cache_, cache_hands_, ladder_sums_;
+      build_list_, level_cache_, cache_hands_, ladder_sums_, type_marks_, miss_keys_;
   bool instanced_levels_ = false, instanced_ = false, cached_ = false;
-  uint32_t frame_ = 0, key_total_ = 1, slot_total_ = 1;
+  uint32_t frame_ = 0, key_total_ = 1, slot_total_ = 1, max_keys_per_type_ = 0;
   uint64_t cache_indices_ = 0, gpu_bytes_ = 0;
   std::vector<LevelCacheLayout> cache_layout_;
   std::vector<uint32_t> level_vertices_;  // per slot: the level's vertex count (0 = none)
