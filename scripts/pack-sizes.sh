@@ -8,6 +8,14 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 assets=${2:-../shared/assets}
 work=$(mktemp -d)
+# The peer: the pinned gltfpack (scripts/gltfpack/install.sh); its columns stay empty without it.
+gltfpack=""
+gltfpack_version="(not installed)"
+if ./scripts/gltfpack/install.sh "$build/npm-gltfpack" >/dev/null 2>&1; then
+  gltfpack="$build/npm-gltfpack/node_modules/.bin/gltfpack"
+  gltfpack_version=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['version'])" \
+    "$build/npm-gltfpack/node_modules/gltfpack/package.json")
+fi
 trap 'rm -rf "$work"' EXIT
 out=docs/pack-sizes.md
 
@@ -27,22 +35,50 @@ store the materials' base colour images as the source held them (IMGS; MATX says
 Fox.glb and CesiumMan.glb carry embedded PNG/JPEG images, the Quaternius FBX characters are coloured by their
 materials' factors alone."
   echo
-  echo "| character | input bytes | as .glb | pack bytes | HEAD | SKEL | CLIP | MATL | MATX | BNDS | PROG | GEOM | ANIM | PART | IMGS |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "*gltfpack -cc* is the same .glb through gltfpack $gltfpack_version with \`-cc\` (meshopt compression, its default"
+  echo "quantisation, images kept as they are); *ratio* is pack bytes / gltfpack bytes (below 1: the pack is smaller)."
+  echo
+  echo "| character | input bytes | as .glb | gltfpack -cc | pack bytes | ratio | HEAD | SKEL | CLIP | MATL | MATX | BNDS | PROG | GEOM | ANIM | PART | IMGS |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   for f in $inputs; do
     name=$(basename "$f")
     glb=$f
     case "$f" in *.glb|*.gltf) ;; *) "$build/tests/pipeline/export/reexport_glb" "$f" "$work/$name.glb" >/dev/null; glb="$work/$name.glb";; esac
     "$build/cli/crowdbake" bake "$f" -o "$work/$name.crowdpack" --report "$work/$name.json" --quiet
-    python3 - "$f" "$glb" "$work/$name.json" <<'PY'
+    packed=""
+    if [ -n "$gltfpack" ] && "$gltfpack" -i "$glb" -o "$work/$name.cc.glb" -cc >/dev/null 2>&1; then
+      packed="$work/$name.cc.glb"
+    fi
+    python3 - "$f" "$glb" "$work/$name.json" "$packed" <<'PY' >>"$work/rows.md"
 import json, os, sys
-src, glb, report = sys.argv[1:4]
+src, glb, report, packed = sys.argv[1:5]
 r = json.load(open(report))
 chunks = {c["tag"]: c["bytes"] for c in r["chunks"]}
 cells = [str(chunks.get(t, 0)) for t in ["HEAD", "SKEL", "CLIP", "MATL", "MATX", "BNDS", "PROG", "GEOM", "ANIM", "PART", "IMGS"]]
-print("| %s | %d | %d | %d | %s |" % (os.path.basename(src), os.path.getsize(src), os.path.getsize(glb),
-                                     r["output"]["bytes"], " | ".join(cells)))
+pack = r["output"]["bytes"]
+peer = os.path.getsize(packed) if packed else 0
+print("| %s | %d | %d | %s | %d | %s | %s |" % (os.path.basename(src), os.path.getsize(src), os.path.getsize(glb),
+      peer or "–", pack, "%.2f" % (pack / peer) if peer else "–", " | ".join(cells)))
 PY
   done
+  cat "$work/rows.md"
+  python3 - "$work/rows.md" <<'PY'
+import statistics, sys
+ratios = [float(l.split("|")[6]) for l in open(sys.argv[1]) if l.split("|")[6].strip() not in ("–", "")]
+if ratios:
+    print()
+    print("Pack bytes / gltfpack -cc bytes over the %d characters: median %.2f, best %.2f, worst %.2f; "
+          "the pack is the smaller on %d." % (len(ratios), statistics.median(ratios), min(ratios), max(ratios),
+                                              sum(r < 1 for r in ratios)))
+PY
+  echo
+  echo "## Animation compression (ANIM v2)"
+  echo
+  echo "The texels are stored losslessly (docs/pack-format.md 3.8): the runtime expands them at load to exactly the"
+  echo "texture an uncompressed bake holds, so the animated error is that of the encoding"
+  echo "([animation-encoding.md](animation-encoding.md)). Compress and expand times are medians of 5 runs on this"
+  echo "machine (\`animation_compression_bench\`)."
+  echo
+  (cd "$work" && "$OLDPWD/$build/formats/animation_compression_bench" *.crowdpack)
 } > "$out"
 echo "wrote $out"

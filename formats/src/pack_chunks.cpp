@@ -1,8 +1,11 @@
 #include "pack_chunks.h"
 
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 
+#include "animation_compression.h"
+#include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
 #include "geometry_codec.h"
 #include "pack_validate.h"
@@ -468,7 +471,9 @@ bool decode_geometry(ByteReader& in, PackGeometry& out) {
 
 // --- ANIM ------------------------------------------------------------------------------
 
-void encode_animation(const AnimationTexture& a, ByteWriter& out) {
+// v1: the texels as they are. v2: a u32 compression field (1 = zstd) and a reserved u32
+// after the data size, and the texels as one zstd frame (u64 size, then the frame).
+void encode_animation(const AnimationTexture& a, bool compressed, ByteWriter& out) {
   out.u32(static_cast<uint32_t>(a.encoding));
   out.u32(a.joints);
   out.u32(a.texels_per_joint);
@@ -476,13 +481,23 @@ void encode_animation(const AnimationTexture& a, ByteWriter& out) {
   out.u32(a.rows);
   out.u32(static_cast<uint32_t>(a.decode_params.size()));
   out.u64(a.data.size());
+  if (compressed) {
+    out.u32(static_cast<uint32_t>(AnimationCompression::kZstd));
+    out.u32(0);
+  }
   out.array(a.decode_params);
   out.zero_pad(kAlignment);
-  out.array(a.data);
+  if (!compressed) {
+    out.array(a.data);
+    return;
+  }
+  const std::vector<uint8_t> frame = compress_animation_texels(a);
+  out.u64(frame.size());
+  out.array(frame);
 }
 
-bool decode_animation(ByteReader& in, AnimationTexture& out) {
-  uint32_t encoding = 0, params = 0;
+bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out) {
+  uint32_t encoding = 0, params = 0, compression = 0, reserved = 0;
   uint64_t data_bytes = 0;
   in.u32(encoding, "encoding");
   in.u32(out.joints, "joints");
@@ -491,14 +506,49 @@ bool decode_animation(ByteReader& in, AnimationTexture& out) {
   in.u32(out.rows, "rows");
   in.u32(params, "decode parameter count");
   in.u64(data_bytes, "data size");
+  if (version >= 2) {
+    in.u32(compression, "compression");
+    in.u32(reserved, "reserved");
+  }
   if (!in.ok()) return false;
   if (encoding > 2) return in.fail("unknown encoding " + std::to_string(encoding));
   out.encoding = static_cast<AnimationEncoding>(encoding);
   if (params > kMaxDecodeParams)
     return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
+  if (compression > static_cast<uint32_t>(AnimationCompression::kZstd))
+    return in.fail("unknown compression " + std::to_string(compression));
+  if (reserved != 0) return in.fail("reserved field is " + std::to_string(reserved));
   in.read_f32_array(out.decode_params, params, "decode parameters");
   in.zero_pad(kAlignment, "padding before the texture data");
-  in.read_array(out.data, data_bytes, "texture data");
+  if (compression == static_cast<uint32_t>(AnimationCompression::kNone)) {
+    in.read_array(out.data, data_bytes, "texture data");
+    return in.expect_end() && checked(in, check_animation(out));
+  }
+  // note: the layout is checked before the size it implies is allocated.
+  const AnimationTextureFormat format = animation_texture_format(out.encoding);
+  if (out.texels_per_joint != format.texels_per_joint ||
+      out.bytes_per_texel != format.bytes_per_texel)
+    return in.fail(std::string(animation_encoding_name(out.encoding)) + " needs " +
+                   std::to_string(format.texels_per_joint) + " texels of " +
+                   std::to_string(format.bytes_per_texel) + " bytes per joint");
+  const uint64_t expected = uint64_t{out.rows} * out.joints * out.texels_per_joint *
+                            out.bytes_per_texel;  // note: < 2^32 · 2^16 · 48, no overflow
+  if (data_bytes != expected)
+    return in.fail("data size " + std::to_string(data_bytes) + " is not rows x joints x " +
+                   std::to_string(out.texels_per_joint * out.bytes_per_texel) + " = " +
+                   std::to_string(expected));
+  if (data_bytes > kMaxAnimationBytes)
+    return in.fail("data size " + std::to_string(data_bytes) + " exceeds the limit of " +
+                   std::to_string(kMaxAnimationBytes) + " bytes");
+  uint64_t frame_bytes = 0;
+  if (!in.u64(frame_bytes, "compressed size")) return false;
+  if (frame_bytes > in.remaining())
+    return in.fail("compressed texels: needs " + std::to_string(frame_bytes) + " bytes, " +
+                   std::to_string(in.remaining()) + " left");
+  std::string why;
+  if (!decompress_animation_texels(in.cursor(), static_cast<size_t>(frame_bytes), out, &why))
+    return in.fail("compressed texels: " + why);
+  in.skip(static_cast<size_t>(frame_bytes), "compressed texels");
   return in.expect_end() && checked(in, check_animation(out));
 }
 

@@ -49,8 +49,9 @@ void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& optio
                      ByteWriter& out);
 bool decode_geometry(ByteReader& in, PackGeometry& out);
 
-void encode_animation(const AnimationTexture& animation, ByteWriter& out);
-bool decode_animation(ByteReader& in, AnimationTexture& out);
+// ANIM v2 when `compressed` (the texels as one zstd frame), v1 otherwise.
+void encode_animation(const AnimationTexture& animation, bool compressed, ByteWriter& out);
+bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out);
 
 void encode_partition(const PartitionMask& partition, ByteWriter& out);
 bool decode_partition(ByteReader& in, PartitionMask& out);

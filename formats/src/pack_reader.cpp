@@ -38,14 +38,17 @@ std::string hex(uint32_t v) {
 
 struct KnownChunk {
   uint32_t tag;
-  uint32_t version;
+  uint32_t version;  // the newest this build reads
   bool required = true;
+  uint32_t oldest = 0;  // the oldest this build reads; 0: only `version`
 };
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion}, {kTagSkel, kSkelVersion},        {kTagClip, kClipVersion},
-    {kTagMatl, kMatlVersion}, {kTagMatx, kMatxVersion, false}, {kTagBnds, kBndsVersion},
-    {kTagProg, kProgVersion}, {kTagLerr, kLerrVersion, false}, {kTagGeom, kGeomVersion},
-    {kTagAnim, kAnimVersion}, {kTagPart, kPartVersion},        {kTagImgs, kImgsVersion, false},
+    {kTagHead, kHeadVersion},        {kTagSkel, kSkelVersion},
+    {kTagClip, kClipVersion},        {kTagMatl, kMatlVersion},
+    {kTagMatx, kMatxVersion, false}, {kTagBnds, kBndsVersion},
+    {kTagProg, kProgVersion},        {kTagLerr, kLerrVersion, false},
+    {kTagGeom, kGeomVersion},        {kTagAnim, kAnimVersion, true, kAnimOldestVersion},
+    {kTagPart, kPartVersion},        {kTagImgs, kImgsVersion, false},
 };
 
 const KnownChunk* find_known(uint32_t tag) {
@@ -161,7 +164,8 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
                  hex(crc) + "): the chunk is corrupt");
   const KnownChunk* known = find_known(chunk.tag);
   if (!known) return {};  // note: unknown chunks are skipped (newer minor versions add them)
-  if (chunk.version != known->version)
+  if (chunk.version > known->version || chunk.version < std::max(known->oldest, 1u) ||
+      (known->oldest == 0 && chunk.version != known->version))
     return error("unsupported " + name + " version " + std::to_string(chunk.version) +
                  " (this build reads <= " + std::to_string(known->version) + ")");
   ByteReader in(payload, static_cast<size_t>(chunk.size), name);
@@ -196,7 +200,7 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
       ok = pack_io::decode_geometry(in, out.geometry);
       break;
     case kTagAnim:
-      ok = pack_io::decode_animation(in, out.animation);
+      ok = pack_io::decode_animation(in, chunk.version, out.animation);
       break;
     case kTagPart:
       ok = pack_io::decode_partition(in, out.partition);

@@ -27,6 +27,10 @@ void check_options(const PackWriteOptions& o) {
   if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kRaw))
     throw std::invalid_argument("write_pack: unknown geometry codec " +
                                 std::to_string(static_cast<uint32_t>(o.codec)));
+  if (o.animation_compression != AnimationCompression::kNone &&
+      o.animation_compression != AnimationCompression::kZstd)
+    throw std::invalid_argument("write_pack: unknown animation compression " +
+                                std::to_string(static_cast<uint32_t>(o.animation_compression)));
   if (!bits_ok(o.position_bits, 1) || !bits_ok(o.uv_bits, 1) || !bits_ok(o.normal_bits, 2))
     throw std::invalid_argument(
         "write_pack: quantisation bits must be 0 or 1.." + std::to_string(kMaxQuantizationBits) +
@@ -106,7 +110,9 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   if (!contents.level_errors.vertices.empty())
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
   pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
-  pack_io::encode_animation(contents.animation, add(kTagAnim, kAnimVersion));
+  const bool compressed = options.animation_compression == AnimationCompression::kZstd;
+  pack_io::encode_animation(contents.animation, compressed,
+                            add(kTagAnim, compressed ? kAnimVersion : kAnimOldestVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
   if (!contents.images.empty())
     pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));

@@ -21,6 +21,8 @@ const std::map<std::string, AnimationEncoding> kEncodings = {
     {"float32", AnimationEncoding::kFloat32},
     {"float16", AnimationEncoding::kFloat16},
     {"quantized", AnimationEncoding::kQuantized}};
+const std::map<std::string, AnimationCompression> kCompressions = {
+    {"zstd", AnimationCompression::kZstd}, {"none", AnimationCompression::kNone}};
 const std::map<std::string, GeometryCodec> kCodecs = {{"draco", GeometryCodec::kDraco},
                                                       {"meshopt", GeometryCodec::kMeshopt},
                                                       {"raw", GeometryCodec::kRaw}};
@@ -133,6 +135,8 @@ class ConfigReader {
         a.encoding = choice(key, v, kEncodings);
       else if (k == "root_motion")
         a.extract_root_motion = boolean(key, v);
+      else if (k == "compression")
+        out_.pack.animation_compression = choice(key, v, kCompressions);
       else
         fail(key, "unknown key");
     }
@@ -213,6 +217,7 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["animation"]["fps"] = s.animation.fps;
   j["animation"]["encoding"] = name_of(kEncodings, s.animation.encoding);
   j["animation"]["root_motion"] = s.animation.extract_root_motion;
+  j["animation"]["compression"] = name_of(kCompressions, s.pack.animation_compression);
   j["partition"]["size"] = s.partition.size;
   j["partition"]["neck_height"] =
       s.partition.neck_height ? json(*s.partition.neck_height) : json(nullptr);

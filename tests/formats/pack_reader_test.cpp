@@ -10,6 +10,7 @@
 #include <random>
 
 #include "allocation_tracker.h"
+#include "animation_compression.h"
 #include "crowdbake/formats/pack.h"
 #include "pack_compare.h"
 #include "pack_surgery.h"
@@ -203,9 +204,13 @@ TEST(PackReader, UnknownChunkVersionRejected) {
   auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   for (RawChunk& c : chunks) {
     const uint32_t saved = c.version;
-    c.version = 2;
+    c.version = saved + 1;
     expect_error(read(test::assemble_pack(chunks)),
-                 "unsupported chunk " + tag_name(c.tag) + " version 2 (this build reads <= 1)");
+                 "unsupported chunk " + tag_name(c.tag) + " version " + std::to_string(saved + 1) +
+                     " (this build reads <= " + std::to_string(saved) + ")");
+    c.version = 0;
+    expect_error(read(test::assemble_pack(chunks)),
+                 "unsupported chunk " + tag_name(c.tag) + " version 0");
     c.version = saved;
   }
 }
@@ -326,10 +331,13 @@ TEST(PackReader, GarbageChunkPayloadsAreRejected) {
 // Replaces chunk `tag`'s payload and expects an error containing `needle` with no
 // allocation above 1 MiB while reading.
 void expect_cheap_rejection(uint32_t tag, const std::vector<uint8_t>& payload,
-                            const std::string& needle) {
+                            const std::string& needle, uint32_t version = 1) {
   auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   for (RawChunk& c : chunks)
-    if (c.tag == tag) c.payload = payload;
+    if (c.tag == tag) {
+      c.payload = payload;
+      c.version = version;
+    }
   const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
   PackStatus s;
   const size_t largest = largest_allocation_reading(bytes, s);
@@ -367,6 +375,28 @@ TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
   const std::vector<uint8_t> huge = words({0, 1u << 8});
   anim.insert(anim.end(), huge.begin(), huge.end());
   expect_cheap_rejection(kTagAnim, anim, "chunk ANIM: texture data: count 1099511627776");
+  // ANIM v2: a 1 GiB texture from a few bytes of zstd frame; a frame of another size.
+  std::vector<uint8_t> anim2 = words({2, 64, 2, 8, 1u << 20, 8, 1u << 30, 0, 1, 0});
+  const std::vector<uint8_t> params(48, 0);
+  anim2.insert(anim2.end(), params.begin(), params.end());
+  expect_cheap_rejection(kTagAnim, anim2, "chunk ANIM: data size 1073741824 exceeds the limit", 2);
+  AnimationTexture small;
+  small.encoding = AnimationEncoding::kQuantized;
+  small.joints = 4;
+  small.texels_per_joint = 2;
+  small.bytes_per_texel = 8;
+  small.rows = 3;
+  small.decode_params.assign(8, 1.0f);
+  small.data.assign(3 * 4 * 16, 0);
+  std::vector<uint8_t> frame = pack_io::compress_animation_texels(small);
+  std::vector<uint8_t> anim3 = words({2, 4, 2, 8, 2, 8, 2 * 4 * 16, 0, 1, 0});
+  anim3.insert(anim3.end(), 32, 0);
+  for (size_t k = 0; k < 8; ++k) std::memcpy(&anim3[40 + 4 * k], &small.decode_params[k], 4);
+  const std::vector<uint8_t> size = words({static_cast<uint32_t>(frame.size()), 0});
+  anim3.resize(80, 0);
+  anim3.insert(anim3.end(), size.begin(), size.end());
+  anim3.insert(anim3.end(), frame.begin(), frame.end());
+  expect_cheap_rejection(kTagAnim, anim3, "zstd frame holds 192 bytes, the texture 128", 2);
   // PART: 16384 x 16384 run-length mask from two runs.
   std::vector<uint8_t> part = words({16384, 16384, 0, 0, 0, 0x3f800000, 0, 1, 4});
   part.insert(part.end(), {255, 0, 255, 1});

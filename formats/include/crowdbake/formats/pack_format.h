@@ -11,7 +11,7 @@
 namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-constexpr uint16_t kPackVersionMinor = 2;  // compatible additions (new optional chunks)
+constexpr uint16_t kPackVersionMinor = 3;  // additions; 1.3: ANIM v2 (compressed texels)
 
 namespace pack_format {
 
@@ -54,7 +54,8 @@ constexpr uint32_t kBndsVersion = 1;
 constexpr uint32_t kProgVersion = 1;
 constexpr uint32_t kLerrVersion = 1;
 constexpr uint32_t kGeomVersion = 1;
-constexpr uint32_t kAnimVersion = 1;
+constexpr uint32_t kAnimVersion = 2;        // v2: texels stored compressed (v1 still read)
+constexpr uint32_t kAnimOldestVersion = 1;  // written with AnimationCompression::kNone
 constexpr uint32_t kPartVersion = 1;
 constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;
@@ -74,6 +75,8 @@ constexpr uint32_t kMaxMaterials = 65535;  // material indices are uint16
 constexpr uint32_t kMaxVertices = 1u << 24;
 constexpr uint32_t kMaxTriangles = 1u << 25;
 constexpr uint32_t kMaxDecodeParams = 4096;
+// ANIM v2's decoded texels (compressed, so not bounded by the file's size).
+constexpr uint64_t kMaxAnimationBytes = uint64_t{512} << 20;
 constexpr uint32_t kMaxTextureSide = 16384;  // partition mask width/height
 constexpr uint32_t kMaxImages = 4096;
 constexpr uint32_t kMaxImageSide = 8192;        // material image width/height
