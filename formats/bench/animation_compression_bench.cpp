@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "animation_compression.h"
+#include "pack_compression.h"
 #include "crowdbake/formats/pack.h"
 
 namespace {

@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "animation_compression.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
 #include "geometry_codec.h"
+#include "pack_compression.h"
 #include "pack_validate.h"
 
 namespace crowdbake::pack_io {
@@ -482,7 +482,7 @@ void encode_animation(const AnimationTexture& a, bool compressed, ByteWriter& ou
   out.u32(static_cast<uint32_t>(a.decode_params.size()));
   out.u64(a.data.size());
   if (compressed) {
-    out.u32(static_cast<uint32_t>(AnimationCompression::kZstd));
+    out.u32(static_cast<uint32_t>(PackCompression::kZstd));
     out.u32(0);
   }
   out.array(a.decode_params);
@@ -515,12 +515,12 @@ bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out) {
   out.encoding = static_cast<AnimationEncoding>(encoding);
   if (params > kMaxDecodeParams)
     return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
-  if (compression > static_cast<uint32_t>(AnimationCompression::kZstd))
+  if (compression > static_cast<uint32_t>(PackCompression::kZstd))
     return in.fail("unknown compression " + std::to_string(compression));
   if (reserved != 0) return in.fail("reserved field is " + std::to_string(reserved));
   in.read_f32_array(out.decode_params, params, "decode parameters");
   in.zero_pad(kAlignment, "padding before the texture data");
-  if (compression == static_cast<uint32_t>(AnimationCompression::kNone)) {
+  if (compression == static_cast<uint32_t>(PackCompression::kNone)) {
     in.read_array(out.data, data_bytes, "texture data");
     return in.expect_end() && checked(in, check_animation(out));
   }

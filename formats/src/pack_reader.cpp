@@ -9,6 +9,7 @@
 #include "crc32c.h"
 #include "crowdbake/formats/pack.h"
 #include "pack_chunks.h"
+#include "pack_compression.h"
 #include "pack_validate.h"
 
 namespace crowdbake {
@@ -43,12 +44,18 @@ struct KnownChunk {
   uint32_t oldest = 0;  // the oldest this build reads; 0: only `version`
 };
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion},        {kTagSkel, kSkelVersion},
-    {kTagClip, kClipVersion},        {kTagMatl, kMatlVersion},
-    {kTagMatx, kMatxVersion, false}, {kTagBnds, kBndsVersion},
-    {kTagProg, kProgVersion},        {kTagLerr, kLerrVersion, false},
-    {kTagGeom, kGeomVersion},        {kTagAnim, kAnimVersion, true, kAnimOldestVersion},
-    {kTagPart, kPartVersion},        {kTagImgs, kImgsVersion, false},
+    {kTagHead, kHeadVersion},
+    {kTagSkel, kWrappedVersion, true, kSkelVersion},
+    {kTagClip, kWrappedVersion, true, kClipVersion},
+    {kTagMatl, kMatlVersion},
+    {kTagMatx, kMatxVersion, false},
+    {kTagBnds, kBndsVersion},
+    {kTagProg, kWrappedVersion, true, kProgVersion},
+    {kTagLerr, kLerrVersion, false},
+    {kTagGeom, kGeomVersion},
+    {kTagAnim, kAnimVersion, true, kAnimOldestVersion},
+    {kTagPart, kWrappedVersion, true, kPartVersion},
+    {kTagImgs, kImgsVersion, false},
 };
 
 const KnownChunk* find_known(uint32_t tag) {
@@ -168,7 +175,18 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
       (known->oldest == 0 && chunk.version != known->version))
     return error("unsupported " + name + " version " + std::to_string(chunk.version) +
                  " (this build reads <= " + std::to_string(known->version) + ")");
-  ByteReader in(payload, static_cast<size_t>(chunk.size), name);
+  // note: a wrapped chunk (§2.5) is decoded from its expanded version-1 payload.
+  std::vector<uint8_t> expanded;
+  size_t size = static_cast<size_t>(chunk.size);
+  if (pack_io::is_wrappable(chunk.tag) && chunk.version == kWrappedVersion) {
+    std::string why;
+    const uint64_t limit = kWrappedExpansionSlack + kWrappedExpansionRatio * chunk.size;
+    if (!pack_io::expand_zstd_frame(payload, size, limit, expanded, &why))
+      return error(name + ": " + why);
+    payload = expanded.data();
+    size = expanded.size();
+  }
+  ByteReader in(payload, size, name);
   pack_io::HeadCounts ignored;
   bool ok = false;
   switch (chunk.tag) {

@@ -1,11 +1,13 @@
 // write_pack(): validate, encode each chunk, then lay the file out as header, chunk table
 // and 16-byte-aligned chunks in the fixed order of pack_format.h (docs/pack-format.md).
 #include <stdexcept>
+#include <utility>
 
 #include "byte_writer.h"
 #include "crc32c.h"
 #include "crowdbake/formats/pack.h"
 #include "pack_chunks.h"
+#include "pack_compression.h"
 #include "pack_validate.h"
 
 namespace crowdbake {
@@ -27,10 +29,9 @@ void check_options(const PackWriteOptions& o) {
   if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kRaw))
     throw std::invalid_argument("write_pack: unknown geometry codec " +
                                 std::to_string(static_cast<uint32_t>(o.codec)));
-  if (o.animation_compression != AnimationCompression::kNone &&
-      o.animation_compression != AnimationCompression::kZstd)
+  if (o.compression != PackCompression::kNone && o.compression != PackCompression::kZstd)
     throw std::invalid_argument("write_pack: unknown animation compression " +
-                                std::to_string(static_cast<uint32_t>(o.animation_compression)));
+                                std::to_string(static_cast<uint32_t>(o.compression)));
   if (!bits_ok(o.position_bits, 1) || !bits_ok(o.uv_bits, 1) || !bits_ok(o.normal_bits, 2))
     throw std::invalid_argument(
         "write_pack: quantisation bits must be 0 or 1.." + std::to_string(kMaxQuantizationBits) +
@@ -110,12 +111,24 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   if (!contents.level_errors.vertices.empty())
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
   pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
-  const bool compressed = options.animation_compression == AnimationCompression::kZstd;
+  const bool compressed = options.compression == PackCompression::kZstd;
   pack_io::encode_animation(contents.animation, compressed,
                             add(kTagAnim, compressed ? kAnimVersion : kAnimOldestVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
   if (!contents.images.empty())
     pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));
+  if (compressed)
+    for (EncodedChunk& chunk : chunks)
+      if (pack_io::is_wrappable(chunk.tag)) {
+        // note: version 2 of these chunks is the version-1 payload as one zstd frame; a
+        // payload that compresses beyond what readers expand (§6) stays at version 1.
+        std::vector<uint8_t> frame = pack_io::zstd_frame(chunk.payload.bytes());
+        if (chunk.payload.bytes().size() >
+            kWrappedExpansionSlack + kWrappedExpansionRatio * frame.size())
+          continue;
+        chunk.payload.bytes() = std::move(frame);
+        chunk.version = kWrappedVersion;
+      }
 
   ByteWriter file;
   file.raw(kMagic.data(), kMagic.size());

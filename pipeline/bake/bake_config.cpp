@@ -21,8 +21,8 @@ const std::map<std::string, AnimationEncoding> kEncodings = {
     {"float32", AnimationEncoding::kFloat32},
     {"float16", AnimationEncoding::kFloat16},
     {"quantized", AnimationEncoding::kQuantized}};
-const std::map<std::string, AnimationCompression> kCompressions = {
-    {"zstd", AnimationCompression::kZstd}, {"none", AnimationCompression::kNone}};
+const std::map<std::string, PackCompression> kCompressions = {{"zstd", PackCompression::kZstd},
+                                                              {"none", PackCompression::kNone}};
 const std::map<std::string, GeometryCodec> kCodecs = {{"draco", GeometryCodec::kDraco},
                                                       {"meshopt", GeometryCodec::kMeshopt},
                                                       {"raw", GeometryCodec::kRaw}};
@@ -61,10 +61,12 @@ class ConfigReader {
         geometry(body);
       else if (section == "level_errors")
         level_errors(body);
+      else if (section == "pack")
+        pack(body);
       else
         fail(section,
-             "unknown section (expected simplify, level_errors, animation, partition or "
-             "geometry)");
+             "unknown section (expected simplify, level_errors, animation, partition, "
+             "geometry or pack)");
     }
   }
 
@@ -135,8 +137,6 @@ class ConfigReader {
         a.encoding = choice(key, v, kEncodings);
       else if (k == "root_motion")
         a.extract_root_motion = boolean(key, v);
-      else if (k == "compression")
-        out_.pack.animation_compression = choice(key, v, kCompressions);
       else
         fail(key, "unknown key");
     }
@@ -189,6 +189,16 @@ class ConfigReader {
     }
   }
 
+  void pack(const json& body) {
+    for (const auto& [k, v] : body.items()) {
+      const std::string key = "pack." + k;
+      if (k == "compression")
+        out_.pack.compression = choice(key, v, kCompressions);
+      else
+        fail(key, "unknown key");
+    }
+  }
+
   std::string path_;
   BakeSettings& out_;
 };
@@ -217,7 +227,6 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["animation"]["fps"] = s.animation.fps;
   j["animation"]["encoding"] = name_of(kEncodings, s.animation.encoding);
   j["animation"]["root_motion"] = s.animation.extract_root_motion;
-  j["animation"]["compression"] = name_of(kCompressions, s.pack.animation_compression);
   j["partition"]["size"] = s.partition.size;
   j["partition"]["neck_height"] =
       s.partition.neck_height ? json(*s.partition.neck_height) : json(nullptr);
@@ -227,6 +236,7 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["geometry"]["position_bits"] = s.pack.position_bits;
   j["geometry"]["normal_bits"] = s.pack.normal_bits;
   j["geometry"]["uv_bits"] = s.pack.uv_bits;
+  j["pack"]["compression"] = name_of(kCompressions, s.pack.compression);
   return j.dump();
 }
 

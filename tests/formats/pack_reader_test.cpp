@@ -10,9 +10,9 @@
 #include <random>
 
 #include "allocation_tracker.h"
-#include "animation_compression.h"
 #include "crowdbake/formats/pack.h"
 #include "pack_compare.h"
+#include "pack_compression.h"
 #include "pack_surgery.h"
 #include "pack_test_contents.h"
 
@@ -49,8 +49,11 @@ void expect_error(const PackStatus& s, const std::string& needle) {
   EXPECT_NE(s.message.find(needle), std::string::npos) << s.message;
 }
 
-std::vector<uint8_t> small_pack(GeometryCodec codec) {
-  return write_pack(test::make_test_contents(4, 21), {codec});
+std::vector<uint8_t> small_pack(GeometryCodec codec,
+                                PackCompression compression = PackCompression::kZstd) {
+  PackWriteOptions options{codec};
+  options.compression = compression;
+  return write_pack(test::make_test_contents(4, 21), options);
 }
 
 class Hostile : public ::testing::TestWithParam<GeometryCodec> {};
@@ -286,7 +289,8 @@ TEST(PackReader, HeadCountsMustMatch) {
 }
 
 TEST(PackReader, MessagesNameChunkItemAndField) {
-  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
+  // note: uncompressed, so the cut lands in the joint records.
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw, PackCompression::kNone));
   chunks[1].payload.resize(chunks[1].payload.size() - 20);  // SKEL: cut into the last joint
   expect_error(read(test::assemble_pack(chunks)), "chunk SKEL: joint 4 ");
   chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
@@ -397,6 +401,9 @@ TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
   anim3.insert(anim3.end(), size.begin(), size.end());
   anim3.insert(anim3.end(), frame.begin(), frame.end());
   expect_cheap_rejection(kTagAnim, anim3, "zstd frame holds 192 bytes, the texture 128", 2);
+  // A wrapped SKEL (version 2) whose small frame expands to 16 MiB: over 1 MiB + 512x.
+  expect_cheap_rejection(kTagSkel, pack_io::zstd_frame(std::vector<uint8_t>(16u << 20, 0)),
+                         "chunk SKEL: zstd frame declares 16777216 bytes, over the limit", 2);
   // PART: 16384 x 16384 run-length mask from two runs.
   std::vector<uint8_t> part = words({16384, 16384, 0, 0, 0, 0x3f800000, 0, 1, 4});
   part.insert(part.end(), {255, 0, 255, 1});

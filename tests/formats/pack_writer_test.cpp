@@ -9,6 +9,7 @@
 
 #include "crowdbake/formats/pack.h"
 #include "pack_compare.h"
+#include "pack_compression.h"
 #include "pack_test_contents.h"
 
 namespace crowdbake {
@@ -150,7 +151,9 @@ TEST(PackWriter, ChunksInStreamingOrderAligned) {
   for (const PackChunk& c : chunks) {
     order += pack_format::tag_name(c.tag) + " ";
     EXPECT_EQ(c.offset % 16, 0u);
-    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim ? pack_format::kAnimVersion : 1u);
+    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim ? pack_format::kAnimVersion
+                         : pack_io::is_wrappable(c.tag) ? pack_format::kWrappedVersion
+                                                        : 1u);
   }
   EXPECT_EQ(order, "HEAD SKEL CLIP MATL BNDS PROG GEOM ANIM PART ");
   EXPECT_EQ(bytes.size() % 16, 0u);

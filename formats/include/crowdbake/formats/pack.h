@@ -166,16 +166,17 @@ enum class GeometryCodec : uint32_t {
 // are quantised on a grid over their bounding cube: per component the error is at most
 // extent / (2 * (2^bits - 1)) (docs/pack-format.md gives the measured figures).
 // Joints, weights, regions and triangle materials are always stored exactly.
-// How ANIM stores the texels: kZstd (ANIM v2, lossless, docs/pack-format.md §3.8) or kNone
-// (the texels as they are, ANIM v1, which 1.2 readers read too).
-enum class AnimationCompression : uint32_t { kNone = 0, kZstd = 1 };
+// kZstd (1.3): ANIM v2 stores the texels losslessly compressed (docs/pack-format.md §3.8) and
+// SKEL, CLIP, PROG and PART are stored as zstd frames of their v1 payloads (version 2, §2.5).
+// kNone: every chunk at version 1, which 1.2 readers read too.
+enum class PackCompression : uint32_t { kNone = 0, kZstd = 1 };
 
 struct PackWriteOptions {
   GeometryCodec codec = GeometryCodec::kDraco;
   int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
   int normal_bits = 10;
   int uv_bits = 12;
-  AnimationCompression animation_compression = AnimationCompression::kZstd;
+  PackCompression compression = PackCompression::kZstd;
 };
 
 // The rules every pack obeys (counts consistent between parts, indices in range, no NaN,

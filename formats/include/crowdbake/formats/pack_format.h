@@ -47,6 +47,8 @@ constexpr uint32_t kTagImgs = make_tag('I', 'M', 'G', 'S');  // material images 
 // Layout version of each chunk's payload this build writes and reads (it reads exactly
 // these; any other version of a known chunk is rejected).
 constexpr uint32_t kHeadVersion = 1;
+// SKEL, CLIP, PROG and PART: version 2 is the version-1 payload as one zstd frame (§2.5).
+constexpr uint32_t kWrappedVersion = 2;
 constexpr uint32_t kSkelVersion = 1;
 constexpr uint32_t kClipVersion = 1;
 constexpr uint32_t kMatlVersion = 1;
@@ -55,7 +57,7 @@ constexpr uint32_t kProgVersion = 1;
 constexpr uint32_t kLerrVersion = 1;
 constexpr uint32_t kGeomVersion = 1;
 constexpr uint32_t kAnimVersion = 2;        // v2: texels stored compressed (v1 still read)
-constexpr uint32_t kAnimOldestVersion = 1;  // written with AnimationCompression::kNone
+constexpr uint32_t kAnimOldestVersion = 1;  // written with PackCompression::kNone
 constexpr uint32_t kPartVersion = 1;
 constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;
@@ -86,6 +88,9 @@ constexpr uint32_t kMaxQuantizationBits = 24;   // 0 = unquantised float
 // kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
 constexpr uint64_t kGeomExpansionSlack = 1u << 20;
 constexpr uint64_t kGeomExpansionRatio = 512;
+// The same bound for a zstd-wrapped chunk's payload (§2.5).
+constexpr uint64_t kWrappedExpansionSlack = 1u << 20;
+constexpr uint64_t kWrappedExpansionRatio = 512;
 
 // "GEOM" for printable tags, "0x1234abcd" otherwise.
 std::string tag_name(uint32_t tag);

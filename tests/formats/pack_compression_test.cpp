@@ -1,17 +1,20 @@
-// ANIM v2's texel compression: lossless for every encoding (smooth motion, noise, the 16-bit
-// wrap-around), smaller than the texels on smooth motion, read back from a pack as ANIM v2
-// while AnimationCompression::kNone still writes ANIM v1, and frames that do not match the
-// texture are refused with a reason.
-#include "animation_compression.h"
+// The pack's zstd compression. ANIM v2's texels: lossless for every encoding (smooth motion,
+// noise, the 16-bit wrap-around), smaller than the texels on smooth motion, read back from a
+// pack as ANIM v2 while PackCompression::kNone still writes ANIM v1, and frames that do not
+// match the texture are refused with a reason. The table chunks wrapped as zstd frames, and
+// the expansion limit.
+#include "pack_compression.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/formats/pack_format.h"
+#include "pack_compare.h"
 #include "pack_test_contents.h"
 
 namespace crowdbake {
@@ -55,7 +58,7 @@ AnimationTexture decompress(const AnimationTexture& like, const std::vector<uint
   return out;
 }
 
-TEST(AnimationCompression, LosslessForEveryEncoding) {
+TEST(PackCompression, LosslessForEveryEncoding) {
   for (AnimationEncoding encoding :
        {AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized})
     for (uint32_t noise : {0u, 7u, 65536u}) {
@@ -70,14 +73,14 @@ TEST(AnimationCompression, LosslessForEveryEncoding) {
     }
 }
 
-TEST(AnimationCompression, EmptyAndSingleRowTextures) {
+TEST(PackCompression, EmptyAndSingleRowTextures) {
   for (uint32_t rows : {0u, 1u, 2u}) {
     const AnimationTexture in = make_texture(AnimationEncoding::kQuantized, rows, 3, 5, rows);
     EXPECT_EQ(decompress(in, pack_io::compress_animation_texels(in)).data, in.data);
   }
 }
 
-TEST(AnimationCompression, FramesThatDoNotMatchTheTextureAreRefused) {
+TEST(PackCompression, FramesThatDoNotMatchTheTextureAreRefused) {
   const AnimationTexture in = make_texture(AnimationEncoding::kQuantized, 40, 4, 3, 9);
   std::vector<uint8_t> frame = pack_io::compress_animation_texels(in);
   AnimationTexture out = in;
@@ -97,21 +100,20 @@ TEST(AnimationCompression, FramesThatDoNotMatchTheTextureAreRefused) {
   EXPECT_EQ(why, "not a zstd frame");
 }
 
-TEST(AnimationCompression, PacksStoreAnimV2AndStillWriteV1OnRequest) {
+TEST(PackCompression, PacksStoreAnimV2AndStillWriteV1OnRequest) {
   PackContents in = test::make_test_contents(4, 7);
   in.animation =
       make_texture(AnimationEncoding::kQuantized, in.animation.rows, in.animation.joints, 0, 1);
   std::vector<size_t> anim_bytes;
-  for (AnimationCompression compression :
-       {AnimationCompression::kZstd, AnimationCompression::kNone}) {
+  for (PackCompression compression : {PackCompression::kZstd, PackCompression::kNone}) {
     PackWriteOptions options;
-    options.animation_compression = compression;
+    options.compression = compression;
     const std::vector<uint8_t> bytes = write_pack(in, options);
     std::vector<PackChunk> chunks;
     ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok);
     for (const PackChunk& c : chunks)
       if (c.tag == pack_format::kTagAnim) {
-        EXPECT_EQ(c.version, compression == AnimationCompression::kZstd ? 2u : 1u);
+        EXPECT_EQ(c.version, compression == PackCompression::kZstd ? 2u : 1u);
         anim_bytes.push_back(static_cast<size_t>(c.size));
       }
     PackContents out;
@@ -122,6 +124,41 @@ TEST(AnimationCompression, PacksStoreAnimV2AndStillWriteV1OnRequest) {
   }
   ASSERT_EQ(anim_bytes.size(), 2u);
   EXPECT_LT(anim_bytes[0] * 2, anim_bytes[1]) << "smooth motion compresses";
+}
+
+// SKEL, CLIP, PROG and PART as zstd frames of their version-1 payloads (version 2): the same
+// contents come back; PackCompression::kNone writes every chunk at version 1.
+TEST(PackCompression, TableChunksWrappedAndReadBack) {
+  const PackContents in = test::make_test_contents(6, 11);
+  std::map<std::string, std::vector<uint32_t>> versions;
+  for (PackCompression compression : {PackCompression::kZstd, PackCompression::kNone}) {
+    PackWriteOptions options{GeometryCodec::kRaw};  // note: exact geometry, to compare
+    options.compression = compression;
+    const std::vector<uint8_t> bytes = write_pack(in, options);
+    std::vector<PackChunk> chunks;
+    ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok);
+    for (const PackChunk& c : chunks) versions[pack_format::tag_name(c.tag)].push_back(c.version);
+    PackContents out;
+    const PackStatus s = read_pack(bytes.data(), bytes.size(), out);
+    ASSERT_TRUE(s.ok) << s.message;
+    test::expect_same_contents(in, out);
+  }
+  for (const char* tag : {"SKEL", "CLIP", "PROG", "PART"})
+    EXPECT_EQ(versions[tag], (std::vector<uint32_t>{2, 1})) << tag;
+  for (const char* tag : {"HEAD", "MATL", "BNDS", "GEOM"})
+    EXPECT_EQ(versions[tag], (std::vector<uint32_t>{1, 1})) << tag;
+}
+
+TEST(PackCompression, ExpandingAFrameObeysItsLimit) {
+  const std::vector<uint8_t> zeros(100000, 0);
+  const std::vector<uint8_t> frame = pack_io::zstd_frame(zeros);
+  std::vector<uint8_t> out;
+  std::string why;
+  EXPECT_FALSE(pack_io::expand_zstd_frame(frame.data(), frame.size(), 99999, out, &why));
+  EXPECT_EQ(why, "zstd frame declares 100000 bytes, over the limit of 99999");
+  EXPECT_TRUE(out.empty()) << "nothing allocated";
+  ASSERT_TRUE(pack_io::expand_zstd_frame(frame.data(), frame.size(), 100000, out, &why)) << why;
+  EXPECT_EQ(out, zeros);
 }
 
 }  // namespace

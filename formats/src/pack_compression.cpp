@@ -1,8 +1,10 @@
-#include "animation_compression.h"
+#include "pack_compression.h"
 
 #include <zstd.h>
 
 #include <stdexcept>
+
+#include "crowdbake/formats/pack_format.h"
 
 namespace crowdbake::pack_io {
 namespace {
@@ -41,6 +43,51 @@ uint16_t load(const std::vector<uint8_t>& data, size_t lane) {
 
 }  // namespace
 
+bool is_wrappable(uint32_t tag) {
+  using namespace pack_format;
+  return tag == kTagSkel || tag == kTagClip || tag == kTagProg || tag == kTagPart;
+}
+
+std::vector<uint8_t> zstd_frame(const std::vector<uint8_t>& bytes) {
+  std::vector<uint8_t> frame(ZSTD_compressBound(bytes.size()));
+  const size_t size =
+      ZSTD_compress(frame.data(), frame.size(), bytes.data(), bytes.size(), kZstdLevel);
+  if (ZSTD_isError(size))
+    throw std::runtime_error(std::string("zstd failed: ") + ZSTD_getErrorName(size));
+  frame.resize(size);
+  return frame;
+}
+
+bool expand_zstd_frame(const uint8_t* frame, size_t size, uint64_t limit, std::vector<uint8_t>& out,
+                       std::string* why) {
+  const unsigned long long declared = ZSTD_getFrameContentSize(frame, size);
+  if (declared == ZSTD_CONTENTSIZE_ERROR || declared == ZSTD_CONTENTSIZE_UNKNOWN) {
+    if (why)
+      *why = declared == ZSTD_CONTENTSIZE_ERROR ? "not a zstd frame"
+                                                : "zstd frame without a content size";
+    return false;
+  }
+  if (declared > limit) {
+    if (why)
+      *why = "zstd frame declares " + std::to_string(declared) + " bytes, over the limit of " +
+             std::to_string(limit);
+    return false;
+  }
+  if (ZSTD_findFrameCompressedSize(frame, size) != size) {
+    if (why) *why = "bytes after the zstd frame, or a truncated frame";
+    return false;
+  }
+  out.assign(static_cast<size_t>(declared), 0);
+  const size_t got = ZSTD_decompress(out.data(), out.size(), frame, size);
+  if (ZSTD_isError(got) || got != out.size()) {
+    if (why)
+      *why = ZSTD_isError(got) ? std::string("zstd: ") + ZSTD_getErrorName(got)
+                               : "zstd frame decoded to " + std::to_string(got) + " bytes";
+    return false;
+  }
+  return true;
+}
+
 std::vector<uint8_t> compress_animation_texels(const AnimationTexture& texture) {
   const Lanes lanes = lanes_of(texture);
   const size_t n = lanes.count();
@@ -58,13 +105,7 @@ std::vector<uint8_t> compress_animation_texels(const AnimationTexture& texture) 
       previous = value;
     }
   }
-  std::vector<uint8_t> frame(ZSTD_compressBound(planes.size()));
-  const size_t size =
-      ZSTD_compress(frame.data(), frame.size(), planes.data(), planes.size(), kZstdLevel);
-  if (ZSTD_isError(size))
-    throw std::runtime_error(std::string("ANIM: zstd failed: ") + ZSTD_getErrorName(size));
-  frame.resize(size);
-  return frame;
+  return zstd_frame(planes);
 }
 
 bool decompress_animation_texels(const uint8_t* frame, size_t size, AnimationTexture& texture,
@@ -72,27 +113,15 @@ bool decompress_animation_texels(const uint8_t* frame, size_t size, AnimationTex
   const Lanes lanes = lanes_of(texture);
   const size_t n = lanes.count();
   const unsigned long long declared = ZSTD_getFrameContentSize(frame, size);
-  if (declared != 2 * n) {
+  if (declared != ZSTD_CONTENTSIZE_ERROR && declared != ZSTD_CONTENTSIZE_UNKNOWN &&
+      declared != 2 * n) {
     if (why)
-      *why = declared == ZSTD_CONTENTSIZE_ERROR ? "not a zstd frame"
-             : declared == ZSTD_CONTENTSIZE_UNKNOWN
-                 ? "zstd frame without a content size"
-                 : "zstd frame holds " + std::to_string(declared) + " bytes, the texture " +
-                       std::to_string(2 * n);
+      *why = "zstd frame holds " + std::to_string(declared) + " bytes, the texture " +
+             std::to_string(2 * n);
     return false;
   }
-  if (ZSTD_findFrameCompressedSize(frame, size) != size) {
-    if (why) *why = "bytes after the zstd frame, or a truncated frame";
-    return false;
-  }
-  std::vector<uint8_t> planes(2 * n);
-  const size_t got = ZSTD_decompress(planes.data(), planes.size(), frame, size);
-  if (ZSTD_isError(got) || got != planes.size()) {
-    if (why)
-      *why = ZSTD_isError(got) ? std::string("zstd: ") + ZSTD_getErrorName(got)
-                               : "zstd frame decoded to " + std::to_string(got) + " bytes";
-    return false;
-  }
+  std::vector<uint8_t> planes;
+  if (!expand_zstd_frame(frame, size, 2 * n, planes, why)) return false;
   texture.data.assign(2 * n, 0);
   size_t in = 0;
   for (size_t s = 0; s < lanes.per_row; ++s) {
