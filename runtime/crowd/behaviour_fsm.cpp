@@ -13,17 +13,17 @@ namespace {
 constexpr size_t kMaxStates = 1024;  // note: the routing table is states² entries
 constexpr size_t kMaxClips = 65534;
 
-Status FsmError(const std::string& message) { return Status(StatusCode::kInvalidFsm, message); }
+Status fsm_error(const std::string& message) { return Status(StatusCode::kInvalidFsm, message); }
 
 std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
-std::string FormatSeconds(double s) {
+std::string format_seconds(double s) {
   std::ostringstream o;
   o << s << " s";
   return o.str();
 }
 
-std::string JoinNames(const std::vector<std::string>& names) {
+std::string join_names(const std::vector<std::string>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
   return out;
@@ -44,7 +44,7 @@ std::vector<double> Cumulative(const std::vector<double>& weights) {
 }
 
 // Index of the first cumulative entry > u (u in [0, 1)); skips zero-weight entries.
-size_t PickCumulative(const double* cumulative, size_t count, double u) {
+size_t pick_cumulative(const double* cumulative, size_t count, double u) {
   const double* it = std::upper_bound(cumulative, cumulative + count, u);
   size_t i = static_cast<size_t>(it - cumulative);
   return i < count ? i : count - 1;
@@ -66,21 +66,21 @@ uint16_t BehaviourFsm::find_reaction(const std::string& event) const {
 
 uint16_t BehaviourFsm::pick_clip(uint16_t state, double u) const {
   const uint32_t first = clip_first_[state], count = clip_first_[state + 1] - first;
-  return static_cast<uint16_t>(first + PickCumulative(clip_cumulative_.data() + first, count, u));
+  return static_cast<uint16_t>(first + pick_cumulative(clip_cumulative_.data() + first, count, u));
 }
 
 uint16_t BehaviourFsm::pick_idle_next(uint16_t state, double u) const {
   const uint32_t first = idle_first_[state], count = idle_first_[state + 1] - first;
   if (count == 0) return kNone;
-  return idle_to_[first + PickCumulative(idle_cumulative_.data() + first, count, u)];
+  return idle_to_[first + pick_cumulative(idle_cumulative_.data() + first, count, u)];
 }
 
 Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   const size_t n = def.states.size();
-  if (n == 0) return FsmError("the FSM has no states");
+  if (n == 0) return fsm_error("the FSM has no states");
   if (n > kMaxStates)
-    return FsmError("the FSM has " + std::to_string(n) + " states; at most " +
-                    std::to_string(kMaxStates) + " are supported");
+    return fsm_error("the FSM has " + std::to_string(n) + " states; at most " +
+                     std::to_string(kMaxStates) + " are supported");
 
   BehaviourFsm fsm;
   std::map<std::string, uint16_t> state_index;
@@ -98,34 +98,34 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   for (size_t s = 0; s < n; ++s) {
     const StateDef& st = def.states[s];
     const std::string where = "state " + std::to_string(s);
-    if (st.name.empty()) return FsmError(where + ": the name is empty");
+    if (st.name.empty()) return fsm_error(where + ": the name is empty");
     const std::string name = "state " + Quote(st.name);
     if (!state_index.emplace(st.name, static_cast<uint16_t>(s)).second)
-      return FsmError(name + " is defined twice");
+      return fsm_error(name + " is defined twice");
     if (st.pose_in.empty() || st.pose_out.empty())
-      return FsmError(name + ": pose_in and pose_out must name default poses");
-    if (st.clips.empty()) return FsmError(name + " has no clips");
+      return fsm_error(name + ": pose_in and pose_out must name default poses");
+    if (st.clips.empty()) return fsm_error(name + " has no clips");
     std::vector<double> weights;
     double total = 0.0;
     for (size_t c = 0; c < st.clips.size(); ++c) {
       const ClipVariant& clip = st.clips[c];
       if (clip.clip.empty())
-        return FsmError(name + " clip " + std::to_string(c) + ": the clip name is empty");
+        return fsm_error(name + " clip " + std::to_string(c) + ": the clip name is empty");
       const std::string cname = name + " clip " + Quote(clip.clip);
       if (!std::isfinite(clip.duration_s) || clip.duration_s <= 0.0f)
-        return FsmError(cname + ": duration " + FormatSeconds(clip.duration_s) + " must be > 0");
+        return fsm_error(cname + ": duration " + format_seconds(clip.duration_s) + " must be > 0");
       if (!std::isfinite(clip.weight) || clip.weight < 0.0f)
-        return FsmError(cname + ": weight " + std::to_string(clip.weight) +
-                        " must be finite and >= 0");
+        return fsm_error(cname + ": weight " + std::to_string(clip.weight) +
+                         " must be finite and >= 0");
       weights.push_back(clip.weight);
       total += clip.weight;
       fsm.clip_names_.push_back(clip.clip);
       fsm.clip_durations_.push_back(clip.duration_s);
       fsm.clip_states_.push_back(static_cast<uint16_t>(s));
     }
-    if (!(total > 0.0)) return FsmError(name + ": every clip weight is 0");
+    if (!(total > 0.0)) return fsm_error(name + ": every clip weight is 0");
     if (fsm.clip_names_.size() > kMaxClips)
-      return FsmError("the FSM has more than " + std::to_string(kMaxClips) + " clips");
+      return fsm_error("the FSM has more than " + std::to_string(kMaxClips) + " clips");
     const std::vector<double> cumulative = Cumulative(weights);
     fsm.clip_cumulative_.insert(fsm.clip_cumulative_.end(), cumulative.begin(), cumulative.end());
     fsm.clip_first_.push_back(static_cast<uint32_t>(fsm.clip_names_.size()));
@@ -137,8 +137,8 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
                              (st.interruptible ? BehaviourFsm::kInterruptible : 0) |
                              (st.contagious ? BehaviourFsm::kContagious : 0)));
     if (st.rest && st.pose_in != st.pose_out)
-      return FsmError(name + " is a rest state, so it loops, but it starts in pose " +
-                      Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+      return fsm_error(name + " is a rest state, so it loops, but it starts in pose " +
+                       Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
   }
 
   // Transitions.
@@ -149,19 +149,19 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
     const std::string where =
         "transition " + std::to_string(t) + " (" + tr.from + " -> " + tr.to + ")";
     auto from = state_index.find(tr.from);
-    if (from == state_index.end()) return FsmError(where + ": unknown state " + Quote(tr.from));
+    if (from == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.from));
     auto to = state_index.find(tr.to);
-    if (to == state_index.end()) return FsmError(where + ": unknown state " + Quote(tr.to));
+    if (to == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.to));
     const uint16_t a = from->second, b = to->second;
     if (std::find(adjacency[a].begin(), adjacency[a].end(), b) != adjacency[a].end())
-      return FsmError(where + " is defined twice");
+      return fsm_error(where + " is defined twice");
     if (def.states[a].pose_out != def.states[b].pose_in)
-      return FsmError(where + ": " + Quote(tr.from) + " ends in pose " +
-                      Quote(def.states[a].pose_out) + " but " + Quote(tr.to) + " starts in pose " +
-                      Quote(def.states[b].pose_in) + "; go through a state that changes the pose");
+      return fsm_error(where + ": " + Quote(tr.from) + " ends in pose " +
+                       Quote(def.states[a].pose_out) + " but " + Quote(tr.to) + " starts in pose " +
+                       Quote(def.states[b].pose_in) + "; go through a state that changes the pose");
     if (!std::isfinite(tr.idle_weight) || tr.idle_weight < 0.0f)
-      return FsmError(where + ": idle_weight " + std::to_string(tr.idle_weight) +
-                      " must be finite and >= 0");
+      return fsm_error(where + ": idle_weight " + std::to_string(tr.idle_weight) +
+                       " must be finite and >= 0");
     adjacency[a].push_back(b);
     if (tr.idle_weight > 0.0f) idle[a].emplace_back(b, tr.idle_weight);
   }
@@ -177,7 +177,7 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
       queue.push_back(static_cast<uint16_t>(s));
     }
   if (rest_names.empty())
-    return FsmError("the FSM has no rest state (mark the idle states, e.g. sit or stand, rest)");
+    return fsm_error("the FSM has no rest state (mark the idle states, e.g. sit or stand, rest)");
   std::vector<std::vector<uint16_t>> reverse(n);
   for (size_t a = 0; a < n; ++a)
     for (uint16_t b : adjacency[a]) reverse[b].push_back(static_cast<uint16_t>(a));
@@ -191,10 +191,10 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   for (size_t s = 0; s < n; ++s)
     if (!reaches_rest[s]) trapped.push_back(def.states[s].name);
   if (!trapped.empty())
-    return FsmError("cyclic FSM without exit: state" +
-                    std::string(trapped.size() > 1 ? "s " : " ") + JoinNames(trapped) +
-                    (trapped.size() > 1 ? " have" : " has") +
-                    " no path to a rest state (rest states: " + JoinNames(rest_names) + ")");
+    return fsm_error("cyclic FSM without exit: state" +
+                     std::string(trapped.size() > 1 ? "s " : " ") + join_names(trapped) +
+                     (trapped.size() > 1 ? " have" : " has") +
+                     " no path to a rest state (rest states: " + join_names(rest_names) + ")");
 
   // Routing table: breadth-first search from every state; the first hop is remembered.
   fsm.next_hop_.assign(n * n, BehaviourFsm::kNone);
@@ -228,12 +228,13 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   // Reactions.
   for (size_t r = 0; r < def.reactions.size(); ++r) {
     const ReactionDef& re = def.reactions[r];
-    if (re.event.empty()) return FsmError("reaction " + std::to_string(r) + ": the event is empty");
+    if (re.event.empty())
+      return fsm_error("reaction " + std::to_string(r) + ": the event is empty");
     const std::string where = "reaction " + Quote(re.event);
     if (fsm.find_reaction(re.event) != BehaviourFsm::kNone)
-      return FsmError(where + " is defined twice");
+      return fsm_error(where + " is defined twice");
     if (!std::isfinite(re.decay_s) || re.decay_s <= 0.0f)
-      return FsmError(where + ": decay " + FormatSeconds(re.decay_s) + " must be > 0");
+      return fsm_error(where + ": decay " + format_seconds(re.decay_s) + " must be > 0");
     uint16_t states[2] = {BehaviourFsm::kNone, BehaviourFsm::kNone};
     const std::string* names[2] = {&re.supporters_state, &re.opponents_state};
     const char* roles[2] = {"supporters' state", "opponents' state"};
@@ -241,18 +242,18 @@ Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
       if (k == 1 && names[k]->empty()) break;
       auto it = state_index.find(*names[k]);
       if (it == state_index.end())
-        return FsmError(where + ": " + roles[k] + " " + Quote(*names[k]) + " is an unknown state");
+        return fsm_error(where + ": " + roles[k] + " " + Quote(*names[k]) + " is an unknown state");
       states[k] = it->second;
       const StateDef& st = def.states[states[k]];
       if (st.pose_in != st.pose_out)
-        return FsmError(where + ": " + roles[k] + " " + Quote(st.name) +
-                        " loops while the reaction lasts, but it starts in pose " +
-                        Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+        return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
+                         " loops while the reaction lasts, but it starts in pose " +
+                         Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
       for (size_t s = 0; s < n; ++s)
         if (def.states[s].rest &&
             fsm.next_hop(static_cast<uint16_t>(s), states[k]) == BehaviourFsm::kNone)
-          return FsmError(where + ": " + roles[k] + " " + Quote(st.name) +
-                          " cannot be reached from rest state " + Quote(def.states[s].name));
+          return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
+                           " cannot be reached from rest state " + Quote(def.states[s].name));
     }
     fsm.reaction_events_.push_back(re.event);
     fsm.reaction_supporters_.push_back(states[0]);

@@ -31,16 +31,16 @@ std::string Num(double v) {
   return o.str();
 }
 
-Status BadOption(const std::string& what) {
+Status bad_option(const std::string& what) {
   return Status(StatusCode::kInvalidArgument, "placement: " + what);
 }
 
 // Moves p inside the polygon when it is outside (centroids of non-convex patches).
-dvec2 IntoRegion(const std::vector<dvec2>& region, const dvec2& p, const dvec2& towards,
-                 double inset) {
+dvec2 into_region(const std::vector<dvec2>& region, const dvec2& p, const dvec2& towards,
+                  double inset) {
   if (detail::Inside(region, p)) return p;
   dvec2 nearest;
-  detail::BoundaryDistance(region, p, &nearest);
+  detail::boundary_distance(region, p, &nearest);
   for (double t = inset; t < 1e6 * inset; t *= 2.0) {
     const dvec2 d = towards - nearest;
     const double len = glm::length(d);
@@ -51,9 +51,9 @@ dvec2 IntoRegion(const std::vector<dvec2>& region, const dvec2& p, const dvec2& 
 }
 
 // Smallest distance between two points among pairs closer than `cell`; `cell` if none.
-double MinPairDistance(const std::vector<dvec2>& points, double cell,
-                       std::vector<std::pair<uint32_t, uint32_t>>* close_pairs = nullptr,
-                       double limit = 0.0) {
+double closest_pair_distance(const std::vector<dvec2>& points, double cell,
+                             std::vector<std::pair<uint32_t, uint32_t>>* close_pairs = nullptr,
+                             double limit = 0.0) {
   std::vector<std::pair<std::pair<int64_t, int64_t>, uint32_t>> keyed(points.size());
   for (size_t i = 0; i < points.size(); ++i)
     keyed[i] = {{static_cast<int64_t>(std::floor(points[i].x / cell)),
@@ -86,26 +86,26 @@ double MinPairDistance(const std::vector<dvec2>& points, double cell,
 Status place_crowd(const PlacementOptions& o, Placement& result) {
   // Options.
   if (o.people < 0 || o.people > kMaxPeople)
-    return BadOption("people = " + std::to_string(o.people) + " must be in [0, " +
-                     std::to_string(kMaxPeople) + "]");
+    return bad_option("people = " + std::to_string(o.people) + " must be in [0, " +
+                      std::to_string(kMaxPeople) + "]");
   if (!std::isfinite(o.min_distance_m) || o.min_distance_m <= 0.0)
-    return BadOption("min_distance_m = " + Num(o.min_distance_m) + " must be finite and > 0");
+    return bad_option("min_distance_m = " + Num(o.min_distance_m) + " must be finite and > 0");
   if (!std::isfinite(o.group_spacing_m) || o.group_spacing_m < o.min_distance_m)
-    return BadOption("group_spacing_m = " + Num(o.group_spacing_m) +
-                     " must be finite and >= min_distance_m (" + Num(o.min_distance_m) + ")");
-  if (Status s = validate_group_mix(o.groups); !s.ok()) return BadOption(s.message());
-  if (o.max_iterations < 0) return BadOption("max_iterations must be >= 0");
-  if (o.weight_iterations < 0) return BadOption("weight_iterations must be >= 0");
+    return bad_option("group_spacing_m = " + Num(o.group_spacing_m) +
+                      " must be finite and >= min_distance_m (" + Num(o.min_distance_m) + ")");
+  if (Status s = validate_group_mix(o.groups); !s.ok()) return bad_option(s.message());
+  if (o.max_iterations < 0) return bad_option("max_iterations must be >= 0");
+  if (o.weight_iterations < 0) return bad_option("weight_iterations must be >= 0");
   if (!std::isfinite(o.capacity_tolerance) || o.capacity_tolerance <= 0.0)
-    return BadOption("capacity_tolerance = " + Num(o.capacity_tolerance) + " must be > 0");
+    return bad_option("capacity_tolerance = " + Num(o.capacity_tolerance) + " must be > 0");
   if (!std::isfinite(o.move_tolerance) || o.move_tolerance <= 0.0)
-    return BadOption("move_tolerance = " + Num(o.move_tolerance) + " must be > 0");
-  if (const std::string why = detail::CheckSimplePolygon(o.region); !why.empty())
-    return BadOption("region " + why);
+    return bad_option("move_tolerance = " + Num(o.move_tolerance) + " must be > 0");
+  if (const std::string why = detail::check_simple_polygon(o.region); !why.empty())
+    return bad_option("region " + why);
 
   std::vector<dvec2> region = o.region;
-  if (detail::SignedArea(region) < 0.0) std::reverse(region.begin(), region.end());
-  const double area = detail::SignedArea(region);
+  if (detail::signed_area(region) < 0.0) std::reverse(region.begin(), region.end());
+  const double area = detail::signed_area(region);
   const double d = o.min_distance_m;
   const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
   if (area < packing)
@@ -115,7 +115,7 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
                       " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
 
   Placement out;
-  out.backend = detail::PowerBackendName();
+  out.backend = detail::power_backend_name();
   if (o.people == 0) {
     result = std::move(out);
     return Status();
@@ -161,15 +161,15 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
   double capacity_norm = 0.0;
   for (double v : capacity) capacity_norm += v * v;
   for (int it = 0; it < o.max_iterations; ++it) {
-    if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
-                              &weights, &cells, &error))
+    if (!detail::solve_weights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+                               &weights, &cells, &error))
       return Status(StatusCode::kInternal, "placement: " + error);
     double energy = 0.0, cap_error = 0.0, max_move = 0.0;
     for (size_t g = 0; g < groups; ++g) {
       energy += cells.moment[g];
       cap_error += (cells.area[g] - capacity[g]) * (cells.area[g] - capacity[g]);
       if (cells.area[g] <= 0.0) continue;
-      const dvec2 target = IntoRegion(local, cells.centroid[g], sites[g], 1e-6 * spacing);
+      const dvec2 target = into_region(local, cells.centroid[g], sites[g], 1e-6 * spacing);
       max_move = std::max(max_move, glm::length(target - sites[g]));
       sites[g] = target;
     }
@@ -182,9 +182,9 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       break;
     }
   }
-  if (!detail::SolveWeights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
-                            &weights, &cells, &error) ||
-      !detail::ComputeCells(local, sites, weights, true, &cells, &error))
+  if (!detail::solve_weights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+                             &weights, &cells, &error) ||
+      !detail::compute_cells(local, sites, weights, true, &cells, &error))
     return Status(StatusCode::kInternal, "placement: " + error);
   out.energy_bound = bound * to_m4;
 
@@ -216,7 +216,7 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       out.positions.push_back(c);
       out.facing.push_back(dvec2(std::cos(start), std::sin(start)));
       out.group_of.push_back(static_cast<uint32_t>(g));
-      if (detail::SignedDistance(patch, c) < 0.0) ++out.members_outside_patch;
+      if (detail::signed_distance(patch, c) < 0.0) ++out.members_outside_patch;
       continue;
     }
     const double radius = s / (2.0 * std::sin(kPi / n));
@@ -227,7 +227,7 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       for (int m = 0; m < n; ++m) {
         const double a = turn + 2.0 * kPi * m / n;
         score = std::min(
-            score, detail::SignedDistance(patch, c + radius * dvec2(std::cos(a), std::sin(a))));
+            score, detail::signed_distance(patch, c + radius * dvec2(std::cos(a), std::sin(a))));
       }
       if (score > best_score) best_score = score, best_turn = turn;
     }
@@ -238,18 +238,18 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       out.positions.push_back(p);
       out.facing.push_back(-dir);
       out.group_of.push_back(static_cast<uint32_t>(g));
-      if (detail::SignedDistance(patch, p) < 0.0) ++out.members_outside_patch;
+      if (detail::signed_distance(patch, p) < 0.0) ++out.members_outside_patch;
     }
   }
 
   // Keep everyone inside the region, then push apart any pair closer than the minimum.
   const dvec2 region_centroid = detail::Centroid(region);
   for (size_t i = 0; i < out.positions.size(); ++i)
-    out.positions[i] = IntoRegion(region, out.positions[i], out.sites[out.group_of[i]], 1e-6 * d);
+    out.positions[i] = into_region(region, out.positions[i], out.sites[out.group_of[i]], 1e-6 * d);
   const double goal = d * (1.0 + 1e-9);
   for (int round = 0;; ++round) {
     std::vector<std::pair<uint32_t, uint32_t>> close;
-    MinPairDistance(out.positions, 2.0 * d, &close, goal);
+    closest_pair_distance(out.positions, 2.0 * d, &close, goal);
     if (close.empty()) break;
     if (round == kRepairRounds) {
       const auto [a, b] = close.front();
@@ -274,11 +274,12 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       out.positions[a] -= push;
       out.positions[b] += push;
     }
-    for (dvec2& p : out.positions) p = IntoRegion(region, p, region_centroid, 1e-6 * d);
+    for (dvec2& p : out.positions) p = into_region(region, p, region_centroid, 1e-6 * d);
   }
-  out.min_pair_distance = out.positions.size() < 2
-                              ? 0.0
-                              : MinPairDistance(out.positions, std::max(2.0 * d, scale * spacing));
+  out.min_pair_distance =
+      out.positions.size() < 2
+          ? 0.0
+          : closest_pair_distance(out.positions, std::max(2.0 * d, scale * spacing));
   result = std::move(out);
   return Status();
 }

@@ -16,23 +16,23 @@ double Orient(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   return Cross(b - a, c - a);
 }
 
-bool OnSegment(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
+bool on_segment(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
   return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
          p.y <= std::max(a.y, b.y);
 }
 
-bool SegmentsTouch(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
-                   const glm::dvec2& d) {
+bool segments_touch(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
+                    const glm::dvec2& d) {
   const double o1 = Orient(a, b, c), o2 = Orient(a, b, d), o3 = Orient(c, d, a),
                o4 = Orient(c, d, b);
   if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
     return true;
-  return (o1 == 0 && OnSegment(a, b, c)) || (o2 == 0 && OnSegment(a, b, d)) ||
-         (o3 == 0 && OnSegment(c, d, a)) || (o4 == 0 && OnSegment(c, d, b));
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
 }
 
-double SegmentDistance(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p,
-                       glm::dvec2* nearest) {
+double segment_distance(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p,
+                        glm::dvec2* nearest) {
   const glm::dvec2 ab = b - a;
   const double len2 = ab.x * ab.x + ab.y * ab.y;
   double t = len2 > 0.0 ? ((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2 : 0.0;
@@ -44,8 +44,8 @@ double SegmentDistance(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec
 
 }  // namespace
 
-void ClipHalfPlane(const LabelledPolygon& in, const glm::dvec2& a, double c, int32_t label,
-                   LabelledPolygon* out) {
+void clip_half_plane(const LabelledPolygon& in, const glm::dvec2& a, double c, int32_t label,
+                     LabelledPolygon* out) {
   out->points.clear();
   out->labels.clear();
   const size_t n = in.points.size();
@@ -72,7 +72,7 @@ void ClipHalfPlane(const LabelledPolygon& in, const glm::dvec2& a, double c, int
   }
 }
 
-double SignedArea(const std::vector<glm::dvec2>& poly) {
+double signed_area(const std::vector<glm::dvec2>& poly) {
   double twice = 0.0;
   for (size_t k = 0, n = poly.size(); k < n; ++k) twice += Cross(poly[k], poly[(k + 1) % n]);
   return 0.5 * twice;
@@ -92,7 +92,7 @@ glm::dvec2 Centroid(const std::vector<glm::dvec2>& poly) {
   return o + sum / (3.0 * twice);
 }
 
-double SecondMoment(const std::vector<glm::dvec2>& poly, const glm::dvec2& c) {
+double second_moment(const std::vector<glm::dvec2>& poly, const glm::dvec2& c) {
   double total = 0.0;
   for (size_t k = 0, n = poly.size(); k < n; ++k) {
     const glm::dvec2 p = poly[k] - c, q = poly[(k + 1) % n] - c;
@@ -116,12 +116,12 @@ bool Inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
   return winding != 0;
 }
 
-double BoundaryDistance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p,
-                        glm::dvec2* nearest) {
+double boundary_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p,
+                         glm::dvec2* nearest) {
   double best = std::numeric_limits<double>::infinity();
   for (size_t k = 0, n = poly.size(); k < n; ++k) {
     glm::dvec2 q;
-    const double d = SegmentDistance(poly[k], poly[(k + 1) % n], p, &q);
+    const double d = segment_distance(poly[k], poly[(k + 1) % n], p, &q);
     if (d < best) {
       best = d;
       if (nearest) *nearest = q;
@@ -130,12 +130,12 @@ double BoundaryDistance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p
   return best;
 }
 
-double SignedDistance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
-  const double d = BoundaryDistance(poly, p);
+double signed_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
+  const double d = boundary_distance(poly, p);
   return Inside(poly, p) ? d : -d;
 }
 
-std::string CheckSimplePolygon(const std::vector<glm::dvec2>& poly) {
+std::string check_simple_polygon(const std::vector<glm::dvec2>& poly) {
   const size_t n = poly.size();
   if (n < 3) return "has " + std::to_string(n) + " vertices; at least 3 are needed";
   for (size_t k = 0; k < n; ++k)
@@ -144,7 +144,7 @@ std::string CheckSimplePolygon(const std::vector<glm::dvec2>& poly) {
   for (size_t k = 0; k < n; ++k)
     if (poly[k] == poly[(k + 1) % n])
       return "vertices " + std::to_string(k) + " and " + std::to_string((k + 1) % n) + " coincide";
-  if (SignedArea(poly) == 0.0) return "has zero area";
+  if (signed_area(poly) == 0.0) return "has zero area";
   for (size_t i = 0; i < n; ++i) {
     const glm::dvec2 &a = poly[i], &b = poly[(i + 1) % n];
     for (size_t j = i + 1; j < n; ++j) {
@@ -159,7 +159,7 @@ std::string CheckSimplePolygon(const std::vector<glm::dvec2>& poly) {
           return "edges " + std::to_string(i) + " and " + std::to_string(j) + " overlap";
         continue;
       }
-      if (SegmentsTouch(a, b, c, d))
+      if (segments_touch(a, b, c, d))
         return "edges " + std::to_string(i) + " and " + std::to_string(j) + " intersect";
     }
   }

@@ -19,24 +19,24 @@ struct LabelledPolygon {
 // Keeps the part of `in` where dot(a, x) <= c (Sutherland–Hodgman; `in` may be non-convex,
 // the result then may hold zero-area bridge edges, which leave area and moments exact).
 // The new edges on the clip line get `label`.
-void ClipHalfPlane(const LabelledPolygon& in, const glm::dvec2& a, double c, int32_t label,
-                   LabelledPolygon* out);
+void clip_half_plane(const LabelledPolygon& in, const glm::dvec2& a, double c, int32_t label,
+                     LabelledPolygon* out);
 
-double SignedArea(const std::vector<glm::dvec2>& poly);
+double signed_area(const std::vector<glm::dvec2>& poly);
 // Centroid of a polygon with non-zero area.
 glm::dvec2 Centroid(const std::vector<glm::dvec2>& poly);
 // ∫ |x - p|² over the polygon (positive for counter-clockwise polygons).
-double SecondMoment(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
+double second_moment(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
 // Winding-number test; points on the boundary count as inside or outside arbitrarily.
 bool Inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
 // Distance to the nearest edge, and the nearest boundary point.
-double BoundaryDistance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p,
-                        glm::dvec2* nearest = nullptr);
+double boundary_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p,
+                         glm::dvec2* nearest = nullptr);
 // Positive inside, negative outside.
-double SignedDistance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
+double signed_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
 
 // Empty when `poly` is a simple polygon with non-zero area and finite vertices, else why not
 // ("edges 2 and 5 intersect").
-std::string CheckSimplePolygon(const std::vector<glm::dvec2>& poly);
+std::string check_simple_polygon(const std::vector<glm::dvec2>& poly);
 
 }  // namespace crowdbake::crowd::detail

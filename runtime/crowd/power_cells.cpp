@@ -19,7 +19,7 @@ namespace {
 // edges of clipped non-convex patches can lengthen one side). L is singular along constants,
 // so rhs is first made zero-mean over the connected patches; empty patches (no edges) get a
 // gradient step scaled by the mean diagonal instead.
-void SolveLaplacian(const Cells& cells, const std::vector<double>& rhs, std::vector<double>* x) {
+void solve_laplacian(const Cells& cells, const std::vector<double>& rhs, std::vector<double>* x) {
   const size_t n = rhs.size();
   std::vector<double> diag(n, 0.0);
   std::vector<double> sym(cells.coupling.size());
@@ -83,11 +83,11 @@ void SolveLaplacian(const Cells& cells, const std::vector<double>& rhs, std::vec
 }  // namespace
 
 // Patch of every site: the region clipped by its power neighbours' half-planes.
-bool ComputeCells(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
-                  const std::vector<double>& weights, bool keep_polygons, Cells* cells,
-                  std::string* error) {
+bool compute_cells(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
+                   const std::vector<double>& weights, bool keep_polygons, Cells* cells,
+                   std::string* error) {
   detail::PowerNeighbours nb;
-  if (!detail::ComputePowerNeighbours(sites, weights, &nb, error)) return false;
+  if (!detail::compute_power_neighbours(sites, weights, &nb, error)) return false;
   const size_t n = sites.size();
   cells->area.assign(n, 0.0);
   cells->moment.assign(n, 0.0);
@@ -109,14 +109,14 @@ bool ComputeCells(const std::vector<glm::dvec2>& region, const std::vector<glm::
       // |x-p|² - w_i <= |x-q|² - w_j  <=>  2 (q-p)·x <= |q|² - |p|² - w_j + w_i
       const glm::dvec2 a = 2.0 * (q - p);
       const double c = glm::dot(q, q) - glm::dot(p, p) - weights[j] + weights[i];
-      detail::ClipHalfPlane(poly, a, c, static_cast<int32_t>(j), &tmp);
+      detail::clip_half_plane(poly, a, c, static_cast<int32_t>(j), &tmp);
       std::swap(poly, tmp);
     }
-    const double area = poly.points.empty() ? 0.0 : detail::SignedArea(poly.points);
+    const double area = poly.points.empty() ? 0.0 : detail::signed_area(poly.points);
     if (area > 0.0) {
       cells->area[i] = area;
       cells->centroid[i] = detail::Centroid(poly.points);
-      cells->moment[i] = detail::SecondMoment(poly.points, p);
+      cells->moment[i] = detail::second_moment(poly.points, p);
       for (size_t e = 0, m = poly.points.size(); e < m; ++e)
         if (poly.labels[e] >= 0)
           edge_length[static_cast<size_t>(poly.labels[e])] +=
@@ -136,7 +136,7 @@ bool ComputeCells(const std::vector<glm::dvec2>& region, const std::vector<glm::
   return true;
 }
 
-double WorstCapacityError(const Cells& cells, const std::vector<double>& capacity) {
+double worst_capacity_error(const Cells& cells, const std::vector<double>& capacity) {
   double worst = 0.0;
   for (size_t i = 0; i < capacity.size(); ++i)
     worst = std::max(worst, std::abs(cells.area[i] - capacity[i]) / capacity[i]);
@@ -147,11 +147,11 @@ double WorstCapacityError(const Cells& cells, const std::vector<double>& capacit
 // until every patch area is within `tolerance` of its capacity: the step is halved until no
 // patch empties and the worst error shrinks. `cells` ends up describing the final weights.
 // Returns false on backend failure.
-bool SolveWeights(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
-                  const std::vector<double>& capacity, int steps, double tolerance,
-                  std::vector<double>* weights, Cells* cells, std::string* error) {
+bool solve_weights(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
+                   const std::vector<double>& capacity, int steps, double tolerance,
+                   std::vector<double>* weights, Cells* cells, std::string* error) {
   const size_t n = sites.size();
-  if (!ComputeCells(region, sites, *weights, false, cells, error)) return false;
+  if (!compute_cells(region, sites, *weights, false, cells, error)) return false;
   // note: an empty (hidden) patch has no edges for Newton to act on; it takes the weight of
   // the nearest site instead, which puts it back in the diagram.
   bool reset = false;
@@ -165,8 +165,8 @@ bool SolveWeights(const std::vector<glm::dvec2>& region, const std::vector<glm::
     }
     if (nearest != i) (*weights)[i] = (*weights)[nearest], reset = true;
   }
-  if (reset && !ComputeCells(region, sites, *weights, false, cells, error)) return false;
-  double worst = WorstCapacityError(*cells, capacity);
+  if (reset && !compute_cells(region, sites, *weights, false, cells, error)) return false;
+  double worst = worst_capacity_error(*cells, capacity);
   // note: Newton ascent on the concave Kantorovich functional
   //   Φ(w) = Σ_i ∫_{patch i} (|x - site_i|² - w_i) dx + Σ_i w_i capacity_i,
   // whose gradient is capacity - area; Armijo backtracking makes every step safe.
@@ -180,21 +180,21 @@ bool SolveWeights(const std::vector<glm::dvec2>& region, const std::vector<glm::
   double value = phi(*cells, *weights);
   for (int s = 0; s < steps && worst >= tolerance; ++s) {
     for (size_t i = 0; i < n; ++i) rhs[i] = capacity[i] - cells->area[i];
-    SolveLaplacian(*cells, rhs, &step);
+    solve_laplacian(*cells, rhs, &step);
     double slope = 0.0;
     for (size_t i = 0; i < n; ++i) slope += rhs[i] * step[i];
     if (!(slope > 0.0)) break;
     bool accepted = false;
     for (double alpha = 1.0; alpha > 1e-6 && !accepted; alpha *= 0.5) {
       for (size_t i = 0; i < n; ++i) trial[i] = (*weights)[i] + alpha * step[i];
-      if (!ComputeCells(region, sites, trial, false, &next, error)) return false;
+      if (!compute_cells(region, sites, trial, false, &next, error)) return false;
       const double trial_value = phi(next, trial);
       if (trial_value >= value + 1e-4 * alpha * slope) {
         accepted = true;
         *weights = trial;
         std::swap(*cells, next);
         value = trial_value;
-        worst = WorstCapacityError(*cells, capacity);
+        worst = worst_capacity_error(*cells, capacity);
       }
     }
     if (!accepted) break;  // note: keeps the best weights found; Lloyd goes on regardless

@@ -23,17 +23,17 @@ struct Cells {
 
 // Patch of every site: `region` (counter-clockwise) clipped by its power neighbours'
 // half-planes. Returns false with *error set when the power backend fails.
-bool ComputeCells(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
-                  const std::vector<double>& weights, bool keep_polygons, Cells* cells,
-                  std::string* error);
+bool compute_cells(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
+                   const std::vector<double>& weights, bool keep_polygons, Cells* cells,
+                   std::string* error);
 
 // Largest |area - capacity| / capacity.
-double WorstCapacityError(const Cells& cells, const std::vector<double>& capacity);
+double worst_capacity_error(const Cells& cells, const std::vector<double>& capacity);
 
 // Damped Newton on the weights until every patch area is within `tolerance` (relative) of
 // its capacity, at most `steps` steps. On return *cells describes *weights.
-bool SolveWeights(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
-                  const std::vector<double>& capacity, int steps, double tolerance,
-                  std::vector<double>* weights, Cells* cells, std::string* error);
+bool solve_weights(const std::vector<glm::dvec2>& region, const std::vector<glm::dvec2>& sites,
+                   const std::vector<double>& capacity, int steps, double tolerance,
+                   std::vector<double>* weights, Cells* cells, std::string* error);
 
 }  // namespace crowdbake::crowd::detail

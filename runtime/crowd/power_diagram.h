@@ -20,16 +20,16 @@ struct PowerNeighbours {
 };
 
 // True when this build has the CGAL backend.
-bool HaveCgal();
-const char* PowerBackendName();
+bool have_cgal();
+const char* power_backend_name();
 
 // Power neighbours of weighted sites (power distance |x - p|² - w). Sites hidden by the
 // others (empty power cell) get no neighbours. Falls back to all pairs when the sites are
 // fewer than 3 or collinear. Returns false with *error set when the backend throws.
-bool ComputePowerNeighbours(const std::vector<glm::dvec2>& sites,
-                            const std::vector<double>& weights, PowerNeighbours* out,
-                            std::string* error);
+bool compute_power_neighbours(const std::vector<glm::dvec2>& sites,
+                              const std::vector<double>& weights, PowerNeighbours* out,
+                              std::string* error);
 
-void AllPairsNeighbours(size_t sites, PowerNeighbours* out);
+void all_pairs_neighbours(size_t sites, PowerNeighbours* out);
 
 }  // namespace crowdbake::crowd::detail

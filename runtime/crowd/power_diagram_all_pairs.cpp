@@ -3,7 +3,7 @@
 
 namespace crowdbake::crowd::detail {
 
-void AllPairsNeighbours(size_t sites, PowerNeighbours* out) {
+void all_pairs_neighbours(size_t sites, PowerNeighbours* out) {
   out->first.assign(1, 0);
   out->list.clear();
   out->hidden.assign(sites, 0);
@@ -16,11 +16,11 @@ void AllPairsNeighbours(size_t sites, PowerNeighbours* out) {
 }
 
 #ifndef CROWDBAKE_HAVE_CGAL
-bool HaveCgal() { return false; }
-const char* PowerBackendName() { return "all pairs"; }
-bool ComputePowerNeighbours(const std::vector<glm::dvec2>& sites, const std::vector<double>&,
-                            PowerNeighbours* out, std::string*) {
-  AllPairsNeighbours(sites.size(), out);
+bool have_cgal() { return false; }
+const char* power_backend_name() { return "all pairs"; }
+bool compute_power_neighbours(const std::vector<glm::dvec2>& sites, const std::vector<double>&,
+                              PowerNeighbours* out, std::string*) {
+  all_pairs_neighbours(sites.size(), out);
   return true;
 }
 #endif

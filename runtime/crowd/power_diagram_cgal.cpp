@@ -27,12 +27,12 @@ using WeightedPoint = Regular::Weighted_point;
 
 }  // namespace
 
-bool HaveCgal() { return true; }
-const char* PowerBackendName() { return "CGAL Regular_triangulation_2"; }
+bool have_cgal() { return true; }
+const char* power_backend_name() { return "CGAL Regular_triangulation_2"; }
 
-bool ComputePowerNeighbours(const std::vector<glm::dvec2>& sites,
-                            const std::vector<double>& weights, PowerNeighbours* out,
-                            std::string* error) {
+bool compute_power_neighbours(const std::vector<glm::dvec2>& sites,
+                              const std::vector<double>& weights, PowerNeighbours* out,
+                              std::string* error) {
   const size_t n = sites.size();
   try {
     std::vector<std::pair<WeightedPoint, uint32_t>> points;
@@ -42,7 +42,7 @@ bool ComputePowerNeighbours(const std::vector<glm::dvec2>& sites,
                           static_cast<uint32_t>(i));
     Regular rt(points.begin(), points.end());
     if (rt.dimension() < 2) {
-      AllPairsNeighbours(n, out);
+      all_pairs_neighbours(n, out);
       return true;
     }
     std::vector<std::vector<uint32_t>> lists(n);

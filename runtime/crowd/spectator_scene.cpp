@@ -17,7 +17,9 @@ namespace {
 constexpr size_t kMaxGroupMembers = 64;
 constexpr int64_t kMaxSeats = 16 * 1024 * 1024;
 
-Status SceneError(const std::string& message) { return Status(StatusCode::kInvalidScene, message); }
+Status scene_error(const std::string& message) {
+  return Status(StatusCode::kInvalidScene, message);
+}
 
 std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
@@ -27,21 +29,21 @@ std::string Num(double v) {
   return o.str();
 }
 
-std::string TeamList(const std::vector<TeamDef>& teams) {
+std::string team_list(const std::vector<TeamDef>& teams) {
   std::string out;
   for (size_t i = 0; i < teams.size(); ++i) out += (i ? ", " : "") + teams[i].name;
   return out;
 }
 
-int FindTeam(const std::vector<TeamDef>& teams, const std::string& name) {
+int find_team(const std::vector<TeamDef>& teams, const std::string& name) {
   for (size_t i = 0; i < teams.size(); ++i)
     if (teams[i].name == name) return static_cast<int>(i);
   return -1;
 }
 
-Status CheckParams(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t* home) {
+Status check_params(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t* home) {
   auto bad = [](const char* field, double v, const char* rule) {
-    return SceneError(std::string("params.") + field + " = " + Num(v) + " must be " + rule);
+    return scene_error(std::string("params.") + field + " = " + Num(v) + " must be " + rule);
   };
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
@@ -71,23 +73,24 @@ Status CheckParams(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t* 
     return bad("isolation_cooldown_s", p.isolation_cooldown_s, "finite and >= 0 (a time)");
   *home = fsm.find_state(p.home_state);
   if (*home == BehaviourFsm::kNone)
-    return SceneError("params.home_state " + Quote(p.home_state) + " is an unknown state");
+    return scene_error("params.home_state " + Quote(p.home_state) + " is an unknown state");
   if (!fsm.is_rest(*home))
-    return SceneError("params.home_state " + Quote(p.home_state) + " is not a rest state");
+    return scene_error("params.home_state " + Quote(p.home_state) + " is not a rest state");
   // note: every state an individual can get to from home must lead back home.
   for (int s = 0; s < fsm.state_count(); ++s) {
     const auto st = static_cast<uint16_t>(s);
     if (fsm.next_hop(*home, st) != BehaviourFsm::kNone &&
         fsm.next_hop(st, *home) == BehaviourFsm::kNone)
-      return SceneError("params.home_state " + Quote(p.home_state) + ": state " +
-                        Quote(fsm.state_name(st)) + " can be reached from it but has no path back");
+      return scene_error("params.home_state " + Quote(p.home_state) + ": state " +
+                         Quote(fsm.state_name(st)) +
+                         " can be reached from it but has no path back");
   }
   return Status();
 }
 
 // Neighbours within `radius` (3D), found through a uniform grid of cell size `radius`.
-void RadiusNeighbours(const std::vector<IndividualDef>& people, float radius,
-                      std::vector<std::vector<uint32_t>>* lists) {
+void radius_neighbours(const std::vector<IndividualDef>& people, float radius,
+                       std::vector<std::vector<uint32_t>>* lists) {
   const size_t n = people.size();
   const double inv = 1.0 / radius, r2 = static_cast<double>(radius) * radius;
   auto cell = [&](const glm::vec3& p, int axis) {
@@ -126,7 +129,7 @@ void RadiusNeighbours(const std::vector<IndividualDef>& people, float radius,
 
 // Probability that the next draw of a sequential group fill is a single, so that singles
 // make up `single_fraction` of the people (see place_seat_grid).
-double SingleDrawProbability(const GroupMix& mix) {
+double single_draw_probability(const GroupMix& mix) {
   const double w2 = mix.pairs, w3 = mix.triples, w4 = static_cast<double>(mix.fours) + mix.larger;
   const double total = w2 + w3 + w4;
   if (!(total > 0.0)) return 1.0;
@@ -140,36 +143,37 @@ double SingleDrawProbability(const GroupMix& mix) {
 Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
                              SpectatorScene& out) {
   uint16_t home = 0;
-  if (Status s = CheckParams(fsm, def.params, &home); !s.ok()) return s;
+  if (Status s = check_params(fsm, def.params, &home); !s.ok()) return s;
 
-  if (def.teams.empty()) return SceneError("the crowd has no teams");
+  if (def.teams.empty()) return scene_error("the crowd has no teams");
   if (def.teams.size() >= SpectatorScene::kAnyTeam)
-    return SceneError("the crowd has " + std::to_string(def.teams.size()) + " teams; at most " +
-                      std::to_string(SpectatorScene::kAnyTeam - 1));
+    return scene_error("the crowd has " + std::to_string(def.teams.size()) + " teams; at most " +
+                       std::to_string(SpectatorScene::kAnyTeam - 1));
   for (size_t t = 0; t < def.teams.size(); ++t) {
     const TeamDef& team = def.teams[t];
-    if (team.name.empty()) return SceneError("team " + std::to_string(t) + ": the name is empty");
-    if (FindTeam(def.teams, team.name) != static_cast<int>(t))
-      return SceneError("team " + Quote(team.name) + " is defined twice");
+    if (team.name.empty()) return scene_error("team " + std::to_string(t) + ": the name is empty");
+    if (find_team(def.teams, team.name) != static_cast<int>(t))
+      return scene_error("team " + Quote(team.name) + " is defined twice");
     if (!std::isfinite(team.embarrassment) || team.embarrassment < 0.0f)
-      return SceneError("team " + Quote(team.name) + ": embarrassment " + Num(team.embarrassment) +
-                        " must be finite and >= 0");
+      return scene_error("team " + Quote(team.name) + ": embarrassment " + Num(team.embarrassment) +
+                         " must be finite and >= 0");
     if (!std::isfinite(team.embarrassment_spread) || team.embarrassment_spread < 0.0f)
-      return SceneError("team " + Quote(team.name) + ": embarrassment_spread " +
-                        Num(team.embarrassment_spread) + " must be finite and >= 0");
+      return scene_error("team " + Quote(team.name) + ": embarrassment_spread " +
+                         Num(team.embarrassment_spread) + " must be finite and >= 0");
   }
 
   const size_t n = def.individuals.size();
-  if (n >= 0xfffffffeu) return SceneError("too many individuals (" + std::to_string(n) + ")");
+  if (n >= 0xfffffffeu) return scene_error("too many individuals (" + std::to_string(n) + ")");
   for (size_t i = 0; i < n; ++i) {
     const IndividualDef& p = def.individuals[i];
     if (p.team >= def.teams.size())
-      return SceneError("individual " + std::to_string(i) + ": team index " +
-                        std::to_string(p.team) + " is not in the crowd (" +
-                        std::to_string(def.teams.size()) + " teams: " + TeamList(def.teams) + ")");
+      return scene_error("individual " + std::to_string(i) + ": team index " +
+                         std::to_string(p.team) + " is not in the crowd (" +
+                         std::to_string(def.teams.size()) + " teams: " + team_list(def.teams) +
+                         ")");
     if (!std::isfinite(p.position.x) || !std::isfinite(p.position.y) ||
         !std::isfinite(p.position.z))
-      return SceneError("individual " + std::to_string(i) + ": position is not finite");
+      return scene_error("individual " + std::to_string(i) + ": position is not finite");
   }
 
   std::vector<SpectatorScene::Event> events;
@@ -179,23 +183,23 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
                               Num(ev.time_s) + " s" +
                               (ev.team.empty() ? "" : " for team " + Quote(ev.team)) + ")";
     if (!std::isfinite(ev.time_s) || ev.time_s < 0.0)
-      return SceneError(where + ": time " + Num(ev.time_s) + " s must be finite and >= 0");
+      return scene_error(where + ": time " + Num(ev.time_s) + " s must be finite and >= 0");
     if (!std::isfinite(ev.excitement) || ev.excitement < 0.0f)
-      return SceneError(where + ": excitement " + Num(ev.excitement) + " must be finite and >= 0");
+      return scene_error(where + ": excitement " + Num(ev.excitement) + " must be finite and >= 0");
     const uint16_t reaction = fsm.find_reaction(ev.kind);
     if (reaction == BehaviourFsm::kNone) {
       std::string kinds;
       for (int r = 0; r < fsm.reaction_count(); ++r)
         kinds += (r ? ", " : "") + fsm.reaction_event(static_cast<uint16_t>(r));
-      return SceneError(where + ": the FSM has no reaction to " + Quote(ev.kind) +
-                        " (reactions: " + kinds + ")");
+      return scene_error(where + ": the FSM has no reaction to " + Quote(ev.kind) +
+                         " (reactions: " + kinds + ")");
     }
     uint16_t team = SpectatorScene::kAnyTeam;
     if (!ev.team.empty()) {
-      const int t = FindTeam(def.teams, ev.team);
+      const int t = find_team(def.teams, ev.team);
       if (t < 0)
-        return SceneError(where + ": team " + Quote(ev.team) +
-                          " is not in the crowd (teams: " + TeamList(def.teams) + ")");
+        return scene_error(where + ": team " + Quote(ev.team) +
+                           " is not in the crowd (teams: " + team_list(def.teams) + ")");
       team = static_cast<uint16_t>(t);
     }
     events.push_back({ev.time_s, reaction, team, ev.excitement});
@@ -221,13 +225,13 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
     }
     members[g].push_back(static_cast<uint32_t>(i));
     if (members[g].size() > kMaxGroupMembers)
-      return SceneError("group " + std::to_string(id) + " has more than " +
-                        std::to_string(kMaxGroupMembers) + " members");
+      return scene_error("group " + std::to_string(id) + " has more than " +
+                         std::to_string(kMaxGroupMembers) + " members");
     scene.group_[i] = g;
   }
 
   std::vector<std::vector<uint32_t>> lists(n);
-  RadiusNeighbours(def.individuals, def.params.neighbour_radius_m, &lists);
+  radius_neighbours(def.individuals, def.params.neighbour_radius_m, &lists);
   scene.neighbour_first_.reserve(n + 1);
   scene.neighbour_first_.push_back(0);
   for (size_t i = 0; i < n; ++i) {
@@ -268,14 +272,14 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
 Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
                        std::vector<IndividualDef>& individuals) {
   auto bad = [](const std::string& field, double v, const char* rule) {
-    return SceneError("seat grid: " + field + " = " + Num(v) + " must be " + rule);
+    return scene_error("seat grid: " + field + " = " + Num(v) + " must be " + rule);
   };
   if (def.rows <= 0) return bad("rows", def.rows, "> 0");
   if (def.columns <= 0) return bad("columns", def.columns, "> 0");
   if (static_cast<int64_t>(def.rows) * def.columns > kMaxSeats)
-    return SceneError("seat grid: " + std::to_string(def.rows) + " x " +
-                      std::to_string(def.columns) + " seats exceed the limit of " +
-                      std::to_string(kMaxSeats));
+    return scene_error("seat grid: " + std::to_string(def.rows) + " x " +
+                       std::to_string(def.columns) + " seats exceed the limit of " +
+                       std::to_string(kMaxSeats));
   if (!std::isfinite(def.seat_spacing_m) || def.seat_spacing_m <= 0.0f)
     return bad("seat_spacing_m", def.seat_spacing_m, "finite and > 0");
   if (!std::isfinite(def.row_spacing_m) || def.row_spacing_m <= 0.0f)
@@ -283,13 +287,14 @@ Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams
   if (!std::isfinite(def.row_rise_m) || def.row_rise_m < 0.0f)
     return bad("row_rise_m", def.row_rise_m, "finite and >= 0");
   if (!std::isfinite(def.origin.x) || !std::isfinite(def.origin.y) || !std::isfinite(def.origin.z))
-    return SceneError("seat grid: origin is not finite");
+    return scene_error("seat grid: origin is not finite");
   if (!std::isfinite(def.empty_probability) || def.empty_probability < 0.0f ||
       def.empty_probability > 1.0f)
     return bad("empty_probability", def.empty_probability, "in [0, 1]");
   if (Status s = validate_group_mix(def.groups); !s.ok())
-    return SceneError("seat grid: " + s.message());
-  if (def.sections.empty()) return SceneError("seat grid: no sections (every seat would be empty)");
+    return scene_error("seat grid: " + s.message());
+  if (def.sections.empty())
+    return scene_error("seat grid: no sections (every seat would be empty)");
 
   // Section owning each seat (-1: none).
   std::vector<int> owner(static_cast<size_t>(def.rows) * def.columns, -1);
@@ -298,34 +303,34 @@ Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams
     const SeatSection& sec = def.sections[s];
     const std::string where =
         "seat section " + std::to_string(s) + " (team " + Quote(sec.team) + ")";
-    const int t = FindTeam(teams, sec.team);
+    const int t = find_team(teams, sec.team);
     if (t < 0)
-      return SceneError(where + ": team " + Quote(sec.team) +
-                        " is not in the crowd (teams: " + TeamList(teams) + ")");
+      return scene_error(where + ": team " + Quote(sec.team) +
+                         " is not in the crowd (teams: " + team_list(teams) + ")");
     section_team[s] = static_cast<uint16_t>(t);
     const int rows = sec.row_count < 0 ? def.rows - sec.first_row : sec.row_count;
     if (sec.column_count <= 0 || sec.first_column < 0 ||
         sec.first_column + static_cast<int64_t>(sec.column_count) > def.columns)
-      return SceneError(where + ": columns " + std::to_string(sec.first_column) + " + " +
-                        std::to_string(sec.column_count) + " do not fit the grid's " +
-                        std::to_string(def.columns) + " columns");
+      return scene_error(where + ": columns " + std::to_string(sec.first_column) + " + " +
+                         std::to_string(sec.column_count) + " do not fit the grid's " +
+                         std::to_string(def.columns) + " columns");
     if (rows <= 0 || sec.first_row < 0 || sec.first_row + static_cast<int64_t>(rows) > def.rows)
-      return SceneError(where + ": rows " + std::to_string(sec.first_row) + " + " +
-                        std::to_string(rows) + " do not fit the grid's " +
-                        std::to_string(def.rows) + " rows");
+      return scene_error(where + ": rows " + std::to_string(sec.first_row) + " + " +
+                         std::to_string(rows) + " do not fit the grid's " +
+                         std::to_string(def.rows) + " rows");
     for (int r = sec.first_row; r < sec.first_row + rows; ++r)
       for (int c = sec.first_column; c < sec.first_column + sec.column_count; ++c) {
         int& o = owner[static_cast<size_t>(r) * def.columns + c];
         if (o >= 0)
-          return SceneError(where + " overlaps seat section " + std::to_string(o) + " at row " +
-                            std::to_string(r) + ", column " + std::to_string(c));
+          return scene_error(where + " overlaps seat section " + std::to_string(o) + " at row " +
+                             std::to_string(r) + ", column " + std::to_string(c));
         o = static_cast<int>(s);
       }
   }
 
   // note: groups fill runs of neighbouring occupied seats; each draw is a single with
-  // probability q (SingleDrawProbability) so that singles are single_fraction of the people.
-  const double q = SingleDrawProbability(def.groups);
+  // probability q (single_draw_probability) so that singles are single_fraction of the people.
+  const double q = single_draw_probability(def.groups);
   const double w2 = def.groups.pairs, w3 = def.groups.triples,
                w4 = static_cast<double>(def.groups.fours) + def.groups.larger;
   const double wsum = w2 + w3 + w4;

@@ -25,8 +25,8 @@ double Draw(const SpectatorScene& scene, SpectatorState& st, size_t i) {
 
 // Picks and starts the state that follows the current one at time t0 (a clip end or an
 // interruption): towards the reaction target while reacting, else the idle walk or home.
-void StartNext(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, size_t i,
-               double t0) {
+void start_next(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, size_t i,
+                double t0) {
   const uint16_t current = st.state[i], home = scene.home_state();
   uint16_t next = kNone, destination = kNone;
   if (st.mode[i] == SpectatorState::kReacting) {
@@ -53,12 +53,12 @@ void StartNext(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorSt
 }
 
 // Finishes every clip that ends at or before t; each successor starts exactly at the end.
-void FinishClips(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st,
-                 double t) {
+void finish_clips(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st,
+                  double t) {
   for (size_t i = 0; i < scene.size(); ++i) {
     double end = st.clip_start_s[i] + fsm.clip_duration(st.clip[i]);
     while (end <= t) {
-      StartNext(fsm, scene, st, i, end);
+      start_next(fsm, scene, st, i, end);
       end = st.clip_start_s[i] + fsm.clip_duration(st.clip[i]);
     }
   }
@@ -203,7 +203,7 @@ bool Decide(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState
 }
 
 void Tick(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, double t) {
-  FinishClips(fsm, scene, st, t);
+  finish_clips(fsm, scene, st, t);
   Measure(fsm, scene, st, t);
   for (size_t i = 0; i < scene.size(); ++i) {
     if (!Decide(fsm, scene, st, i, t)) continue;
@@ -211,7 +211,7 @@ void Tick(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& 
     const uint16_t s = st.state[i];
     if (!fsm.is_interruptible(s)) continue;
     if (st.mode[i] == SpectatorState::kReacting ? s != st.target[i] : !fsm.is_rest(s))
-      StartNext(fsm, scene, st, i, t);
+      start_next(fsm, scene, st, i, t);
   }
 }
 
@@ -278,7 +278,7 @@ bool SpectatorUpdateJob::Run() const {
     Tick(*fsm, *scene, st, t);
     ++st.next_tick;
   }
-  FinishClips(*fsm, *scene, st, time_s);
+  finish_clips(*fsm, *scene, st, time_s);
   st.time_s = time_s;
   for (size_t i = 0; i < scene->size(); ++i) {
     if (out_state) out_state[i] = st.state[i];

@@ -2,7 +2,7 @@
 // reported before any pack is opened: (1) read every key into plain structs, checking types,
 // ranges and unknown keys; (2) open the packs; (3) resolve names against the packs (clips)
 // and build the instance arrays, listed instances first, then each generator in order.
-// Errors are thrown inside this file as SceneError and returned as a Status at the boundary.
+// Errors are thrown inside this file as scene_error and returned as a Status at the boundary.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -26,14 +26,14 @@ using json = nlohmann::json;
 
 constexpr float kPi = 3.14159265358979323846f;
 
-struct SceneError {
+struct scene_error {
   StatusCode code;
   std::string message;  // "<key path>: <problem>"
 };
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem,
                        StatusCode code = StatusCode::kInvalidScene) {
-  throw SceneError{code, (path.empty() ? std::string("scene") : path) + ": " + problem};
+  throw scene_error{code, (path.empty() ? std::string("scene") : path) + ": " + problem};
 }
 
 std::string key_path(const std::string& path, const std::string& key) {
@@ -1411,7 +1411,7 @@ Status parse_scene(std::string_view text, const std::string& name, const std::st
       return {StatusCode::kInvalidScene, name + ": not valid JSON: " + what};
     }
     return build(root, base_dir, options, out);
-  } catch (const SceneError& e) {
+  } catch (const scene_error& e) {
     return {e.code, name + ": " + e.message};
   } catch (const std::bad_alloc&) {
     return {StatusCode::kOutOfMemory, name + ": out of memory while loading the scene"};

@@ -68,7 +68,7 @@ void CheckPlacement(const PlacementOptions& o, const Placement& p) {
     for (int m = 0; m < n; ++m) {
       const dvec2 x = p.positions[first + m];
       ASSERT_EQ(p.group_of[first + m], g);
-      EXPECT_GE(detail::SignedDistance(p.patches[g], x), -1e-9) << "group " << g;
+      EXPECT_GE(detail::signed_distance(p.patches[g], x), -1e-9) << "group " << g;
       EXPECT_NEAR(glm::length(x - p.sites[g]), radius, 1e-6);
       EXPECT_NEAR(glm::length(p.facing[first + m]), 1.0, 1e-9);
       if (n > 1) {
@@ -80,7 +80,7 @@ void CheckPlacement(const PlacementOptions& o, const Placement& p) {
   }
   EXPECT_EQ(people, o.people);
   // Patches tile the region with the capacities asked for.
-  double total = 0.0, region_area = std::abs(detail::SignedArea(o.region));
+  double total = 0.0, region_area = std::abs(detail::signed_area(o.region));
   for (size_t g = 0; g < p.group_size.size(); ++g) {
     total += p.area[g];
     EXPECT_NEAR(p.area[g] / p.capacity[g], 1.0, 2e-3) << "group " << g;
@@ -243,7 +243,7 @@ TEST(PowerCells, BackendMatchesAllPairs) {
   weights[0] = -1.0;  // site 0 is hidden by its neighbours
   detail::Cells cells;
   std::string error;
-  ASSERT_TRUE(detail::ComputeCells(local, sites, weights, false, &cells, &error)) << error;
+  ASSERT_TRUE(detail::compute_cells(local, sites, weights, false, &cells, &error)) << error;
   EXPECT_EQ(cells.area[0], 0.0);
   double total = 0.0;
   for (size_t i = 0; i < sites.size(); ++i) {
@@ -253,15 +253,15 @@ TEST(PowerCells, BackendMatchesAllPairs) {
       const dvec2 a = 2.0 * (sites[j] - sites[i]);
       const double c =
           glm::dot(sites[j], sites[j]) - glm::dot(sites[i], sites[i]) - weights[j] + weights[i];
-      detail::ClipHalfPlane(poly, a, c, static_cast<int32_t>(j), &tmp);
+      detail::clip_half_plane(poly, a, c, static_cast<int32_t>(j), &tmp);
       std::swap(poly, tmp);
     }
-    const double area = poly.points.empty() ? 0.0 : std::max(0.0, detail::SignedArea(poly.points));
+    const double area = poly.points.empty() ? 0.0 : std::max(0.0, detail::signed_area(poly.points));
     EXPECT_NEAR(cells.area[i], area, 1e-12) << "site " << i;
     total += cells.area[i];
   }
   EXPECT_NEAR(total, 0.75, 1e-12);
-  std::printf("[ backend   ] %s\n", detail::PowerBackendName());
+  std::printf("[ backend   ] %s\n", detail::power_backend_name());
 }
 
 TEST(PowerCells, CouplingIsTheAreaDerivative) {
@@ -273,15 +273,15 @@ TEST(PowerCells, CouplingIsTheAreaDerivative) {
   for (size_t i = 0; i < sites.size(); ++i) sites[i] = dvec2(u(rng), u(rng)), w[i] = 0.002 * u(rng);
   detail::Cells c0, lo, hi;
   std::string error;
-  ASSERT_TRUE(detail::ComputeCells(region, sites, w, false, &c0, &error));
+  ASSERT_TRUE(detail::compute_cells(region, sites, w, false, &c0, &error));
   for (size_t j : {3u, 17u, 31u}) {
     // Central differences, relative tolerance (close sites have large couplings).
     const double h = 1e-7;
     std::vector<double> w_lo = w, w_hi = w;
     w_lo[j] -= h;
     w_hi[j] += h;
-    ASSERT_TRUE(detail::ComputeCells(region, sites, w_lo, false, &lo, &error));
-    ASSERT_TRUE(detail::ComputeCells(region, sites, w_hi, false, &hi, &error));
+    ASSERT_TRUE(detail::compute_cells(region, sites, w_lo, false, &lo, &error));
+    ASSERT_TRUE(detail::compute_cells(region, sites, w_hi, false, &hi, &error));
     auto derivative = [&](size_t i) { return (hi.area[i] - lo.area[i]) / (2.0 * h); };
     double diagonal = 0.0;
     for (uint32_t k = c0.first[j]; k < c0.first[j + 1]; ++k) {
@@ -308,19 +308,19 @@ TEST(PowerCells, NewtonReachesTheCapacities) {
   for (double& c : capacity) c /= sum;
   detail::Cells cells;
   std::string error;
-  ASSERT_TRUE(detail::SolveWeights(region, sites, capacity, 30, 1e-10, &weights, &cells, &error));
-  EXPECT_LT(detail::WorstCapacityError(cells, capacity), 1e-10);
+  ASSERT_TRUE(detail::solve_weights(region, sites, capacity, 30, 1e-10, &weights, &cells, &error));
+  EXPECT_LT(detail::worst_capacity_error(cells, capacity), 1e-10);
 }
 
 TEST(Polygon, AreaCentroidMomentAndClipping) {
   const std::vector<dvec2> square = Square(2.0);
-  EXPECT_DOUBLE_EQ(detail::SignedArea(square), 4.0);
+  EXPECT_DOUBLE_EQ(detail::signed_area(square), 4.0);
   EXPECT_EQ(detail::Centroid(square), dvec2(1.0, 1.0));
   // ∫ |x - c|² over a 2 × 2 square about its centre = 2 · (2 · 2³ / 12) = 8/3.
-  EXPECT_NEAR(detail::SecondMoment(square, dvec2(1.0)), 8.0 / 3.0, 1e-12);
+  EXPECT_NEAR(detail::second_moment(square, dvec2(1.0)), 8.0 / 3.0, 1e-12);
   detail::LabelledPolygon poly{square, {-1, -1, -1, -1}}, half;
-  detail::ClipHalfPlane(poly, dvec2(1.0, 0.0), 0.5, 7, &half);  // keep x <= 0.5
-  EXPECT_NEAR(detail::SignedArea(half.points), 1.0, 1e-12);
+  detail::clip_half_plane(poly, dvec2(1.0, 0.0), 0.5, 7, &half);  // keep x <= 0.5
+  EXPECT_NEAR(detail::signed_area(half.points), 1.0, 1e-12);
   double on_line = 0.0;
   for (size_t k = 0; k < half.points.size(); ++k)
     if (half.labels[k] == 7)
@@ -328,12 +328,12 @@ TEST(Polygon, AreaCentroidMomentAndClipping) {
   EXPECT_NEAR(on_line, 2.0, 1e-12);
   EXPECT_TRUE(detail::Inside(square, dvec2(1.0, 1.0)));
   EXPECT_FALSE(detail::Inside(square, dvec2(3.0, 1.0)));
-  EXPECT_NEAR(detail::SignedDistance(square, dvec2(0.5, 1.0)), 0.5, 1e-12);
-  EXPECT_NEAR(detail::SignedDistance(square, dvec2(-0.5, 1.0)), -0.5, 1e-12);
+  EXPECT_NEAR(detail::signed_distance(square, dvec2(0.5, 1.0)), 0.5, 1e-12);
+  EXPECT_NEAR(detail::signed_distance(square, dvec2(-0.5, 1.0)), -0.5, 1e-12);
   // Clipping a non-convex L keeps area exact (bridges add none).
   detail::LabelledPolygon l{LShape(2.0), std::vector<int32_t>(6, -1)}, cut;
-  detail::ClipHalfPlane(l, dvec2(0.0, -1.0), -0.5, 1, &cut);  // keep y >= 0.5
-  EXPECT_NEAR(detail::SignedArea(cut.points), 3.0 - 1.0, 1e-12);
+  detail::clip_half_plane(l, dvec2(0.0, -1.0), -0.5, 1, &cut);  // keep y >= 0.5
+  EXPECT_NEAR(detail::signed_area(cut.points), 3.0 - 1.0, 1e-12);
 }
 
 }  // namespace
