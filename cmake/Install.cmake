@@ -52,7 +52,7 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_DEBIAN_PACKAGE_SECTION devel)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(crowdbake_deb_depends "libdraco-dev, libmeshoptimizer-dev, libglm-dev, nlohmann-json3-dev"
-                          "libvulkan-dev, libgmp-dev, libstb-dev")
+                          "libvulkan-dev, libgmp-dev, libstb-dev, libzstd-dev")
 if(CROWDBAKE_BUILD_PIPELINE)
   list(APPEND crowdbake_deb_depends "libassimp-dev")
 endif()
