@@ -93,7 +93,8 @@ layout(std430, set = 0, binding = 0) readonly buffer ParamsBuffer {
   uint frame;   // frame number of the level cache's use marks (never 0)
   float max_pixel_error;  // error mode: P
   uint key_total;         // level-cache keys of all types
-  uint pad4, pad5;
+  uint scan_keys_per_group;  // scan_types: keys per workgroup (bounds a lane's loops)
+  uint pad5;
 } params;
 layout(std430, set = 0, binding = 1) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Types { TypeData types[]; };

@@ -1,9 +1,12 @@
 #version 450
-// Pass 4a (one workgroup): per key — a type, or with instanced static levels a (type, level)
-// slot — the exclusive prefix of the workgroups' (corners, drawn, chunks) sums in workgroup
-// order, written back in place; then each key's totals and its bases in the corner buffer,
-// the draw or instance list and the chunks (keys in index order). Instance order within a key
-// and key order make the layout deterministic.
+// Pass 4a (params.scan_keys_per_group keys per workgroup): per key — a type, or with instanced
+// static levels a (type, level) slot — the exclusive prefix of the instance workgroups'
+// (corners, drawn, chunks) sums in workgroup order, written back in place, and the key's
+// totals; scan_bases.comp then lays the keys out. Keys are independent, so they are split
+// between workgroups: a lane loops over 2·groups/256 + 8 steps per key, and a workgroup that
+// took every key of a many-type, million-instance crowd would pass lavapipe's 65,535
+// iterations per invocation (lane_scan.glsl). Instance order within a key and key order make
+// the layout deterministic.
 #extension GL_GOOGLE_include_directive : require
 #include "crowd_compute.glsl"
 
@@ -16,7 +19,9 @@ void main() {
   const uint groups = params.group_count;
   const uint chunk = (groups + 255u) / 256u;
   const uint first = min(lid * chunk, groups), last = min(first + chunk, groups);
-  for (uint t = 0u; t < params.key_count; ++t) {
+  const uint first_key = gl_WorkGroupID.x * params.scan_keys_per_group;
+  const uint end_key = min(first_key + params.scan_keys_per_group, params.key_count);
+  for (uint t = first_key; t < end_key; ++t) {
     uvec3 sum = uvec3(0u);
     for (uint g = first; g < last; ++g) sum = sum3(sum, group_sums[g * params.key_count + t].xyz);
     scan[lid] = sum;
@@ -40,19 +45,5 @@ void main() {
       ranges[t].chunk_total = scan[255].z;
     }
     barrier();
-  }
-  memoryBarrierBuffer();
-  barrier();
-  if (lid == 0u) {
-    uint corner_base = 0u, draw_base = 0u, chunk_base = 0u;
-    for (uint t = 0u; t < params.key_count; ++t) {
-      ranges[t].corner_base = corner_base;
-      ranges[t].draw_base = draw_base;
-      ranges[t].chunk_base = chunk_base;
-      ranges[t].drawn_end = 0u;
-      corner_base = sat_add(corner_base, ranges[t].corner_total);
-      draw_base += ranges[t].draw_total;
-      chunk_base = sat_add(chunk_base, ranges[t].chunk_total);
-    }
   }
 }

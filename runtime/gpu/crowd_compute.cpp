@@ -29,7 +29,8 @@ struct Params {
   uint32_t cached, frame;
   float max_pixel_error;
   uint32_t key_total;
-  uint32_t pad[2];
+  uint32_t scan_keys_per_group;
+  uint32_t pad;
 };
 static_assert(sizeof(Params) == 208 && offsetof(Params, screen) == 112 &&
                   offsetof(Params, instance_count) == 144,
@@ -64,7 +65,7 @@ static_assert(sizeof(InstanceLod) == 36 && sizeof(TypeRange) == 32, "crowd_compu
 
 // The kernels in recording order, how each is dispatched, and the timed pass it belongs to
 // (ComputeTimings::kNames; the level cache's four kernels are one pass).
-enum class Dispatch { kInstanceGroups, kOneGroup, kCacheKeys, kIndirect };
+enum class Dispatch { kInstanceGroups, kOneGroup, kScanKeys, kCacheKeys, kIndirect };
 struct Kernel {
   const char* shader;
   Dispatch dispatch;
@@ -75,7 +76,8 @@ constexpr Kernel kKernels[CrowdCompute::kKernelCount] = {
     {"lod_weights.comp", Dispatch::kInstanceGroups, 0, false},
     {"lod_sum.comp", Dispatch::kOneGroup, 1, false},
     {"lod_assign.comp", Dispatch::kInstanceGroups, 2, false},
-    {"scan_types.comp", Dispatch::kOneGroup, 3, false},
+    {"scan_types.comp", Dispatch::kScanKeys, 3, false},
+    {"scan_bases.comp", Dispatch::kOneGroup, 3, false},
     {"level_cache_mark.comp", Dispatch::kCacheKeys, 4, true},
     {"level_cache_misses.comp", Dispatch::kOneGroup, 4, true},
     {"level_cache_assign.comp", Dispatch::kOneGroup, 4, true},
@@ -89,6 +91,7 @@ constexpr uint64_t kDefaultLevelCacheBytes = uint64_t{64} << 20;
 // level_cache_assign serves one type (the instanced path has at most 128) in about three
 // steps per slot, and the scans walk key_total / 256 keys per lane, twice.
 constexpr uint32_t kMaxSlotsPerType = 8192;
+constexpr uint32_t kScanLoopBudget = 32768;  // scan_types: loop iterations per lane
 constexpr uint64_t kMaxCacheKeys = uint64_t{256} * 16384;
 constexpr uint32_t kChunk = 256;  // crowd_compute.glsl: kChunk
 
@@ -166,6 +169,7 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   const uint32_t n = std::max(c->max_instances_, 1u);
   const uint32_t types = std::max(c->type_count_, 1u);
   c->instanced_levels_ = options.instanced_static_levels;
+  c->scan_keys_per_group_option_ = options.scan_keys_per_group;
   if (Status st = c->layout_level_cache(context, options); !st.ok()) return st;
   // note: scan keys are types, or (type, level) slots when static levels are drawn instanced.
   const uint32_t slots = c->instanced_levels_ ? types * kMaxDiscreteLevels : 1;
@@ -301,6 +305,13 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   p.frame = frame_;
   p.key_count = instanced_ ? type_count_ * kMaxDiscreteLevels : cached_ ? 0 : type_count_;
   p.indexed_slots = instanced_levels_ ? type_count_ * kMaxDiscreteLevels : 0;
+  // note: scan_types' lanes loop about 2·groups/256 + 16 steps per key; a workgroup takes as
+  // many keys as keep that under kScanLoopBudget iterations (lavapipe stops at 65,535).
+  const uint32_t steps_per_key = 2 * ((p.group_count + 255) / 256) + 16;
+  p.scan_keys_per_group = scan_keys_per_group_option_
+                              ? scan_keys_per_group_option_
+                              : std::max(1u, kScanLoopBudget / steps_per_key);
+  scan_groups_ = (p.key_count + p.scan_keys_per_group - 1) / p.scan_keys_per_group;
   if (instanced_) {
     Status st = update_levels(scene, state);
     if (!st.ok()) return st;
@@ -417,6 +428,9 @@ void CrowdCompute::record(VkCommandBuffer cmd, const TimestampQueries* queries,
           break;
         case Dispatch::kOneGroup:
           kernels_[k].dispatch(cmd, 1);
+          break;
+        case Dispatch::kScanKeys:
+          kernels_[k].dispatch(cmd, scan_groups_);
           break;
         case Dispatch::kCacheKeys:
           vkCmdDispatch(cmd, (max_keys_per_type_ + kGroupSize - 1) / kGroupSize, type_count_, 1);

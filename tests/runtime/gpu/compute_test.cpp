@@ -437,6 +437,35 @@ uint32_t expect_instanced_identical(const Scene& scene, const FrameState& state,
   return coarser;
 }
 
+// The type scan split into one workgroup per key (CrowdComputeOptions::scan_keys_per_group =
+// 1, what a many-type crowd of millions gets by default) gives the CPU's results: on the
+// corner path (a key per type) and with instanced static levels (a key per (type, level)).
+TEST_F(ComputeTest, TypeScanSplitBetweenWorkgroupsIsIdenticalToTheCpu) {
+  Scene scene;
+  ASSERT_TRUE(test::make_compute_scene(scene, 600, 17, continuous(120000)).ok());
+  for (bool instanced : {false, true}) {
+    SCOPED_TRACE(instanced ? "instanced static levels" : "corner path");
+    CrowdComputeOptions options;
+    options.scan_keys_per_group = 1;
+    options.instanced_static_levels = instanced;
+    std::unique_ptr<CrowdCompute> compute;
+    ASSERT_TRUE(CrowdCompute::create(context(), scene, options, compute).ok());
+    scene.lod.mode = instanced ? LodMode::kDiscrete : LodMode::kContinuous;
+    run_frame(scene, 0.7f, *compute);
+    if (HasFatalFailure()) return;
+    if (instanced) {
+      expect_instanced_identical(scene, state_, *compute);
+    } else {
+      expect_identical(scene, *compute, true);
+      expect_draw_args(scene, *compute);
+    }
+    CrowdComputeStats stats;
+    ASSERT_TRUE(compute->read_stats(stats).ok());
+    EXPECT_EQ(stats.drawn_instances, state_.lod.drawn);
+    EXPECT_GT(state_.lod.drawn, 100u);
+  }
+}
+
 TEST_F(ComputeTest, InstancedStaticLevelsDrawTheCpuMeshes) {
   Scene scene;
   ASSERT_TRUE(test::make_compute_scene(scene, 300, 13, continuous(60000)).ok());

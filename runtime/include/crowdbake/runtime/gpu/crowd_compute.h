@@ -110,6 +110,9 @@ struct CrowdComputeOptions {
   // cache" above): its size in bytes, split evenly between the types (at least one slot each,
   // at most the device's maxStorageBufferRange). 0: 64 MiB.
   uint64_t level_cache_bytes = 0;
+  // Keys (types, or (type, level) slots) per workgroup of the type scan; 0: as many as keep a
+  // lane's loops far below lavapipe's limit. Tests set 1 to give every key its own.
+  uint32_t scan_keys_per_group = 0;
 };
 
 // Per-instance result of the passes (instance_lod_buffer(), std430, 36 bytes).
@@ -162,7 +165,7 @@ struct ComputeTimings {
 
 class CrowdCompute {
  public:
-  static constexpr uint32_t kKernelCount = 11;  // the level cache pass runs four
+  static constexpr uint32_t kKernelCount = 12;  // the type scan runs two, the level cache four
   // Timestamps record() writes when given queries: first_query .. first_query + kPasses.
   static constexpr uint32_t kTimestampCount = ComputeTimings::kPasses + 1;
 
@@ -254,6 +257,7 @@ class CrowdCompute {
       build_list_, level_cache_, cache_hands_, ladder_sums_, type_marks_, miss_keys_;
   bool instanced_levels_ = false, instanced_ = false, cached_ = false;
   uint32_t frame_ = 0, key_total_ = 1, slot_total_ = 1, max_keys_per_type_ = 0;
+  uint32_t scan_groups_ = 1, scan_keys_per_group_option_ = 0;
   uint64_t cache_indices_ = 0, gpu_bytes_ = 0;
   std::vector<LevelCacheLayout> cache_layout_;
   std::vector<uint32_t> level_vertices_;  // per slot: the level's vertex count (0 = none)
