@@ -139,6 +139,9 @@ layout(std430, set = 0, binding = 26) buffer MissKeys { uint miss_keys[]; };
 
 uint sat_add(uint a, uint b) { return min(a + b, kSaturated); }  // a, b <= kSaturated
 
+// Level cache: a key drawn this frame that holds no slot.
+bool level_cache_miss(uint key) { return key_counts[key] > 0u && key_states[key].x == kNotDrawn; }
+
 // note: 64-bit sums as (lo, hi) pairs with carries, so no shaderInt64 is needed.
 #define ADD64(lo, hi, value)                      \
   {                                               \

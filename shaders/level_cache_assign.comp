@@ -8,8 +8,6 @@
 
 layout(local_size_x = 256) in;
 
-bool is_miss(uint key) { return key_counts[key] > 0u && key_states[key].x == kNotDrawn; }
-
 void main() {
   if (params.cached == 0u) return;
   const uint frame = params.frame;
@@ -18,7 +16,7 @@ void main() {
     if (t.slot_count == 0u) continue;
     const uint last = t.key_base + t.vertex_count;
     const uint first_miss = key_states[t.key_base].z;
-    const uint end_miss = key_states[last].z + (is_miss(last) ? 1u : 0u);
+    const uint end_miss = key_states[last].z + (level_cache_miss(last) ? 1u : 0u);
     uint free = t.slot_count - min(type_marks[type].x, t.slot_count);
     const uint first_slotted = kNotDrawn - type_marks[type].y;  // kNotDrawn: none
     uint hand = cache_hands[type];

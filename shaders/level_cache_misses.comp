@@ -8,18 +8,16 @@
 
 layout(local_size_x = 256) in;
 
-bool is_miss(uint key) { return key_counts[key] > 0u && key_states[key].x == kNotDrawn; }
-
 void main() {
   if (params.cached == 0u) return;
   const uint lane = gl_LocalInvocationID.x;
   const uvec2 run = lane_run(lane, params.key_total);
   uint misses = 0u;
   for (uint key = run.x; key < run.y; ++key)
-    if (is_miss(key)) ++misses;
+    if (level_cache_miss(key)) ++misses;
   uint rank = lane_exclusive_scan(lane, uvec2(misses, 0u)).x;
   for (uint key = run.x; key < run.y; ++key) {
     key_states[key].z = rank;
-    if (is_miss(key)) miss_keys[rank++] = key;
+    if (level_cache_miss(key)) miss_keys[rank++] = key;
   }
 }

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "pack_compression.h"
 #include "crowdbake/formats/pack.h"
+#include "pack_compression.h"
 
 namespace {
 

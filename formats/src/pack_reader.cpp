@@ -171,8 +171,8 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
                  hex(crc) + "): the chunk is corrupt");
   const KnownChunk* known = find_known(chunk.tag);
   if (!known) return {};  // note: unknown chunks are skipped (newer minor versions add them)
-  if (chunk.version > known->version || chunk.version < std::max(known->oldest, 1u) ||
-      (known->oldest == 0 && chunk.version != known->version))
+  const uint32_t oldest = known->oldest ? known->oldest : known->version;
+  if (chunk.version < oldest || chunk.version > known->version)
     return error("unsupported " + name + " version " + std::to_string(chunk.version) +
                  " (this build reads <= " + std::to_string(known->version) + ")");
   // note: a wrapped chunk (§2.5) is decoded from its expanded version-1 payload.
