@@ -91,6 +91,7 @@ int run_bake(const BakeCommandSettings& s) {
     j["input"] = {{"file", s.input},
                   {"joints", asset.skeleton.joints.size()},
                   {"vertices", asset.vertex_count()},
+                  {"welded_vertices", asset.stats.vertices_welded},
                   {"triangles", asset.triangle_count()},
                   {"clips", asset.clips.size()}};
     j["output"] = {{"file", s.output}, {"bytes", bytes.size()}};

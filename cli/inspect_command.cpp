@@ -33,6 +33,7 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
   j["skeleton_depth"] = asset.skeleton.depth();
   j["root"] = root_name(asset.skeleton);
   j["vertices"] = asset.vertex_count();
+  j["welded_vertices"] = asset.stats.vertices_welded;
   j["triangles"] = asset.triangle_count();
   j["max_influences"] = max_influences(asset);
   j["source_max_influences"] = asset.stats.max_influences;
@@ -66,6 +67,10 @@ void print_text(const SkinnedAsset& asset) {
       "%d)\n",
       asset.primitives.size(), asset.vertex_count(), asset.triangle_count(), max_influences(asset),
       asset.stats.max_influences);
+  if (asset.stats.vertices_welded > 0)
+    std::printf(
+        "             %d identical vertices welded (--keep-duplicate-vertices keeps them)\n",
+        asset.stats.vertices_welded);
   for (const Primitive& p : asset.primitives)
     std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s\n", p.name.c_str(),
                 p.material, p.vertex_count(), p.triangle_count(),

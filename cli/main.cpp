@@ -36,6 +36,9 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
   command.add_flag("--strict-textures", options.strict_textures,
                    "A base colour texture that cannot be stored (missing, not PNG/JPEG, "
                    "corrupt, too large) is an error instead of a warning");
+  command.add_flag("!--keep-duplicate-vertices", options.weld,
+                   "Keep vertices that repeat another of their primitive in every attribute "
+                   "(by default they are merged, losslessly)");
   command.add_flag("!--import-in-process", options.limits.isolate,
                    "Import in crowdbake's own process (no limits; a crash in the importer "
                    "ends crowdbake): for debugging importers");

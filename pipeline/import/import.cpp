@@ -134,6 +134,7 @@ SkinnedAsset import_asset(const std::string& path, const ImportOptions& options)
   SkinnedAsset asset = options.limits.isolate ? import_isolated(path, kind, options)
                                               : import_here(path, kind, options);
   validate_asset(asset);
+  if (options.weld) asset.stats.vertices_welded = static_cast<int>(weld_identical_vertices(asset));
   return asset;
 }
 

@@ -100,7 +100,8 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
   // cost a hero character's whole vertex data per level.
   SkinnedAsset lod;
   lod.source = asset.source, lod.files = asset.files, lod.skeleton = asset.skeleton;
-  lod.materials = asset.materials, lod.clips = asset.clips, lod.stats = asset.stats;
+  lod.materials = asset.materials, lod.images = asset.images, lod.clips = asset.clips;
+  lod.stats = asset.stats;
   lod.warnings = asset.warnings;
   for (const Primitive& p : asset.primitives) {
     lod.primitives.emplace_back();

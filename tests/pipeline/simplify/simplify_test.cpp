@@ -330,6 +330,23 @@ TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) {
   expect_valid(a);
 }
 
+TEST(SimplifyHardCases, LevelsKeepTheMaterialsAndTheirImages) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  a.images.push_back({"skin.png", "image/png", 1, 1, {1, 2, 3}});
+  a.materials.resize(1);
+  a.materials[0].base_color_image = 0;
+  a.primitives[0].material = 0;
+  const ProgressiveMesh pm = simplify(a, {});
+  const SkinnedAsset lod = extract_lod(a, pm, pm.vertex_count() / 2);
+  EXPECT_NO_THROW(validate_asset(lod));  // `crowdbake lod` exports textured characters
+  ASSERT_EQ(lod.images.size(), 1u);
+  EXPECT_EQ(lod.images[0].data, a.images[0].data);
+  EXPECT_EQ(lod.materials[0].base_color_image, 0);
+}
+
 TEST(SimplifyOptionsErrors, ZeroSamplesIsAUsageError) {
   std::vector<glm::vec3> p;
   std::vector<uint32_t> i;

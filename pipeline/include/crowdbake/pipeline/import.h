@@ -29,6 +29,9 @@ struct ImportOptions {
   // A base colour texture that cannot be stored (missing file, not PNG/JPEG, corrupt, over
   // pack_format::kMaxImageSide): false warns and keeps the colour factor, true is an error.
   bool strict_textures = false;
+  // Merge each primitive's vertices that are identical in every attribute
+  // (weld_identical_vertices); false keeps the file's vertices one for one.
+  bool weld = true;
 };
 
 // Reads a character. Throws crowdbake::Error naming the file, the problem and the fix.

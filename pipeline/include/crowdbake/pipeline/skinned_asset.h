@@ -118,6 +118,8 @@ struct ImportStats {
   // Animated nodes that are not joints of a skin but move it (an armature node above the
   // root, a helper between joints or above a rigid mesh): kept as joints without weights.
   int animated_nodes_kept = 0;
+  // Vertices merged into an identical one of the same primitive (ImportOptions::weld).
+  int vertices_welded = 0;
 };
 
 struct SkinnedAsset {
@@ -139,5 +141,11 @@ struct SkinnedAsset {
 
 // Throws crowdbake::Error (kind kInput) naming the first broken rule.
 void validate_asset(const SkinnedAsset& asset);
+
+// Merges the vertices of each primitive that agree in every attribute (position, UV,
+// joints and weights bit for bit with -0 equal to +0; normals within 1e-5) into the first
+// of them, keeping the survivors' order and remapping the indices. Primitives are welded separately. Returns
+// how many vertices were removed.
+size_t weld_identical_vertices(SkinnedAsset& asset);
 
 }  // namespace crowdbake

@@ -1,0 +1,123 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "asset_paths.h"
+#include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/skinned_asset.h"
+
+namespace crowdbake {
+namespace {
+
+// Two triangles written per corner, as flat exports do: six vertices, four of them
+// two pairs of copies (the shared edge).
+Primitive per_corner_quad() {
+  Primitive p;
+  p.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  p.normals.assign(6, {0, 0, 1});
+  p.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 1}};
+  p.joints.assign(6, {0, 1, 0, 0});
+  p.weights.assign(6, {0.75f, 0.25f, 0, 0});
+  p.indices = {0, 1, 2, 3, 4, 5};
+  return p;
+}
+
+TEST(VertexWeld, MergesCopiesKeepingOrderAndTriangles) {
+  SkinnedAsset a;
+  a.primitives.push_back(per_corner_quad());
+  const Primitive before = a.primitives[0];
+  EXPECT_EQ(weld_identical_vertices(a), 2u);
+  const Primitive& p = a.primitives[0];
+  ASSERT_EQ(p.vertex_count(), 4u);
+  EXPECT_EQ(p.normals.size(), 4u);
+  EXPECT_EQ(p.uvs.size(), 4u);
+  EXPECT_EQ(p.joints.size(), 4u);
+  EXPECT_EQ(p.weights.size(), 4u);
+  // First occurrences in their original order: 0, 1, 2, 4.
+  EXPECT_EQ(p.positions[3], glm::vec3(1, 1, 0));
+  EXPECT_EQ(p.indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+  // Every corner still reads the attributes it read before.
+  for (size_t c = 0; c < p.indices.size(); ++c) {
+    EXPECT_EQ(p.positions[p.indices[c]], before.positions[before.indices[c]]);
+    EXPECT_EQ(p.uvs[p.indices[c]], before.uvs[before.indices[c]]);
+  }
+  EXPECT_EQ(weld_identical_vertices(a), 0u) << "a welded primitive has nothing left to weld";
+}
+
+TEST(VertexWeld, AnyDifferingAttributeKeepsTheCopy) {
+  const std::vector<void (*)(Primitive&)> changes = {
+      [](Primitive& p) { p.positions[3].y = 1e-7f; },
+      [](Primitive& p) {
+        p.normals[3] = {0, 0, -1};
+      },
+      [](Primitive& p) { p.uvs[3].x = 0.5f; },
+      [](Primitive& p) { p.joints[3][1] = 2; },
+      [](Primitive& p) {
+        p.weights[3] = {0.5f, 0.5f, 0, 0};
+      },
+  };
+  for (size_t i = 0; i < changes.size(); ++i) {
+    SkinnedAsset a;
+    a.primitives.push_back(per_corner_quad());
+    changes[i](a.primitives[0]);
+    EXPECT_EQ(weld_identical_vertices(a), 1u) << "change " << i;  // only vertex 5 welds
+    EXPECT_EQ(a.primitives[0].vertex_count(), 5u) << "change " << i;
+  }
+}
+
+TEST(VertexWeld, NormalsWeldWithinTheirTolerance) {
+  // Exporters recompute a corner's normal per face: copies differ in the last bits.
+  for (const float dz : {1e-6f, 1e-3f}) {
+    SkinnedAsset a;
+    a.primitives.push_back(per_corner_quad());
+    a.primitives[0].normals[3] = glm::normalize(glm::vec3(dz, 0, 1));
+    EXPECT_EQ(weld_identical_vertices(a), dz < 1e-5f ? 2u : 1u) << "normal moved by " << dz;
+    EXPECT_EQ(a.primitives[0].normals[1], glm::vec3(0, 0, 1)) << "the first copy's normal is kept";
+  }
+}
+
+TEST(VertexWeld, SignedZerosWeldAndPrimitivesStaySeparate) {
+  SkinnedAsset a;
+  a.primitives.push_back(per_corner_quad());
+  a.primitives[0].positions[3] = {1, -0.0f, -0.0f};
+  a.primitives.push_back(per_corner_quad());
+  a.primitives[1].normals.clear();
+  a.primitives[1].uvs.clear();
+  EXPECT_EQ(weld_identical_vertices(a), 4u);
+  EXPECT_EQ(a.primitives[0].vertex_count(), 4u);
+  EXPECT_EQ(a.primitives[1].vertex_count(), 4u) << "no normals or UVs: positions and skin decide";
+  EXPECT_TRUE(a.primitives[1].normals.empty());
+}
+
+// The independent count: MANIFEST.json records how many vertices Assimp's
+// JoinIdenticalVertices leaves for some assets. It compares positions, normals and UVs
+// but not skin weights, so it may weld a few more: Male_Casual has 4 pairs of vertices at
+// one position with one normal and UV that its skin weights keep apart (3952 against 3948).
+TEST(VertexWeld, ImportMatchesAssimpJoinOnTheSharedAssets) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  const nlohmann::json manifest =
+      nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
+  int checked = 0;
+  for (const nlohmann::json& entry : manifest["assets"]) {
+    if (!entry.contains("vertices_unique_after_assimp_join")) continue;
+    const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
+    SCOPED_TRACE(path);
+    const SkinnedAsset welded = import_asset(path);
+    ImportOptions keep;
+    keep.weld = false;
+    const SkinnedAsset kept = import_asset(path, keep);
+    EXPECT_EQ(kept.vertex_count(), entry["vertices"].get<size_t>());
+    const size_t assimp = entry["vertices_unique_after_assimp_join"].get<size_t>();
+    EXPECT_GE(welded.vertex_count(), assimp);
+    EXPECT_LE(welded.vertex_count(), assimp + assimp / 500) << "within 0.2% of Assimp's count";
+    EXPECT_EQ(static_cast<size_t>(welded.stats.vertices_welded),
+              kept.vertex_count() - welded.vertex_count());
+    EXPECT_EQ(welded.triangle_count(), kept.triangle_count());
+    ++checked;
+  }
+  EXPECT_GT(checked, 0) << "MANIFEST.json lists no Assimp join counts";
+}
+
+}  // namespace
+}  // namespace crowdbake
