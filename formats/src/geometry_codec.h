@@ -33,6 +33,7 @@ struct GeometryLayout {
   uint32_t triangle_count = 0;
   uint32_t attributes = 0;                                  // GeometryAttribute bits
   uint8_t position_bits = 0, normal_bits = 0, uv_bits = 0;  // 0 = float
+  uint8_t weight_bits = 0;  // 0 = float; GEOM v2 only, never for the raw codec
 
   bool has(uint32_t attribute) const { return (attributes & attribute) != 0; }
   // Bytes of the decoded arrays (what a decoder allocates).
@@ -41,6 +42,11 @@ struct GeometryLayout {
 
 // The layout write_pack stores for `g` (bits forced to 0 for the raw codec).
 GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOptions& options);
+
+// Skin weights as integers of `bits` (1-16), four per vertex summing to 2^bits - 1 (the
+// rounding error moved onto each vertex's largest weight), and back.
+std::vector<uint16_t> quantize_weights(const std::vector<float>& weights, int bits);
+std::vector<float> dequantize_weights(const std::vector<uint16_t>& levels, int bits);
 
 void encode_geometry_raw(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);
 bool decode_geometry_raw(ByteReader& in, const GeometryLayout& layout, PackGeometry& out);

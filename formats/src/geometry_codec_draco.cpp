@@ -7,9 +7,10 @@
 //   cannot decode a sequential mesh of zero faces).
 // - POSITION and TEX_COORD use Draco's grid quantisation, NORMAL its octahedral one, with
 //   the bits of PackWriteOptions; 0 bits leaves the float exact.
-// - Joints (uint16 x4), weights (float x4) and regions (uint8) are GENERIC attributes
-//   that are never quantised, so they survive exactly (Draco's glTF path has a history of
-//   narrowing JOINTS_0 and quantising WEIGHTS_0; this path has neither).
+// - Joints (uint16 x4), weights and regions (uint8) are GENERIC attributes that Draco
+//   never quantises itself (its glTF path has a history of narrowing JOINTS_0 and
+//   quantising WEIGHTS_0): weights arrive already as integers of weight_bits
+//   (quantize_weights), or as their exact float bits when weight_bits is 0.
 // - Per-triangle materials cannot be a mesh attribute (Draco attributes are per point),
 //   so they go in a second Draco stream: a sequential point cloud with one uint16 per
 //   triangle, entropy-coded.
@@ -101,8 +102,12 @@ std::vector<uint8_t> encode_mesh(const PackGeometry& g, const GeometryLayout& la
   if (layout.has(kAttrSkin)) {
     add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 4, kIdJoints,
                   g.joints);
-    add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 8, kIdWeights,
-                  split_weights(g.weights));
+    if (layout.weight_bits)
+      add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 4, kIdWeights,
+                    quantize_weights(g.weights, layout.weight_bits));
+    else
+      add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT16, 8, kIdWeights,
+                    split_weights(g.weights));
   }
   if (layout.has(kAttrRegions))
     add_attribute(mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, 1, kIdRegions,
@@ -280,9 +285,12 @@ bool decode_geometry_draco(ByteReader& in, const GeometryLayout& layout, PackGeo
       return false;
     if (layout.has(kAttrSkin) &&
         (!get_attribute(in, *mesh, kIdJoints, draco::DT_UINT16, 4, out.joints, "joints") ||
-         !get_attribute(in, *mesh, kIdWeights, draco::DT_UINT16, 8, weight_halves, "weights")))
+         !get_attribute(in, *mesh, kIdWeights, draco::DT_UINT16, layout.weight_bits ? 4 : 8,
+                        weight_halves, "weights")))
       return false;
-    if (layout.has(kAttrSkin)) out.weights = join_weights(weight_halves);
+    if (layout.has(kAttrSkin))
+      out.weights = layout.weight_bits ? dequantize_weights(weight_halves, layout.weight_bits)
+                                       : join_weights(weight_halves);
     if (layout.has(kAttrRegions) &&
         !get_attribute(in, *mesh, kIdRegions, draco::DT_UINT8, 1, out.regions, "regions"))
       return false;

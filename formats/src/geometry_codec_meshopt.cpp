@@ -294,7 +294,12 @@ void encode_geometry_meshopt(const PackGeometry& g, const GeometryLayout& layout
   if (layout.has(kAttrUvs)) put_float_attribute(out, g.uvs, 2, layout.uv_bits);
   if (layout.has(kAttrSkin)) {
     put_stream(out, g.joints.data(), v, 4 * sizeof(uint16_t));
-    put_stream(out, g.weights.data(), v, 4 * sizeof(float));
+    if (layout.weight_bits) {
+      const std::vector<uint16_t> levels = quantize_weights(g.weights, layout.weight_bits);
+      put_stream(out, levels.data(), v, 4 * sizeof(uint16_t));
+    } else {
+      put_stream(out, g.weights.data(), v, 4 * sizeof(float));
+    }
   }
   if (layout.has(kAttrRegions)) put_narrow(out, g.regions);
   put_triangles(out, g.triangles, layout.vertex_count);
@@ -316,9 +321,16 @@ bool decode_geometry_meshopt(ByteReader& in, const GeometryLayout& layout, PackG
     if (!get_stream(in, bytes, v, 4 * sizeof(uint16_t), "joints")) return false;
     out.joints.resize(4 * v);
     if (v) std::memcpy(out.joints.data(), bytes.data(), bytes.size());
-    if (!get_stream(in, bytes, v, 4 * sizeof(float), "weights")) return false;
-    out.weights.resize(4 * v);
-    if (v) std::memcpy(out.weights.data(), bytes.data(), bytes.size());
+    if (layout.weight_bits) {
+      if (!get_stream(in, bytes, v, 4 * sizeof(uint16_t), "weights")) return false;
+      std::vector<uint16_t> levels(4 * v);
+      if (v) std::memcpy(levels.data(), bytes.data(), bytes.size());
+      out.weights = dequantize_weights(levels, layout.weight_bits);
+    } else {
+      if (!get_stream(in, bytes, v, 4 * sizeof(float), "weights")) return false;
+      out.weights.resize(4 * v);
+      if (v) std::memcpy(out.weights.data(), bytes.data(), bytes.size());
+    }
   }
   if (layout.has(kAttrRegions) && !get_narrow(in, out.regions, v, "regions")) return false;
   if (!get_triangles(in, out.triangles, layout.triangle_count)) return false;

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "geometry_codec.h"
@@ -30,8 +32,37 @@ GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOption
     layout.position_bits = static_cast<uint8_t>(options.position_bits);
     layout.normal_bits = layout.has(kAttrNormals) ? static_cast<uint8_t>(options.normal_bits) : 0;
     layout.uv_bits = layout.has(kAttrUvs) ? static_cast<uint8_t>(options.uv_bits) : 0;
+    layout.weight_bits = layout.has(kAttrSkin) ? static_cast<uint8_t>(options.weight_bits) : 0;
   }
   return layout;
+}
+
+std::vector<uint16_t> quantize_weights(const std::vector<float>& weights, int bits) {
+  const int32_t top = (1 << bits) - 1;
+  std::vector<uint16_t> levels(weights.size());
+  for (size_t v = 0; v + 4 <= weights.size(); v += 4) {
+    int32_t q[4], sum = 0;
+    size_t largest = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      const double w = std::clamp(static_cast<double>(weights[v + k]), 0.0, 1.0);
+      q[k] = static_cast<int32_t>(std::lround(w * top));
+      sum += q[k];
+      if (weights[v + k] > weights[v + largest]) largest = k;
+    }
+    // note: rounding four weights that sum to 1 leaves the sum within 2 of top; moving the
+    // difference onto the largest (at least top / 4) keeps every level in [0, top].
+    if (sum > 0) q[largest] = std::clamp(q[largest] + top - sum, 0, top);
+    for (size_t k = 0; k < 4; ++k) levels[v + k] = static_cast<uint16_t>(q[k]);
+  }
+  return levels;
+}
+
+std::vector<float> dequantize_weights(const std::vector<uint16_t>& levels, int bits) {
+  const double top = static_cast<double>((1 << bits) - 1);
+  std::vector<float> weights(levels.size());
+  for (size_t i = 0; i < levels.size(); ++i)
+    weights[i] = static_cast<float>(std::min(1.0, levels[i] / top));
+  return weights;
 }
 
 }  // namespace crowdbake::pack_io

@@ -394,7 +394,7 @@ void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, Byt
   out.u8(layout.position_bits);
   out.u8(layout.normal_bits);
   out.u8(layout.uv_bits);
-  out.u8(0);
+  out.u8(layout.weight_bits);
   for (int i = 0; i < 3; ++i) out.u32(0);
   switch (layout.codec) {
     case GeometryCodec::kDraco:
@@ -409,10 +409,13 @@ void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, Byt
   }
 }
 
-bool decode_geometry(ByteReader& in, PackGeometry& out) {
+uint32_t geometry_version(const PackGeometry& g, const PackWriteOptions& options) {
+  return make_geometry_layout(g, options).weight_bits ? kGeomVersion : kGeomOldestVersion;
+}
+
+bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out) {
   GeometryLayout layout;
-  uint32_t codec = 0, reserved[4] = {};
-  uint8_t reserved8 = 0;
+  uint32_t codec = 0, reserved[3] = {};
   in.u32(codec, "codec");
   in.u32(layout.vertex_count, "vertex count");
   in.u32(layout.triangle_count, "triangle count");
@@ -420,10 +423,10 @@ bool decode_geometry(ByteReader& in, PackGeometry& out) {
   in.u8(layout.position_bits, "position bits");
   in.u8(layout.normal_bits, "normal bits");
   in.u8(layout.uv_bits, "uv bits");
-  in.u8(reserved8, "reserved");
+  in.u8(layout.weight_bits, version >= 2 ? "weight bits" : "reserved");
   for (int i = 0; i < 3; ++i) in.u32(reserved[i], "reserved");
   if (!in.ok()) return false;
-  if (reserved8 || reserved[0] || reserved[1] || reserved[2])
+  if ((version < 2 && layout.weight_bits) || reserved[0] || reserved[1] || reserved[2])
     return in.fail("reserved header fields are not zero");
   if (codec > static_cast<uint32_t>(GeometryCodec::kRaw))
     return in.fail("unknown codec " + std::to_string(codec));
@@ -440,9 +443,11 @@ bool decode_geometry(ByteReader& in, PackGeometry& out) {
   };
   if (bad_bits(layout.position_bits, true, 1) ||
       bad_bits(layout.normal_bits, layout.has(kAttrNormals), 2) ||
-      bad_bits(layout.uv_bits, layout.has(kAttrUvs), 1))
+      bad_bits(layout.uv_bits, layout.has(kAttrUvs), 1) || (layout.weight_bits > kMaxWeightBits) ||
+      (layout.weight_bits && (layout.codec == GeometryCodec::kRaw || !layout.has(kAttrSkin))))
     return in.fail("quantisation bits " + std::to_string(layout.position_bits) + "/" +
-                   std::to_string(layout.normal_bits) + "/" + std::to_string(layout.uv_bits) +
+                   std::to_string(layout.normal_bits) + "/" + std::to_string(layout.uv_bits) + "/" +
+                   std::to_string(layout.weight_bits) +
                    " are invalid for this codec and attribute set");
   if (layout.codec != GeometryCodec::kRaw) {
     // note: compressed streams may expand; bound what a small hostile chunk can allocate.

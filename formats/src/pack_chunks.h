@@ -47,7 +47,9 @@ bool decode_level_errors(ByteReader& in, PackLevelErrors& out);
 
 void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options,
                      ByteWriter& out);
-bool decode_geometry(ByteReader& in, PackGeometry& out);
+// The GEOM version write_pack uses: v2 when weights are quantised, else v1 (§3.7).
+uint32_t geometry_version(const PackGeometry& geometry, const PackWriteOptions& options);
+bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out);
 
 // ANIM v2 when `compressed` (the texels as one zstd frame), v1 otherwise.
 void encode_animation(const AnimationTexture& animation, bool compressed, ByteWriter& out);

@@ -52,7 +52,7 @@ constexpr KnownChunk kKnownChunks[] = {
     {kTagBnds, kBndsVersion},
     {kTagProg, kWrappedVersion, true, kProgVersion},
     {kTagLerr, kLerrVersion, false},
-    {kTagGeom, kGeomVersion},
+    {kTagGeom, kGeomVersion, true, kGeomOldestVersion},
     {kTagAnim, kAnimVersion, true, kAnimOldestVersion},
     {kTagPart, kWrappedVersion, true, kPartVersion},
     {kTagImgs, kImgsVersion, false},
@@ -215,7 +215,7 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
       ok = pack_io::decode_level_errors(in, out.level_errors);
       break;
     case kTagGeom:
-      ok = pack_io::decode_geometry(in, out.geometry);
+      ok = pack_io::decode_geometry(in, chunk.version, out.geometry);
       break;
     case kTagAnim:
       ok = pack_io::decode_animation(in, chunk.version, out.animation);

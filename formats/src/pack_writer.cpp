@@ -38,6 +38,10 @@ void check_options(const PackWriteOptions& o) {
         " (normals 2.." + std::to_string(kMaxQuantizationBits) + "), got position " +
         std::to_string(o.position_bits) + ", normal " + std::to_string(o.normal_bits) + ", uv " +
         std::to_string(o.uv_bits));
+  if (o.weight_bits < 0 || o.weight_bits > static_cast<int>(kMaxWeightBits))
+    throw std::invalid_argument("write_pack: weight bits must be 0 (exact floats) or 1.." +
+                                std::to_string(kMaxWeightBits) + ", got " +
+                                std::to_string(o.weight_bits));
 }
 
 }  // namespace
@@ -110,7 +114,8 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
   if (!contents.level_errors.vertices.empty())
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
-  pack_io::encode_geometry(contents.geometry, options, add(kTagGeom, kGeomVersion));
+  pack_io::encode_geometry(contents.geometry, options,
+                           add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
   const bool compressed = options.compression == PackCompression::kZstd;
   pack_io::encode_animation(contents.animation, compressed,
                             add(kTagAnim, compressed ? kAnimVersion : kAnimOldestVersion));

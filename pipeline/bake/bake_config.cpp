@@ -184,6 +184,8 @@ class ConfigReader {
         g.normal_bits = static_cast<int>(number(key, v, 0, 30));
       else if (k == "uv_bits")
         g.uv_bits = static_cast<int>(number(key, v, 0, 30));
+      else if (k == "weight_bits")
+        g.weight_bits = static_cast<int>(number(key, v, 0, 16));
       else
         fail(key, "unknown key");
     }
@@ -236,6 +238,7 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["geometry"]["position_bits"] = s.pack.position_bits;
   j["geometry"]["normal_bits"] = s.pack.normal_bits;
   j["geometry"]["uv_bits"] = s.pack.uv_bits;
+  j["geometry"]["weight_bits"] = s.pack.weight_bits;
   j["pack"]["compression"] = name_of(kCompressions, s.pack.compression);
   return j.dump();
 }

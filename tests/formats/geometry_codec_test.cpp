@@ -46,7 +46,7 @@ TEST(MeshoptCodec, TriangleOrderAndCornersSurviveInOrderedAndShuffledMeshes) {
     }
   for (const std::vector<uint32_t>& triangles : {ordered, g.triangles}) {
     g.triangles = triangles;
-    const GeometryLayout layout = make_geometry_layout(g, {GeometryCodec::kMeshopt, 0, 0, 0});
+    const GeometryLayout layout = make_geometry_layout(g, {GeometryCodec::kMeshopt, 0, 0, 0, 0});
     ByteWriter w;
     encode_geometry_meshopt(g, layout, w);
     PackGeometry out;

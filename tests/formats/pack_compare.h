@@ -48,7 +48,7 @@ inline bool same_bits(const std::vector<float>& a, const std::vector<float>& b) 
 }
 
 struct Tolerance {
-  double positions = 0.0, normals = 0.0, uvs = 0.0;
+  double positions = 0.0, normals = 0.0, uvs = 0.0, weights = 0.0;
 };
 
 inline void expect_same_contents(const PackContents& a, const PackContents& b,
@@ -106,7 +106,7 @@ inline void expect_same_contents(const PackContents& a, const PackContents& b,
   check_floats(ga.normals, gb.normals, tol.normals, "normals");
   check_floats(ga.uvs, gb.uvs, tol.uvs, "uvs");
   EXPECT_EQ(ga.joints, gb.joints);
-  EXPECT_TRUE(same_bits(ga.weights, gb.weights)) << "weights differ";
+  check_floats(ga.weights, gb.weights, tol.weights, "weights");
   EXPECT_EQ(ga.regions, gb.regions);
   EXPECT_EQ(ga.triangles, gb.triangles);
   EXPECT_EQ(ga.triangle_material, gb.triangle_material);

@@ -175,7 +175,7 @@ TEST(PackReader, NewerMinorVersionStillReads) {
   PackContents out;
   const PackStatus s = read(test::assemble_pack(test::split_pack(write_pack(in)), 1, 9), out);
   ASSERT_TRUE(s.ok) << s.message;
-  test::expect_same_contents(in, out, {1e-3, 1e-2, 1e-3});
+  test::expect_same_contents(in, out, {1e-3, 1e-2, 1e-3, 1e-4});
 }
 
 TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
@@ -207,15 +207,40 @@ TEST(PackReader, UnknownChunkVersionRejected) {
   auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   for (RawChunk& c : chunks) {
     const uint32_t saved = c.version;
-    c.version = saved + 1;
+    // note: the raw codec writes GEOM v1, the oldest of the two this build reads.
+    const uint32_t newest = c.tag == kTagGeom ? kGeomVersion : saved;
+    c.version = newest + 1;
     expect_error(read(test::assemble_pack(chunks)),
-                 "unsupported chunk " + tag_name(c.tag) + " version " + std::to_string(saved + 1) +
-                     " (this build reads <= " + std::to_string(saved) + ")");
+                 "unsupported chunk " + tag_name(c.tag) + " version " + std::to_string(newest + 1) +
+                     " (this build reads <= " + std::to_string(newest) + ")");
     c.version = 0;
     expect_error(read(test::assemble_pack(chunks)),
                  "unsupported chunk " + tag_name(c.tag) + " version 0");
     c.version = saved;
   }
+}
+
+TEST(PackReader, QuantisedWeightsNeedGeomVersion2) {
+  // GEOM header byte 19: reserved (zero) in v1, the weight bits in v2.
+  auto chunks = test::split_pack(small_pack(GeometryCodec::kDraco));
+  RawChunk* geom = nullptr;
+  for (RawChunk& c : chunks)
+    if (c.tag == kTagGeom) geom = &c;
+  ASSERT_NE(geom, nullptr);
+  EXPECT_EQ(geom->version, 2u);
+  EXPECT_EQ(geom->payload[19], 16u) << "the default stores 16-bit weights";
+  EXPECT_TRUE(read(test::assemble_pack(chunks)).ok);
+  geom->version = 1;
+  expect_error(read(test::assemble_pack(chunks)), "reserved header fields are not zero");
+  geom->version = 2;
+  geom->payload[19] = 17;
+  expect_error(read(test::assemble_pack(chunks)), "quantisation bits 16/10/12/17 are invalid");
+
+  PackWriteOptions exact{GeometryCodec::kDraco};
+  exact.weight_bits = 0;
+  const PackChunk v1 =
+      test::find_chunk(write_pack(test::make_test_contents(4, 21), exact), kTagGeom);
+  EXPECT_EQ(v1.version, 1u) << "exact weights stay readable by 1.3 readers";
 }
 
 TEST(PackReader, MissingOrDuplicateChunksRejected) {
@@ -232,7 +257,7 @@ TEST(PackReader, MissingOrDuplicateChunksRejected) {
 
 TEST(PackReader, ChunksInAnyFileOrderRead) {
   const PackContents in = test::make_test_contents(4, 24);
-  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0}));
+  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0}));
   std::reverse(chunks.begin(), chunks.end());
   PackContents out;
   const PackStatus s = read(test::assemble_pack(chunks), out);
@@ -414,7 +439,7 @@ TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
 
 TEST(PackReader, ReadOneChunkForStreaming) {
   const PackContents in = test::make_test_contents(5, 25);
-  const std::vector<uint8_t> bytes = write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0});
+  const std::vector<uint8_t> bytes = write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0});
   const PackChunk geom = test::find_chunk(bytes, kTagGeom);
   PackContents out;
   PackStatus s = read_pack_chunk(geom, bytes.data() + geom.offset, out);

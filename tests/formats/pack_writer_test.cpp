@@ -39,6 +39,7 @@ test::Tolerance tolerance_for(const PackContents& c, const PackWriteOptions& o) 
     tol.normals = o.codec == GeometryCodec::kDraco
                       ? 2.5 / ((1u << o.normal_bits) - 1) + 1e-6
                       : test::grid_tolerance(test::extent(c.geometry.normals, 3), o.normal_bits);
+  if (o.weight_bits) tol.weights = 2.5 / ((1u << o.weight_bits) - 1) + 1e-7;
   return tol;
 }
 
@@ -46,7 +47,7 @@ class RoundTrip : public ::testing::TestWithParam<GeometryCodec> {};
 
 TEST_P(RoundTrip, UnquantisedIsExact) {
   const PackContents in = make_test_contents(9, 3);
-  const PackWriteOptions options{GetParam(), 0, 0, 0};
+  const PackWriteOptions options{GetParam(), 0, 0, 0, 0};
   expect_same_contents(in, round_trip(in, options));
 }
 
@@ -69,7 +70,7 @@ TEST_P(RoundTrip, VertexAndTriangleOrderSurviveOnLargeMeshes) {
   // note: 300 x 300 = 90000 vertices: past Draco's 16-bit index width and meshopt's
   // 64k-vertex blocks; triangles shuffled and corners rotated by make_test_contents.
   const PackContents in = make_test_contents(300, 6);
-  const PackContents out = round_trip(in, {GetParam(), 0, 0, 0});
+  const PackContents out = round_trip(in, {GetParam(), 0, 0, 0, 0});
   EXPECT_EQ(out.geometry.triangles, in.geometry.triangles);
   EXPECT_TRUE(test::same_bits(out.geometry.positions, in.geometry.positions));
   EXPECT_EQ(out.geometry.joints, in.geometry.joints);
@@ -90,9 +91,41 @@ TEST_P(RoundTrip, JointsAndWeightsExactEvenAtTheirExtremes) {
     float* w = &in.geometry.weights[4 * v];
     w[0] = 1.0f / 3.0f, w[1] = 1e-7f, w[2] = std::nextafter(0.5f, 1.0f), w[3] = 0.0f;
   }
-  const PackContents out = round_trip(in, {GetParam()});
+  const PackContents out = round_trip(in, {GetParam(), 16, 10, 12, 0});
   EXPECT_EQ(out.geometry.joints, in.geometry.joints);
   EXPECT_TRUE(test::same_bits(out.geometry.weights, in.geometry.weights));
+}
+
+TEST_P(RoundTrip, QuantisedWeightsSumToOneWithinTheirBound) {
+  if (GetParam() == GeometryCodec::kRaw) GTEST_SKIP() << "the raw codec stores floats exactly";
+  PackContents in = make_test_contents(9, 11);
+  for (size_t v = 0; v < in.geometry.vertex_count(); ++v) {
+    float* w = &in.geometry.weights[4 * v];
+    // Four weights whose roundings all go the same way on some vertices.
+    const float a = 0.1f + 0.0007f * static_cast<float>(v % 97);
+    w[0] = a, w[1] = a / 3, w[2] = a / 7, w[3] = 1.0f - w[0] - w[1] - w[2];
+  }
+  for (const int bits : {1, 4, 8, 12, 16}) {
+    SCOPED_TRACE("weight bits " + std::to_string(bits));
+    PackWriteOptions options{GetParam()};
+    options.weight_bits = bits;
+    const PackContents out = round_trip(in, options);
+    const double step = 1.0 / ((1u << bits) - 1);
+    double worst = 0.0;
+    for (size_t v = 0; v < in.geometry.vertex_count(); ++v) {
+      double sum = 0.0;
+      for (size_t k = 0; k < 4; ++k) {
+        const float w = out.geometry.weights[4 * v + k];
+        sum += w;
+        worst = std::max(worst, std::fabs(double{w} - in.geometry.weights[4 * v + k]));
+        // Every decoded weight is a whole number of steps (up to the float's rounding).
+        EXPECT_NEAR(w / step, std::round(w / step), 1e-2) << "vertex " << v;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-6) << "vertex " << v;
+    }
+    EXPECT_LE(worst, 2.5 * step + 1e-7);
+    EXPECT_GT(worst, 0.0) << "these weights are not on the grid";
+  }
 }
 
 TEST_P(RoundTrip, OptionalAttributesAbsent) {
@@ -103,7 +136,7 @@ TEST_P(RoundTrip, OptionalAttributesAbsent) {
   in.geometry.triangle_material.clear();
   in.geometry.joints.clear();
   in.geometry.weights.clear();
-  expect_same_contents(in, round_trip(in, {GetParam(), 0, 0, 0}));
+  expect_same_contents(in, round_trip(in, {GetParam(), 0, 0, 0, 0}));
   expect_same_contents(in, round_trip(in, {GetParam()}), tolerance_for(in, {GetParam()}));
 }
 
@@ -130,7 +163,7 @@ TEST_P(RoundTrip, DeterministicBytes) {
   const PackWriteOptions options{GetParam()};
   EXPECT_EQ(write_pack(in, options), write_pack(in, options));
   // Rewriting what was read gives the same file when nothing is quantised.
-  const PackWriteOptions exact{GetParam(), 0, 0, 0};
+  const PackWriteOptions exact{GetParam(), 0, 0, 0, 0};
   const std::vector<uint8_t> bytes = write_pack(in, exact);
   EXPECT_EQ(write_pack(round_trip(in, exact), exact), bytes);
 }
@@ -151,9 +184,10 @@ TEST(PackWriter, ChunksInStreamingOrderAligned) {
   for (const PackChunk& c : chunks) {
     order += pack_format::tag_name(c.tag) + " ";
     EXPECT_EQ(c.offset % 16, 0u);
-    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim ? pack_format::kAnimVersion
-                         : pack_io::is_wrappable(c.tag) ? pack_format::kWrappedVersion
-                                                        : 1u);
+    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim   ? pack_format::kAnimVersion
+                         : c.tag == pack_format::kTagGeom ? pack_format::kGeomVersion
+                         : pack_io::is_wrappable(c.tag)   ? pack_format::kWrappedVersion
+                                                          : 1u);
   }
   EXPECT_EQ(order, "HEAD SKEL CLIP MATL BNDS PROG GEOM ANIM PART ");
   EXPECT_EQ(bytes.size() % 16, 0u);

@@ -35,7 +35,7 @@ int write_packs(const std::string& dir) {
       emit(codec_name + "_grid" + std::to_string(grid), fuzz::small_pack_contents(grid, grid),
            {codec});
       emit(codec_name + "_grid" + std::to_string(grid) + "_exact",
-           fuzz::small_pack_contents(grid, grid + 10), {codec, 0, 0, 0});
+           fuzz::small_pack_contents(grid, grid + 10), {codec, 0, 0, 0, 0});
     }
     PackContents bare = fuzz::small_pack_contents(3, 30);
     bare.geometry.normals.clear();

@@ -101,7 +101,10 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   EXPECT_EQ(back.partition.width, pack.partition.width);
   EXPECT_EQ(back.geometry.regions, pack.geometry.regions);
   EXPECT_EQ(back.geometry.joints, pack.geometry.joints);
-  EXPECT_EQ(back.geometry.weights, pack.geometry.weights);
+  // Weights as 16-bit integers (docs/pack-format.md 3.7): each within 2.5 / 65535.
+  ASSERT_EQ(back.geometry.weights.size(), pack.geometry.weights.size());
+  for (size_t i = 0; i < pack.geometry.weights.size(); ++i)
+    ASSERT_NEAR(back.geometry.weights[i], pack.geometry.weights[i], 2.5 / 65535 + 1e-7) << i;
   ASSERT_EQ(back.joints.size(), asset.skeleton.joints.size());
   EXPECT_EQ(back.clips.size(), std::max<size_t>(asset.clips.size(), 1));
   // The skinned surface within the documented tolerances: quantised animation rows and

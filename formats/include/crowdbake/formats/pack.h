@@ -165,7 +165,10 @@ enum class GeometryCodec : uint32_t {
 // normal_bits must be 0 or >= 2 (Draco's octahedral normals need two). Positions and UVs
 // are quantised on a grid over their bounding cube: per component the error is at most
 // extent / (2 * (2^bits - 1)) (docs/pack-format.md gives the measured figures).
-// Joints, weights, regions and triangle materials are always stored exactly.
+// Skin weights are stored as unsigned integers of weight_bits (1-16; 0 keeps the floats
+// exactly): each vertex's four round to integers summing to 2^bits - 1, so they decode to
+// weights summing to 1 within float rounding, each within 2.5 / (2^bits - 1) of its
+// original. Joints, regions and triangle materials are always stored exactly.
 // kZstd (1.3): ANIM v2 stores the texels losslessly compressed (docs/pack-format.md §3.8) and
 // SKEL, CLIP, PROG and PART are stored as zstd frames of their v1 payloads (version 2, §2.5).
 // kNone: every chunk at version 1, which 1.2 readers read too.
@@ -176,6 +179,7 @@ struct PackWriteOptions {
   int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
   int normal_bits = 10;
   int uv_bits = 12;
+  int weight_bits = 16;  // skin weights as integers (0 = exact floats, GEOM v1)
   PackCompression compression = PackCompression::kZstd;
 };
 

@@ -11,7 +11,8 @@
 namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-constexpr uint16_t kPackVersionMinor = 3;  // additions; 1.3: ANIM v2 (compressed texels)
+// additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights)
+constexpr uint16_t kPackVersionMinor = 4;
 
 namespace pack_format {
 
@@ -55,7 +56,8 @@ constexpr uint32_t kMatlVersion = 1;
 constexpr uint32_t kBndsVersion = 1;
 constexpr uint32_t kProgVersion = 1;
 constexpr uint32_t kLerrVersion = 1;
-constexpr uint32_t kGeomVersion = 1;
+constexpr uint32_t kGeomVersion = 2;        // v2: skin weights may be quantised (§3.7)
+constexpr uint32_t kGeomOldestVersion = 1;  // written when weights are stored exactly
 constexpr uint32_t kAnimVersion = 2;        // v2: texels stored compressed (v1 still read)
 constexpr uint32_t kAnimOldestVersion = 1;  // written with PackCompression::kNone
 constexpr uint32_t kPartVersion = 1;
@@ -84,6 +86,7 @@ constexpr uint32_t kMaxImages = 4096;
 constexpr uint32_t kMaxImageSide = 8192;        // material image width/height
 constexpr uint32_t kMaxImageBytes = 64u << 20;  // one stored (encoded) image
 constexpr uint32_t kMaxQuantizationBits = 24;   // 0 = unquantised float
+constexpr uint32_t kMaxWeightBits = 16;         // skin weights are stored as uint16
 // A compressed GEOM chunk may not decode to more than this many bytes of arrays plus
 // kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
 constexpr uint64_t kGeomExpansionSlack = 1u << 20;
