@@ -144,8 +144,8 @@ void validate_asset(const SkinnedAsset& asset);
 
 // Merges the vertices of each primitive that agree in every attribute (position, UV,
 // joints and weights bit for bit with -0 equal to +0; normals within 1e-5) into the first
-// of them, keeping the survivors' order and remapping the indices. Primitives are welded separately. Returns
-// how many vertices were removed.
+// of them, keeping the survivors' order and remapping the indices. Primitives are welded
+// separately. Returns how many vertices were removed.
 size_t weld_identical_vertices(SkinnedAsset& asset);
 
 }  // namespace crowdbake
