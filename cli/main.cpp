@@ -38,7 +38,7 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
                    "corrupt, too large) is an error instead of a warning");
   command.add_flag("!--keep-duplicate-vertices", options.weld,
                    "Keep vertices that repeat another of their primitive in every attribute "
-                   "(by default they are merged, losslessly)");
+                   "(by default they are merged; normals need only agree within 1e-5)");
   command.add_flag("!--import-in-process", options.limits.isolate,
                    "Import in crowdbake's own process (no limits; a crash in the importer "
                    "ends crowdbake): for debugging importers");

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "crowdbake/formats/pack_format.h"
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/error.h"
 
@@ -185,7 +186,7 @@ class ConfigReader {
       else if (k == "uv_bits")
         g.uv_bits = static_cast<int>(number(key, v, 0, 30));
       else if (k == "weight_bits")
-        g.weight_bits = static_cast<int>(number(key, v, 0, 16));
+        g.weight_bits = static_cast<int>(number(key, v, 0, pack_format::kMaxWeightBits));
       else
         fail(key, "unknown key");
     }
