@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "animation_bounded_codec.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
 #include "geometry_codec.h"
@@ -477,8 +478,11 @@ bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out) {
 // --- ANIM ------------------------------------------------------------------------------
 
 // v1: the texels as they are. v2: a u32 compression field (1 = zstd) and a reserved u32
-// after the data size, and the texels as one zstd frame (u64 size, then the frame).
-void encode_animation(const AnimationTexture& a, bool compressed, ByteWriter& out) {
+// after the data size, and the texels as one zstd frame (u64 size, then the frame). v3 adds
+// compression 2: the error-bounded coding's stream as one zstd frame.
+void encode_animation(const AnimationTexture& a, bool compressed,
+                      const std::vector<uint8_t>* bounded_frame, ByteWriter& out) {
+  const bool bounded = bounded_frame != nullptr;
   out.u32(static_cast<uint32_t>(a.encoding));
   out.u32(a.joints);
   out.u32(a.texels_per_joint);
@@ -486,17 +490,17 @@ void encode_animation(const AnimationTexture& a, bool compressed, ByteWriter& ou
   out.u32(a.rows);
   out.u32(static_cast<uint32_t>(a.decode_params.size()));
   out.u64(a.data.size());
-  if (compressed) {
-    out.u32(static_cast<uint32_t>(PackCompression::kZstd));
+  if (compressed || bounded) {
+    out.u32(bounded ? kAnimCompressionBounded : static_cast<uint32_t>(PackCompression::kZstd));
     out.u32(0);
   }
   out.array(a.decode_params);
   out.zero_pad(kAlignment);
-  if (!compressed) {
+  if (!compressed && !bounded) {
     out.array(a.data);
     return;
   }
-  const std::vector<uint8_t> frame = compress_animation_texels(a);
+  const std::vector<uint8_t> frame = bounded ? *bounded_frame : compress_animation_texels(a);
   out.u64(frame.size());
   out.array(frame);
 }
@@ -520,8 +524,10 @@ bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out) {
   out.encoding = static_cast<AnimationEncoding>(encoding);
   if (params > kMaxDecodeParams)
     return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
-  if (compression > static_cast<uint32_t>(PackCompression::kZstd))
-    return in.fail("unknown compression " + std::to_string(compression));
+  if (compression >
+      (version >= 3 ? kAnimCompressionBounded : static_cast<uint32_t>(PackCompression::kZstd)))
+    return in.fail("unknown compression " + std::to_string(compression) + " for version " +
+                   std::to_string(version));
   if (reserved != 0) return in.fail("reserved field is " + std::to_string(reserved));
   in.read_f32_array(out.decode_params, params, "decode parameters");
   in.zero_pad(kAlignment, "padding before the texture data");
@@ -551,8 +557,18 @@ bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out) {
     return in.fail("compressed texels: needs " + std::to_string(frame_bytes) + " bytes, " +
                    std::to_string(in.remaining()) + " left");
   std::string why;
-  if (!decompress_animation_texels(in.cursor(), static_cast<size_t>(frame_bytes), out, &why))
+  if (compression == kAnimCompressionBounded) {
+    if (out.encoding != AnimationEncoding::kQuantized)
+      return in.fail("the error-bounded coding needs the quantized encoding");
+    std::vector<uint8_t> stream;
+    const uint64_t size = bounded_stream_limit(out.joints, out.rows);
+    if (!expand_zstd_frame(in.cursor(), static_cast<size_t>(frame_bytes), size, stream, &why) ||
+        !decode_bounded_animation(stream.data(), stream.size(), out, &why))
+      return in.fail("error-bounded texels: " + why);
+  } else if (!decompress_animation_texels(in.cursor(), static_cast<size_t>(frame_bytes), out,
+                                          &why)) {
     return in.fail("compressed texels: " + why);
+  }
   in.skip(static_cast<size_t>(frame_bytes), "compressed texels");
   return in.expect_end() && checked(in, check_animation(out));
 }

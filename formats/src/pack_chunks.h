@@ -52,7 +52,10 @@ uint32_t geometry_version(const PackGeometry& geometry, const PackWriteOptions& 
 bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out);
 
 // ANIM v2 when `compressed` (the texels as one zstd frame), v1 otherwise.
-void encode_animation(const AnimationTexture& animation, bool compressed, ByteWriter& out);
+// `bounded_frame` (may be null): the error-bounded coding's stream as one zstd frame, to store
+// instead of the texels (ANIM v3, compression 2).
+void encode_animation(const AnimationTexture& animation, bool compressed,
+                      const std::vector<uint8_t>* bounded_frame, ByteWriter& out);
 bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out);
 
 void encode_partition(const PartitionMask& partition, ByteWriter& out);

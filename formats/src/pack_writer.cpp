@@ -1,8 +1,11 @@
 // write_pack(): validate, encode each chunk, then lay the file out as header, chunk table
 // and 16-byte-aligned chunks in the fixed order of pack_format.h (docs/pack-format.md).
+#include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
+#include "animation_bounded_codec.h"
 #include "byte_writer.h"
 #include "crc32c.h"
 #include "crowdbake/formats/pack.h"
@@ -42,9 +45,74 @@ void check_options(const PackWriteOptions& o) {
     throw std::invalid_argument("write_pack: weight bits must be 0 (exact floats) or 1.." +
                                 std::to_string(kMaxWeightBits) + ", got " +
                                 std::to_string(o.weight_bits));
+  if (!(o.animation_error >= 0.0 && o.animation_error <= 1.0))
+    throw std::invalid_argument(
+        "write_pack: animation error must be 0 (lossless) to 1 (of the bind-pose diagonal), got " +
+        std::to_string(o.animation_error));
+}
+
+double bind_diagonal(const PackBounds& bounds) {
+  double diagonal2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = double{bounds.max[k]} - double{bounds.min[k]};
+    diagonal2 += d * d;
+  }
+  return std::sqrt(diagonal2);
+}
+
+// What write_pack() stores of the animation: the error-bounded coding when the options ask
+// for it, the contents allow it and it is smaller than the lossless texels; otherwise the
+// texels losslessly (with the reason when a bound was asked for).
+struct AnimationChoice {
+  bool bounded = false;
+  pack_io::BoundedAnimationCode code;
+  std::vector<uint8_t> frame;  // the bounded stream as one zstd frame
+  std::string reason;
+  bool lossless_smaller = false;
+};
+
+AnimationChoice choose_animation(const PackContents& contents, const PackWriteOptions& options) {
+  AnimationChoice choice;
+  if (options.animation_error <= 0.0) return choice;
+  if (options.compression != PackCompression::kZstd) {
+    choice.reason = "pack compression is none";
+    return choice;
+  }
+  if (!pack_io::encode_bounded_animation(contents.animation, contents.joints, contents.geometry,
+                                         options.animation_error * bind_diagonal(contents.bounds),
+                                         choice.code, &choice.reason))
+    return choice;
+  choice.frame = pack_io::zstd_frame(choice.code.stream);
+  const size_t lossless = pack_io::compress_animation_texels(contents.animation).size();
+  if (choice.frame.size() >= lossless) {
+    choice.reason = "the lossless texels are smaller (" + std::to_string(lossless) + " bytes, " +
+                    std::to_string(choice.frame.size()) + " coded)";
+    choice.lossless_smaller = true;
+    return choice;
+  }
+  choice.bounded = true;
+  return choice;
 }
 
 }  // namespace
+
+StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options) {
+  check_options(options);
+  StoredAnimation stored;
+  AnimationChoice choice = choose_animation(contents, options);
+  stored.lossless_reason = choice.reason;
+  stored.lossless_smaller = choice.lossless_smaller;
+  if (!choice.bounded) {
+    stored.texture = contents.animation;
+    return stored;
+  }
+  stored.texture = std::move(choice.code.texture);
+  stored.error_bounded = true;
+  stored.bound = options.animation_error * bind_diagonal(contents.bounds);
+  stored.max_error = choice.code.max_error;
+  stored.mean_error = choice.code.mean_error;
+  return stored;
+}
 
 const char* alpha_mode_name(AlphaMode mode) {
   switch (mode) {
@@ -117,8 +185,12 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_geometry(contents.geometry, options,
                            add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
   const bool compressed = options.compression == PackCompression::kZstd;
+  const AnimationChoice animation = choose_animation(contents, options);
   pack_io::encode_animation(contents.animation, compressed,
-                            add(kTagAnim, compressed ? kAnimVersion : kAnimOldestVersion));
+                            animation.bounded ? &animation.frame : nullptr,
+                            add(kTagAnim, animation.bounded ? kAnimVersion
+                                          : compressed      ? kAnimLosslessVersion
+                                                            : kAnimOldestVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
   if (!contents.images.empty())
     pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));

@@ -138,6 +138,8 @@ class ConfigReader {
         a.encoding = choice(key, v, kEncodings);
       else if (k == "root_motion")
         a.extract_root_motion = boolean(key, v);
+      else if (k == "max_error")
+        out_.pack.animation_error = number(key, v, 0, 0.1);
       else
         fail(key, "unknown key");
     }
@@ -230,6 +232,7 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["animation"]["fps"] = s.animation.fps;
   j["animation"]["encoding"] = name_of(kEncodings, s.animation.encoding);
   j["animation"]["root_motion"] = s.animation.extract_root_motion;
+  j["animation"]["max_error"] = s.pack.animation_error;
   j["partition"]["size"] = s.partition.size;
   j["partition"]["neck_height"] =
       s.partition.neck_height ? json(*s.partition.neck_height) : json(nullptr);

@@ -83,11 +83,12 @@ void fill_geometry(const SkinnedAsset& asset, const ProgressiveMesh& pm,
   }
 }
 
-// Skins every vertex with the decoded texture rows (what the runtime draws, root motion
+// Skins every vertex with the decoded rows of `texture` (what the runtime draws, root motion
 // put back) and compares with direct evaluation of the clips at the same times; also the
 // radius of the bounding sphere of the in-place frames around the bind-box centre.
-void measure_animation(const SkinnedAsset& asset, const PackContents& pack, double diagonal,
-                       const glm::dvec3& centre, BakeReport& report, float& radius) {
+void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
+                       const AnimationTexture& texture, double diagonal, const glm::dvec3& centre,
+                       BakeReport& report, float& radius) {
   std::vector<Transform> local;
   std::vector<glm::dmat4> global, skinning, in_place(asset.skeleton.joints.size()),
       moved(in_place.size());
@@ -115,7 +116,7 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack, doub
       const float none[3] = {0.0f, 0.0f, 0.0f};
       root_motion_matrix(clip.root_motion.empty() ? none : &clip.root_motion[3 * f], motion);
       for (uint32_t j = 0; j < in_place.size(); ++j) {
-        decode_joint(pack.animation, clip.first_row + f, j, rows);
+        decode_joint(texture, clip.first_row + f, j, rows);
         compose_affine(motion, rows, with_motion);
         in_place[j] = to_mat(rows);
         moved[j] = to_mat(with_motion);
@@ -277,7 +278,18 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
       lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
   for (int k = 0; k < 3; ++k)
     pack.bounds.min[k] = static_cast<float>(lo[k]), pack.bounds.max[k] = static_cast<float>(hi[k]);
-  measure_animation(asset, pack, std::max(glm::length(hi - lo), 1e-30), 0.5 * (lo + hi), report,
+  // note: the writer codes the texture again, deterministically, to the same result; the bake
+  // measures what a reader will get.
+  const double diagonal = std::max(glm::length(hi - lo), 1e-30);
+  const StoredAnimation stored = stored_animation(pack, settings.pack);
+  report.animation_coding = stored.error_bounded ? "error-bounded" : "lossless";
+  report.animation_coding_max_error = stored.max_error / diagonal;
+  report.animation_coding_mean_error = stored.mean_error / diagonal;
+  if (!stored.lossless_reason.empty() && !stored.lossless_smaller)
+    report.warnings.push_back("animation: stored losslessly, not within animation.max_error " +
+                              std::to_string(settings.pack.animation_error) + ": " +
+                              stored.lossless_reason);
+  measure_animation(asset, pack, stored.texture, diagonal, 0.5 * (lo + hi), report,
                     pack.bounds.radius);
   clock.done("measure");
   return pack;

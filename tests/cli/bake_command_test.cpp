@@ -91,6 +91,24 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   for (const auto& c : j["chunks"]) geometry |= c["tag"] == "GEOM";
   EXPECT_TRUE(geometry);
   EXPECT_LT(j["accuracy"]["animation_max_error"].get<double>(), 1e-3);
+  // The animation coding: the default bound and what the coding itself moved a vertex.
+  const double bound = j["settings"]["animation"]["max_error"].get<double>();
+  EXPECT_GT(bound, 0.0) << "bakes code the animation within a bound by default";
+  const std::string coding = j["accuracy"]["animation_coding"].get<std::string>();
+  EXPECT_TRUE(coding == "error-bounded" || coding == "lossless") << coding;
+  EXPECT_LE(j["accuracy"]["animation_coding_max_error"].get<double>(), bound);
+}
+
+TEST(BakeCommandErrors, AnimationErrorOutOfRangeNamesTheKey) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"animation": {"max_error": 0.5}})";
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
+                           (dir / "config.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("animation.max_error"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
 }
 
 TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {

@@ -207,8 +207,11 @@ TEST(PackReader, UnknownChunkVersionRejected) {
   auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   for (RawChunk& c : chunks) {
     const uint32_t saved = c.version;
-    // note: the raw codec writes GEOM v1, the oldest of the two this build reads.
-    const uint32_t newest = c.tag == kTagGeom ? kGeomVersion : saved;
+    // note: the raw codec writes GEOM v1, the oldest of the two this build reads; ANIM is
+    // written at v2 (lossless) unless a bound asks for v3.
+    const uint32_t newest = c.tag == kTagGeom   ? kGeomVersion
+                            : c.tag == kTagAnim ? kAnimVersion
+                                                : saved;
     c.version = newest + 1;
     expect_error(read(test::assemble_pack(chunks)),
                  "unsupported chunk " + tag_name(c.tag) + " version " + std::to_string(newest + 1) +

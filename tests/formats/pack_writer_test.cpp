@@ -184,7 +184,7 @@ TEST(PackWriter, ChunksInStreamingOrderAligned) {
   for (const PackChunk& c : chunks) {
     order += pack_format::tag_name(c.tag) + " ";
     EXPECT_EQ(c.offset % 16, 0u);
-    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim   ? pack_format::kAnimVersion
+    EXPECT_EQ(c.version, c.tag == pack_format::kTagAnim   ? pack_format::kAnimLosslessVersion
                          : c.tag == pack_format::kTagGeom ? pack_format::kGeomVersion
                          : pack_io::is_wrappable(c.tag)   ? pack_format::kWrappedVersion
                                                           : 1u);

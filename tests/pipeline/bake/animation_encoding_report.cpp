@@ -16,10 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "animation_bounded_codec.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/animation_bake.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pack_compression.h"
 #include "spectator_character.h"
 
 namespace {
@@ -136,11 +138,53 @@ std::string sci(double v) {
   return buf;
 }
 
+// Rows: the three encodings (texture bytes), then the quantized texture as the pack stores it
+// (on-disk bytes): lossless zstd, and error-bounded at each of kBounds (fractions of the diagonal).
+constexpr double kBounds[] = {5e-5, 1e-4, 2e-4};
+constexpr int kRows = 4 + static_cast<int>(std::size(kBounds));
+
+std::string row_name(int i) {
+  static const AnimationEncoding encodings[] = {
+      AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized};
+  if (i < 3) return animation_encoding_name(encodings[i]);
+  if (i == 3) return "quantized, stored lossless";
+  return "quantized, stored within " + sci(kBounds[i - 4]);
+}
+
 struct Totals {
-  double frames_mean[3][2] = {}, mid_mean[3][2] = {}, frames_max[3][2] = {}, mid_max[3][2] = {};
-  double bytes[3] = {};
+  double frames_mean[kRows][2] = {}, mid_mean[kRows][2] = {}, frames_max[kRows][2] = {},
+         mid_max[kRows][2] = {};
+  double bytes[kRows] = {};
   int assets = 0;
 };
+
+// The pack's view of an imported asset: what the error-bounded coding needs (parents, the
+// skinned vertices in runtime_positions' order, the bind box).
+PackContents coding_contents(const SkinnedAsset& a, const AnimationTexture& texture) {
+  PackContents c;
+  for (const Joint& j : a.skeleton.joints) {
+    PackJoint pj;
+    pj.parent = j.parent;
+    c.joints.push_back(pj);
+  }
+  c.animation = texture;
+  for (const Primitive& p : a.primitives)
+    for (size_t v = 0; v < p.positions.size(); ++v)
+      for (int i = 0; i < 4; ++i) {
+        if (i < 3) c.geometry.positions.push_back(p.positions[v][i]);
+        c.geometry.joints.push_back(static_cast<uint16_t>(p.joints[v][i]));
+        c.geometry.weights.push_back(p.weights[v][i]);
+      }
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const Primitive& p : a.primitives)
+    for (const glm::vec3& v : p.positions) {
+      lo = glm::min(lo, v);
+      hi = glm::max(hi, v);
+    }
+  c.bounds.min = {lo.x, lo.y, lo.z};
+  c.bounds.max = {hi.x, hi.y, hi.z};
+  return c;
+}
 
 void report(const std::string& label, const SkinnedAsset& a, const AnimationBakeOptions& base,
             Totals& totals) {
@@ -155,6 +199,25 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
       "| encoding | bytes | bound | frames nearest mean / max | frames linear mean / max | "
       "mid nearest mean / max | mid linear mean / max | bake ms | decode ns (nearest / linear) |\n"
       "|---|---:|---:|---|---|---|---|---:|---|\n");
+  AnimationBake quantized;
+  const auto add = [&](int i, const AnimationBake& bake, const Errors& e, double bytes,
+                       double bound, double ms, double dn, double dl) {
+    std::printf("| %s | %.0f | %s | %s / %s | %s / %s | %s / %s | %s / %s | %.0f | %.0f / %.0f |\n",
+                row_name(i).c_str(), bytes, sci(bound / diagonal).c_str(),
+                sci(e.frames[0].mean()).c_str(), sci(e.frames[0].max).c_str(),
+                sci(e.frames[1].mean()).c_str(), sci(e.frames[1].max).c_str(),
+                sci(e.mid[0].mean()).c_str(), sci(e.mid[0].max).c_str(),
+                sci(e.mid[1].mean()).c_str(), sci(e.mid[1].max).c_str(), ms, dn, dl);
+    for (const std::string& w : bake.warnings)
+      std::fprintf(stderr, "  %s: %s\n", label.c_str(), w.c_str());
+    for (int f = 0; f < 2; ++f) {
+      totals.frames_mean[i][f] += e.frames[f].mean();
+      totals.mid_mean[i][f] += e.mid[f].mean();
+      totals.frames_max[i][f] = std::max(totals.frames_max[i][f], e.frames[f].max);
+      totals.mid_max[i][f] = std::max(totals.mid_max[i][f], e.mid[f].max);
+    }
+    totals.bytes[i] += bytes;
+  };
   for (int i = 0; i < 3; ++i) {
     AnimationBakeOptions o = base;
     o.encoding = encodings[i];
@@ -170,22 +233,50 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
     for (const PackClip& c : bake.clips) looping += c.looping;
     if (bake.root_joint >= 0) root = a.skeleton.joints[bake.root_joint].name;
     if (i == 0) worst = e.worst_clip;
-    std::printf("| %s | %zu | %s | %s / %s | %s / %s | %s / %s | %s / %s | %.0f | %.0f / %.0f |\n",
-                animation_encoding_name(encodings[i]), bake.texture.data.size(),
-                sci(bake.position_error_bound / diagonal).c_str(), sci(e.frames[0].mean()).c_str(),
-                sci(e.frames[0].max).c_str(), sci(e.frames[1].mean()).c_str(),
-                sci(e.frames[1].max).c_str(), sci(e.mid[0].mean()).c_str(),
-                sci(e.mid[0].max).c_str(), sci(e.mid[1].mean()).c_str(), sci(e.mid[1].max).c_str(),
-                ms, dn, dl);
-    for (const std::string& w : bake.warnings)
-      std::fprintf(stderr, "  %s: %s\n", label.c_str(), w.c_str());
-    for (int f = 0; f < 2; ++f) {
-      totals.frames_mean[i][f] += e.frames[f].mean();
-      totals.mid_mean[i][f] += e.mid[f].mean();
-      totals.frames_max[i][f] = std::max(totals.frames_max[i][f], e.frames[f].max);
-      totals.mid_max[i][f] = std::max(totals.mid_max[i][f], e.mid[f].max);
+    add(i, bake, e, static_cast<double>(bake.texture.data.size()), bake.position_error_bound, ms,
+        dn, dl);
+    if (i == 2) quantized = bake;
+  }
+  // As stored: 'bake ms' is the coding's time, 'decode ns' the load-time expansion per joint
+  // matrix (both columns hold it).
+  const auto seconds_since = [](auto start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<uint8_t> frame = pack_io::compress_animation_texels(quantized.texture);
+    const double ms = 1e3 * seconds_since(start);
+    AnimationTexture back = quantized.texture;
+    const auto load = std::chrono::steady_clock::now();
+    pack_io::decompress_animation_texels(frame.data(), frame.size(), back, nullptr);
+    const double ns = 1e9 * seconds_since(load) / (static_cast<double>(back.rows) * back.joints);
+    add(3, quantized, measure(a, quantized, diagonal), static_cast<double>(frame.size()),
+        quantized.position_error_bound, ms, ns, ns);
+  }
+  const PackContents contents = coding_contents(a, quantized.texture);
+  for (size_t b = 0; b < std::size(kBounds); ++b) {
+    const auto start = std::chrono::steady_clock::now();
+    pack_io::BoundedAnimationCode code;
+    std::string why;
+    if (!pack_io::encode_bounded_animation(quantized.texture, contents.joints, contents.geometry,
+                                           kBounds[b] * diagonal, code, &why)) {
+      std::fprintf(stderr, "  %s: error-bounded coding at %g: %s\n", label.c_str(), kBounds[b],
+                   why.c_str());
+      continue;
     }
-    totals.bytes[i] += static_cast<double>(bake.texture.data.size());
+    const std::vector<uint8_t> frame = pack_io::zstd_frame(code.stream);
+    const double ms = 1e3 * seconds_since(start);
+    AnimationTexture back = quantized.texture;
+    const auto load = std::chrono::steady_clock::now();
+    std::vector<uint8_t> stream;
+    pack_io::expand_zstd_frame(frame.data(), frame.size(), code.stream.size(), stream, nullptr);
+    pack_io::decode_bounded_animation(stream.data(), stream.size(), back, nullptr);
+    const double ns = 1e9 * seconds_since(load) / (static_cast<double>(back.rows) * back.joints);
+    AnimationBake stored = quantized;
+    stored.texture = back;
+    add(4 + static_cast<int>(b), stored, measure(a, stored, diagonal),
+        static_cast<double>(frame.size()), quantized.position_error_bound + code.max_error, ms, ns,
+        ns);
   }
   ++totals.assets;
   std::printf(
@@ -240,14 +331,11 @@ int main(int argc, char** argv) {
       "| encoding | total bytes | frames mean / max | mid nearest mean / max | mid linear mean / "
       "max |\n"
       "|---|---:|---|---|---|\n");
-  const AnimationEncoding encodings[] = {AnimationEncoding::kFloat32, AnimationEncoding::kFloat16,
-                                         AnimationEncoding::kQuantized};
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < kRows; ++i)
     std::printf(
-        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", animation_encoding_name(encodings[i]),
-        totals.bytes[i], sci(totals.frames_mean[i][1] / totals.assets).c_str(),
-        sci(totals.frames_max[i][1]).c_str(), sci(totals.mid_mean[i][0] / totals.assets).c_str(),
-        sci(totals.mid_max[i][0]).c_str(), sci(totals.mid_mean[i][1] / totals.assets).c_str(),
-        sci(totals.mid_max[i][1]).c_str());
+        "| %s | %.0f | %s / %s | %s / %s | %s / %s |\n", row_name(i).c_str(), totals.bytes[i],
+        sci(totals.frames_mean[i][1] / totals.assets).c_str(), sci(totals.frames_max[i][1]).c_str(),
+        sci(totals.mid_mean[i][0] / totals.assets).c_str(), sci(totals.mid_max[i][0]).c_str(),
+        sci(totals.mid_mean[i][1] / totals.assets).c_str(), sci(totals.mid_max[i][1]).c_str());
   return 0;
 }

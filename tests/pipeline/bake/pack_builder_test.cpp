@@ -107,8 +107,14 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
     ASSERT_NEAR(back.geometry.weights[i], pack.geometry.weights[i], 2.5 / 65535 + 1e-7) << i;
   ASSERT_EQ(back.joints.size(), asset.skeleton.joints.size());
   EXPECT_EQ(back.clips.size(), std::max<size_t>(asset.clips.size(), 1));
-  // The skinned surface within the documented tolerances: quantised animation rows and
-  // 16-bit positions (docs/animation-encoding.md, docs/pack-format.md).
+  // The animation as stored_animation() said it would be, and the coding within its bound.
+  const StoredAnimation stored = stored_animation(pack, settings.pack);
+  EXPECT_EQ(back.animation.data, stored.texture.data);
+  EXPECT_EQ(report.animation_coding, stored.error_bounded ? "error-bounded" : "lossless");
+  EXPECT_LE(report.animation_coding_max_error, settings.pack.animation_error);
+  EXPECT_TRUE(stored.error_bounded || stored.lossless_smaller) << stored.lossless_reason;
+  // The skinned surface within the documented tolerances: quantised animation rows, their
+  // coding and 16-bit positions (docs/animation-encoding.md, docs/pack-format.md).
   const double error = pack_skinning_error(asset, back, pm);
   EXPECT_LT(error, 2e-3);
   std::printf("[ pack ] %s: %zu bytes, skinned error %.2e of the diagonal\n", name.c_str(),

@@ -181,6 +181,11 @@ struct PackWriteOptions {
   int uv_bits = 12;
   int weight_bits = 16;  // skin weights as integers (0 = exact floats, GEOM v1)
   PackCompression compression = PackCompression::kZstd;
+  // With kZstd and a kQuantized texture: the largest distance, as a fraction of the
+  // bind-pose bounding-box diagonal (BNDS), that the animation coding may move a skinned
+  // vertex at a baked frame from where contents.animation puts it (ANIM v3, error-bounded).
+  // 0 stores the texels losslessly (ANIM v2).
+  double animation_error = 0.0;
 };
 
 // The rules every pack obeys (counts consistent between parts, indices in range, no NaN,
@@ -192,6 +197,20 @@ PackStatus validate_pack_contents(const PackContents& contents);
 // Throws std::invalid_argument when validate_pack_contents() fails or an option is out
 // of range (the message names the rule), std::runtime_error if a codec fails.
 std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options = {});
+
+// The animation texture read_pack() gives back for a pack written with `options`, and what
+// the coding cost: contents.animation itself unless options.animation_error asks for the
+// error-bounded coding and the texture allows it (docs/pack-format.md 3.8).
+struct StoredAnimation {
+  AnimationTexture texture;
+  bool error_bounded = false;     // ANIM v3 error-bounded coding; false: lossless texels
+  double bound = 0.0;             // model units (0 when lossless)
+  double max_error = 0.0;         // largest skinned-vertex distance from contents.animation over
+  double mean_error = 0.0;        // every vertex at every row, and its mean; model units
+  std::string lossless_reason;    // why a requested bound was not used (empty otherwise)
+  bool lossless_smaller = false;  // the reason is only that the lossless texels are smaller
+};
+StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options);
 
 struct PackChunk {
   uint32_t tag = 0;      // four ASCII characters, little-endian (pack_format::kTagGeom, ...)

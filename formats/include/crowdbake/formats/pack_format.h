@@ -11,8 +11,9 @@
 namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
-// additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights)
-constexpr uint16_t kPackVersionMinor = 4;
+// additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights);
+// 1.5: ANIM v3 (error-bounded animation coding)
+constexpr uint16_t kPackVersionMinor = 5;
 
 namespace pack_format {
 
@@ -56,10 +57,13 @@ constexpr uint32_t kMatlVersion = 1;
 constexpr uint32_t kBndsVersion = 1;
 constexpr uint32_t kProgVersion = 1;
 constexpr uint32_t kLerrVersion = 1;
-constexpr uint32_t kGeomVersion = 2;        // v2: skin weights may be quantised (§3.7)
-constexpr uint32_t kGeomOldestVersion = 1;  // written when weights are stored exactly
-constexpr uint32_t kAnimVersion = 2;        // v2: texels stored compressed (v1 still read)
-constexpr uint32_t kAnimOldestVersion = 1;  // written with PackCompression::kNone
+constexpr uint32_t kGeomVersion = 2;          // v2: skin weights may be quantised (§3.7)
+constexpr uint32_t kGeomOldestVersion = 1;    // written when weights are stored exactly
+constexpr uint32_t kAnimVersion = 3;          // v3: error-bounded coding (compression 2)
+constexpr uint32_t kAnimLosslessVersion = 2;  // v2: texels stored compressed losslessly
+constexpr uint32_t kAnimOldestVersion = 1;    // written with PackCompression::kNone
+// ANIM's compression field (v2 and later): 0 none, 1 zstd (lossless), 2 error-bounded (v3).
+constexpr uint32_t kAnimCompressionBounded = 2;
 constexpr uint32_t kPartVersion = 1;
 constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;

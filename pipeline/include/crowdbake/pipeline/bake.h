@@ -27,12 +27,23 @@ struct LevelErrorOptions {
 std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex_count,
                                           uint32_t samples);
 
+// `animation.max_error`'s default: a fraction of the bind-pose diagonal.
+constexpr double kDefaultAnimationError = 1e-4;
+
+inline PackWriteOptions default_bake_pack_options() {
+  PackWriteOptions options;
+  options.animation_error = kDefaultAnimationError;
+  return options;
+}
+
 struct BakeSettings {
   SimplifyOptions simplify;
   LevelErrorOptions level_errors;
   AnimationBakeOptions animation;
   PartitionOptions partition;
-  PackWriteOptions pack;
+  // Bakes code the animation within kDefaultAnimationError of the lossless texture
+  // (docs/animation-encoding.md 6); the library's own default stays lossless.
+  PackWriteOptions pack = default_bake_pack_options();
 };
 
 // Reads a bake configuration (docs/bake-config.md) over the defaults. Relative paths in
@@ -52,10 +63,16 @@ struct BakeReport {
   std::vector<BakeStage> stages;
   std::vector<std::string> warnings;  // the import's and the bake's
   SimplifyReport simplify;
-  std::string partition_heights;     // where the neck and waist heights came from
-  double animation_max_error = 0.0;  // decoded texture vs direct evaluation, / bbox diagonal
-  // note: per-level errors are in the pack (PackContents::level_errors).
+  std::string partition_heights;  // where the neck and waist heights came from
+  // The texture a reader gets (after the pack's animation coding) vs direct evaluation,
+  // / bbox diagonal. Per-level errors are in the pack (PackContents::level_errors).
+  double animation_max_error = 0.0;
   double animation_mean_error = 0.0;
+  // How the pack stores the texture ("error-bounded" or "lossless") and what the coding
+  // alone moved a vertex, over every vertex at every row, / bbox diagonal.
+  std::string animation_coding;
+  double animation_coding_max_error = 0.0;
+  double animation_coding_mean_error = 0.0;
 };
 
 // Builds the pack contents. Deterministic for equal inputs and settings, whatever

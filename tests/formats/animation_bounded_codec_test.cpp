@@ -1,0 +1,246 @@
+// The error-bounded animation coding (ANIM v3): a reader gets exactly the texture
+// stored_animation() promises, every skinned vertex stays within the bound at every row
+// (measured here independently, through the runtime's float decoder), the pack is smaller than
+// the lossless one on smooth motion and identical from run to run, textures it cannot code
+// stay lossless with a reason, and malformed streams are refused with one.
+#include "animation_bounded_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "crowdbake/formats/animation_codec.h"
+#include "crowdbake/formats/pack.h"
+#include "crowdbake/formats/pack_format.h"
+#include "pack_surgery.h"
+#include "pack_test_contents.h"
+
+namespace crowdbake {
+namespace {
+
+// Rigid 3x4 matrix: rotation by `angle` about unit `axis`, then translation.
+void rigid(double angle, const double axis[3], const double t[3], double m[12]) {
+  const double c = std::cos(angle), s = std::sin(angle), k = 1.0 - c;
+  const double x = axis[0], y = axis[1], z = axis[2];
+  const double r[9] = {c + x * x * k,     x * y * k - z * s, x * z * k + y * s,
+                       y * x * k + z * s, c + y * y * k,     y * z * k - x * s,
+                       z * x * k - y * s, z * y * k + x * s, c + z * z * k};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m[4 * i + j] = r[3 * i + j];
+    m[4 * i + 3] = t[i];
+  }
+}
+
+void multiply(const double a[12], const double b[12], double out[12]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      out[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
+                       (j == 3 ? a[4 * i + 3] : 0.0);
+}
+
+// The test character with a quantized texture of smooth motion: each joint turns about its
+// own pivot on a slow sine, on top of its parent, and the root walks.
+PackContents animated_contents() {
+  PackContents c = test::make_test_contents(12, 3);
+  const uint32_t joints = static_cast<uint32_t>(c.joints.size()), rows = c.animation.rows;
+  std::vector<double> matrices(size_t{rows} * joints * 12);
+  const double axes[5][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0.6, 0.8, 0}, {0, 0.6, 0.8}};
+  for (uint32_t r = 0; r < rows; ++r)
+    for (uint32_t j = 0; j < joints; ++j) {
+      const double pivot[3] = {0.2 * j - 0.4, 0.3 * j, 0.0};
+      const double angle = 0.6 * std::sin(0.15 * r + j);
+      double back[12], turn[12], local[12];
+      const double minus[3] = {-pivot[0], -pivot[1], -pivot[2]};
+      rigid(0.0, axes[0], minus, back);
+      rigid(angle, axes[j], pivot, turn);
+      multiply(turn, back, local);
+      if (j == 0) local[3] += 0.02 * r;
+      double* out = &matrices[(size_t{r} * joints + j) * 12];
+      const int parent = c.joints[j].parent;
+      if (parent < 0)
+        std::copy(local, local + 12, out);
+      else
+        multiply(&matrices[(size_t{r} * joints + parent) * 12], local, out);
+    }
+  c.animation =
+      encode_animation_texture(AnimationEncoding::kQuantized, joints, rows, matrices.data());
+  return c;
+}
+
+double diagonal(const PackContents& c) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) d2 += std::pow(double{c.bounds.max[k]} - c.bounds.min[k], 2.0);
+  return std::sqrt(d2);
+}
+
+// Largest distance between the skinned vertices of two textures, over every row, through the
+// runtime's decoder.
+double largest_vertex_distance(const PackContents& c, const AnimationTexture& a,
+                               const AnimationTexture& b) {
+  double worst = 0.0;
+  const PackGeometry& g = c.geometry;
+  for (uint32_t r = 0; r < a.rows; ++r)
+    for (uint32_t v = 0; v < g.vertex_count(); ++v) {
+      double e[3] = {0, 0, 0};
+      for (int i = 0; i < 4; ++i) {
+        float ma[12], mb[12];
+        decode_joint(a, r, g.joints[4 * v + i], ma);
+        decode_joint(b, r, g.joints[4 * v + i], mb);
+        for (int k = 0; k < 3; ++k) {
+          double d = double{ma[4 * k + 3]} - mb[4 * k + 3];
+          for (int m = 0; m < 3; ++m)
+            d += (double{ma[4 * k + m]} - mb[4 * k + m]) * g.positions[3 * v + m];
+          e[k] += g.weights[4 * v + i] * d;
+        }
+      }
+      worst = std::max(worst, std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+    }
+  return worst;
+}
+
+PackWriteOptions bounded(double error) {
+  PackWriteOptions o;
+  o.animation_error = error;
+  return o;
+}
+
+TEST(BoundedAnimation, ReaderGetsWhatStoredAnimationSays) {
+  const PackContents c = animated_contents();
+  const StoredAnimation stored = stored_animation(c, bounded(1e-3));
+  ASSERT_TRUE(stored.error_bounded) << stored.lossless_reason;
+  const std::vector<uint8_t> bytes = write_pack(c, bounded(1e-3));
+  EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagAnim).version, pack_format::kAnimVersion);
+  PackContents back;
+  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
+  ASSERT_TRUE(s.ok) << s.message;
+  EXPECT_EQ(back.animation.data, stored.texture.data);
+  EXPECT_EQ(back.animation.decode_params, c.animation.decode_params);
+  EXPECT_NE(back.animation.data, c.animation.data) << "a bound of 1e-3 should change some texel";
+}
+
+TEST(BoundedAnimation, EveryVertexStaysWithinTheBound) {
+  const PackContents c = animated_contents();
+  const double d = diagonal(c);
+  for (double error : {1e-4, 1e-3, 1e-2}) {
+    const StoredAnimation stored = stored_animation(c, bounded(error));
+    ASSERT_TRUE(stored.error_bounded) << error << ": " << stored.lossless_reason;
+    EXPECT_DOUBLE_EQ(stored.bound, error * d);
+    EXPECT_LE(stored.max_error, stored.bound);
+    EXPECT_LE(stored.mean_error, stored.max_error);
+    const double measured = largest_vertex_distance(c, c.animation, stored.texture);
+    // note: the runtime decodes in float; 1e-5 of the diagonal covers its rounding.
+    EXPECT_LE(measured, stored.bound + 1e-5 * d) << error;
+    EXPECT_NEAR(measured, stored.max_error, 1e-5 * d) << error;
+  }
+}
+
+TEST(BoundedAnimation, SmallerThanLosslessAndDeterministic) {
+  const PackContents c = animated_contents();
+  const std::vector<uint8_t> lossless = write_pack(c);
+  const std::vector<uint8_t> coded = write_pack(c, bounded(1e-3));
+  EXPECT_LT(test::find_chunk(coded, pack_format::kTagAnim).size,
+            test::find_chunk(lossless, pack_format::kTagAnim).size * 3 / 4);
+  EXPECT_EQ(coded, write_pack(c, bounded(1e-3)));
+  EXPECT_EQ(test::find_chunk(lossless, pack_format::kTagAnim).version,
+            pack_format::kAnimLosslessVersion)
+      << "without a bound the pack stays readable by 1.4 readers";
+}
+
+TEST(BoundedAnimation, WhatItCannotCodeStaysLosslessWithAReason) {
+  PackContents c = animated_contents();
+  struct Case {
+    const char* name;
+    PackContents contents;
+    PackWriteOptions options;
+    const char* reason;
+  };
+  PackContents half = c;
+  half.animation = test::make_test_contents(12, 3).animation;  // float32
+  PackWriteOptions uncompressed = bounded(1e-3);
+  uncompressed.compression = PackCompression::kNone;
+  const Case cases[] = {
+      {"float32", half, bounded(1e-3), "needs the quantized encoding"},
+      {"below rounding", c, bounded(1e-12), "below what the texture's own rounding"},
+      {"no compression", c, uncompressed, "pack compression is none"}};
+  for (const Case& k : cases) {
+    const StoredAnimation stored = stored_animation(k.contents, k.options);
+    EXPECT_FALSE(stored.error_bounded) << k.name;
+    EXPECT_NE(stored.lossless_reason.find(k.reason), std::string::npos)
+        << k.name << ": " << stored.lossless_reason;
+    EXPECT_EQ(stored.texture.data, k.contents.animation.data) << k.name;
+    const std::vector<uint8_t> bytes = write_pack(k.contents, k.options);
+    PackContents back;
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), back).ok) << k.name;
+    EXPECT_EQ(back.animation.data, k.contents.animation.data) << k.name;
+  }
+  EXPECT_THROW(write_pack(c, bounded(-1.0)), std::invalid_argument);
+  EXPECT_THROW(write_pack(c, bounded(std::nan(""))), std::invalid_argument);
+}
+
+TEST(BoundedAnimation, MalformedStreamsAreRefused) {
+  const PackContents c = animated_contents();
+  pack_io::BoundedAnimationCode code;
+  std::string why;
+  ASSERT_TRUE(pack_io::encode_bounded_animation(c.animation, c.joints, c.geometry,
+                                                1e-3 * diagonal(c), code, &why))
+      << why;
+  ASSERT_LE(code.stream.size(),
+            pack_io::bounded_stream_limit(c.animation.joints, c.animation.rows));
+  const auto decode = [&](const std::vector<uint8_t>& stream) {
+    AnimationTexture t = c.animation;
+    t.data.clear();
+    why.clear();
+    const bool ok = pack_io::decode_bounded_animation(stream.data(), stream.size(), t, &why);
+    if (ok) {
+      EXPECT_EQ(t.data, code.texture.data);
+    }
+    return ok;
+  };
+  EXPECT_TRUE(decode(code.stream));
+
+  const auto expect_refused = [&](std::vector<uint8_t> stream, const std::string& needle) {
+    EXPECT_FALSE(decode(stream)) << needle;
+    EXPECT_NE(why.find(needle), std::string::npos) << why;
+  };
+  std::vector<uint8_t> s = code.stream;
+  s.pop_back();
+  expect_refused(s, "residual bytes, its joints need");
+  s = code.stream;
+  test::put32(s, 0, 4);
+  expect_refused(s, "stream codes 4 joints");
+  // Joint 0's header starts at byte 4: parent (i32), implied component (u8), pivot (3 f32),
+  // then per stored lane: centre (f32), half range (f32), step (u16).
+  s = code.stream;
+  test::put32(s, 4, 0);
+  expect_refused(s, "is not an earlier joint");
+  s = code.stream;
+  s[8] = 5;
+  expect_refused(s, "implied component 5 is not 0..4");
+  s = code.stream;
+  s[29] = 2;  // the first lane's step, low byte: even
+  s[30] = 0;
+  expect_refused(s, "is not an odd number");
+  s = code.stream;
+  const float nan = std::nanf("");
+  std::memcpy(&s[25], &nan, 4);  // the first lane's half range
+  expect_refused(s, "not a finite number");
+  s.resize(20);
+  expect_refused(s, "");
+}
+
+TEST(BoundedAnimation, OnlyVersion3MaySayBounded) {
+  const PackContents c = animated_contents();
+  auto chunks = test::split_pack(write_pack(c, bounded(1e-3)));
+  for (test::RawChunk& chunk : chunks)
+    if (chunk.tag == pack_format::kTagAnim) chunk.version = 2;
+  PackContents back;
+  const std::vector<uint8_t> bytes = test::assemble_pack(chunks, 1, kPackVersionMinor);
+  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
+  EXPECT_FALSE(s.ok);
+  EXPECT_NE(s.message.find("unknown compression 2 for version 2"), std::string::npos) << s.message;
+}
+
+}  // namespace
+}  // namespace crowdbake
