@@ -1,15 +1,21 @@
-// ANIM v2's texel compression measured on packs: texel bytes, stored bytes, ratio, and the
-// milliseconds to compress (bake side) and to expand (load side), medians of 5 runs.
-//   animation_compression_bench PACK...   (prints a markdown table; docs/pack-sizes.md)
+// The animation texture's storage measured on packs baked losslessly (`animation.max_error`
+// 0): texel bytes; the lossless coding (ANIM v2): stored bytes, ratio, milliseconds to compress
+// (bake side) and to expand (load side); the error-bounded coding (ANIM v3) at --max-error
+// (default 1e-4 of the diagonal): the ANIM chunk's bytes and ratio, the milliseconds to code
+// (with its verification) and to read the chunk back. Times are medians of 5 runs.
+//   animation_compression_bench [--max-error E] PACK...   (a markdown table; docs/pack-sizes.md)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include "crowdbake/formats/pack.h"
+#include "crowdbake/formats/pack_format.h"
 #include "pack_compression.h"
 
 namespace {
@@ -37,14 +43,23 @@ double time_ms(F&& f) {
 
 int main(int argc, char** argv) {
   using namespace crowdbake;
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: animation_compression_bench PACK...\n");
+  PackWriteOptions bounded;
+  bounded.animation_error = 1e-4;
+  int first = 1;
+  if (argc > 2 && !std::strcmp(argv[1], "--max-error")) {
+    bounded.animation_error = std::atof(argv[2]);
+    first = 3;
+  }
+  if (argc <= first) {
+    std::fprintf(stderr, "usage: animation_compression_bench [--max-error E] PACK...\n");
     return 2;
   }
   std::printf(
-      "| pack | joints | rows | texel bytes | stored bytes | ratio | compress ms | expand ms |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (int a = 1; a < argc; ++a) {
+      "| pack | joints | rows | texel bytes | lossless bytes | ratio | compress ms | expand ms | "
+      "within %g: ANIM bytes | ratio | code ms | read ms |\n",
+      bounded.animation_error);
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int a = first; a < argc; ++a) {
     std::ifstream file(argv[a], std::ios::binary);
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), {});
     PackContents pack;
@@ -65,12 +80,29 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s: the texels did not come back\n", argv[a]);
       return 1;
     }
+    StoredAnimation stored;
+    const double code = time_ms([&] { stored = stored_animation(pack, bounded); });
+    const std::vector<uint8_t> coded = write_pack(pack, bounded);
+    std::vector<PackChunk> chunks;
+    read_pack_chunks(coded.data(), coded.size(), chunks);
+    PackChunk anim;
+    for (const PackChunk& c : chunks)
+      if (c.tag == pack_format::kTagAnim) anim = c;
+    PackContents back;
+    const double read =
+        time_ms([&] { ok = ok && read_pack_chunk(anim, coded.data() + anim.offset, back).ok; });
+    if (!ok || back.animation.data != stored.texture.data) {
+      std::fprintf(stderr, "%s: the coded texels did not come back as stored_animation says\n",
+                   argv[a]);
+      return 1;
+    }
     std::string name = argv[a];
     name = name.substr(name.find_last_of('/') + 1);
-    std::printf("| %s | %u | %u | %zu | %zu | %.1f | %.1f | %.2f |\n", name.c_str(), t.joints,
-                t.rows, t.data.size(), frame.size(),
-                frame.empty() ? 0.0 : static_cast<double>(t.data.size()) / frame.size(), compress,
-                expand);
+    const auto ratio = [&](size_t n) { return n ? static_cast<double>(t.data.size()) / n : 0.0; };
+    std::printf("| %s | %u | %u | %zu | %zu | %.1f | %.1f | %.2f | %llu%s | %.1f | %.1f | %.2f |\n",
+                name.c_str(), t.joints, t.rows, t.data.size(), frame.size(), ratio(frame.size()),
+                compress, expand, static_cast<unsigned long long>(anim.size),
+                stored.error_bounded ? "" : " (lossless)", ratio(anim.size), code, read);
   }
   return 0;
 }

@@ -383,6 +383,118 @@ void write_stream(const std::vector<JointCode>& codes, const std::vector<int16_t
   stream = std::move(bytes);
 }
 
+// The joints' pivots and the extent each one's rotation and scale must be held to: a joint's
+// error moves its descendants too, and they can take it back only within their ranges, so the
+// extent is that of the joint's whole subtree.
+std::vector<JointShape> subtree_shapes(const PackGeometry& geometry,
+                                       const std::vector<PackJoint>& joints) {
+  std::vector<JointShape> shapes = joint_shapes(geometry, joints.size());
+  for (size_t j = joints.size(); j-- > 1;) {
+    const int parent = joints[j].parent;
+    if (parent < 0) continue;
+    JointShape& p = shapes[static_cast<size_t>(parent)];
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+      d2 += (shapes[j].pivot[k] - p.pivot[k]) * (shapes[j].pivot[k] - p.pivot[k]);
+    p.radius = std::max(p.radius, std::sqrt(d2) + shapes[j].radius);
+  }
+  return shapes;
+}
+
+// The rows of the texture as similarities, row-major.
+struct Targets {
+  std::vector<Similarity> rows;
+  size_t joints = 0;
+  const Similarity& at(size_t row, size_t joint) const { return rows[row * joints + joint]; }
+};
+
+// A parent that shrinks towards zero scale (rigs hide parts that way) has no usable inverse:
+// its child is coded on its own (against the identity) instead.
+int32_t coded_parent(const Targets& targets, size_t row_count, int32_t parent) {
+  if (parent < 0) return -1;
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (size_t r = 0; r < row_count; ++r) {
+    const double scale = std::abs(targets.at(r, static_cast<size_t>(parent)).s);
+    smallest = std::min(smallest, scale);
+    largest = std::max(largest, scale);
+  }
+  return smallest > kSmallestParentScale * largest ? parent : -1;
+}
+
+// Everything the coding of the joints needs before the search: their codes without steps,
+// and each lane's estimated tolerance in lane units.
+struct Plan {
+  std::vector<JointCode> codes;
+  std::vector<std::array<double, kValues>> lane_units;
+  size_t series = 0;  // stored lanes of all joints
+};
+
+// Fills joint j's code: coded parent, pivot, implied component and lane ranges. `tau` holds
+// the value tolerances of the joints before j and receives j's. False on non-finite input.
+bool plan_joint(const Targets& targets, size_t row_count, const std::vector<JointShape>& shapes,
+                int32_t parent, double bound, size_t j,
+                std::vector<std::array<double, kValues>>& tau, Plan& plan) {
+  JointCode& code = plan.codes[j];
+  code.parent = coded_parent(targets, row_count, parent);
+  for (int k = 0; k < 3; ++k) code.pivot[k] = static_cast<float>(shapes[j].pivot[k]);
+  // note: ranges come from the exact parents; the decoded parents differ from them by their
+  // own coding error, which the ranges' margins absorb (verified by the search regardless).
+  double parent_scale = 1.0;
+  std::vector<Similarity> relative(row_count);
+  for (size_t r = 0; r < row_count; ++r) {
+    const Similarity p =
+        code.parent < 0 ? Similarity{} : targets.at(r, static_cast<size_t>(code.parent));
+    parent_scale = std::max(parent_scale, std::abs(p.s));
+    relative[r] = compose(inverse(p), targets.at(r, j));
+  }
+  // The implied component: the one whose magnitude stays largest over the rows.
+  std::array<double, 4> smallest{};
+  smallest.fill(std::numeric_limits<double>::infinity());
+  for (const Similarity& x : relative)
+    for (int i = 0; i < 4; ++i) smallest[i] = std::min(smallest[i], std::abs(x.q[i]));
+  const int best =
+      static_cast<int>(std::max_element(smallest.begin(), smallest.end()) - smallest.begin());
+  code.implied = smallest[best] >= kImpliedMinimum ? static_cast<uint8_t>(best) : kNoneImplied;
+  std::array<double, kValues> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  std::array<double, 4> previous{0, 0, 0, 1};
+  for (const Similarity& x : relative) {
+    const auto v = lane_values(code, x, previous);
+    previous = {v[0], v[1], v[2], v[3]};
+    for (int i = 0; i < kValues; ++i) {
+      lo[i] = std::min(lo[i], v[i]);
+      hi[i] = std::max(hi[i], v[i]);
+    }
+  }
+  tau[j] = tolerances(bound, shapes[j].radius, parent_scale);
+  // The margin: the joint's own error, and the parent's, which the relative transform takes
+  // up (a parent turned by e turns the child's relative transform back by e and moves its
+  // pivot by e times their distance, plus the parent's own pivot error, at most the bound).
+  double reach = 0.0;
+  if (code.parent >= 0)
+    for (int k = 0; k < 3; ++k) {
+      const double d = shapes[j].pivot[k] - shapes[static_cast<size_t>(code.parent)].pivot[k];
+      reach += d * d;
+    }
+  reach = std::sqrt(reach);
+  for (int i = 0; i < kValues; ++i) {
+    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i])) return false;
+    const auto& up = tau[code.parent < 0 ? j : static_cast<size_t>(code.parent)];
+    const double inherited = code.parent < 0   ? 0.0
+                             : i >= 4 && i < 7 ? 2.0 * bound / parent_scale + 4.0 * up[0] * reach
+                                               : 4.0 * up[i];
+    const double center = 0.5 * (lo[i] + hi[i]);
+    code.center[i] = static_cast<float>(center);
+    const double need = 0.5 * (hi[i] - lo[i]) + std::abs(center - double{code.center[i]}) +
+                        2.0 * tau[j][i] + inherited;
+    code.half[i] = round_up(std::max(need, 1e-12 * (1.0 + std::abs(center))));
+    plan.lane_units[j][i] = tau[j][i] * kSnorm / double{code.half[i]};
+  }
+  plan.series += static_cast<size_t>(code.lanes());
+  return true;
+}
+
 }  // namespace
 
 uint64_t bounded_stream_limit(uint32_t joints, uint32_t rows) {
@@ -404,117 +516,33 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
   if (joints.size() != texture.joints) return fail("joint count differs from the texture's");
 
   const size_t count = texture.joints, rows = texture.rows;
-  std::vector<Similarity> targets(rows * count);
+  Targets targets{std::vector<Similarity>(rows * count), count};
   for (size_t r = 0; r < rows; ++r)
-    for (size_t j = 0; j < count; ++j) targets[r * count + j] = texel_similarity(texture, r, j);
+    for (size_t j = 0; j < count; ++j)
+      targets.rows[r * count + j] = texel_similarity(texture, r, j);
+  const std::vector<JointShape> shapes = subtree_shapes(geometry, joints);
+  Plan plan{std::vector<JointCode>(count), std::vector<std::array<double, kValues>>(count), 0};
+  std::vector<std::array<double, kValues>> tau(count);
+  for (size_t j = 0; j < count; ++j)
+    if (!plan_joint(targets, rows, shapes, joints[j].parent, bound, j, tau, plan))
+      return fail("non-finite joint transform");
 
-  std::vector<JointShape> shapes = joint_shapes(geometry, count);
-  // note: a joint's error moves its descendants too, and they can take it back only within
-  // their ranges: each joint's rotation and scale are held to its whole subtree's extent.
-  for (size_t j = count; j-- > 1;) {
-    const int parent = joints[j].parent;
-    if (parent < 0) continue;
-    JointShape& p = shapes[static_cast<size_t>(parent)];
-    double d2 = 0.0;
-    for (int k = 0; k < 3; ++k)
-      d2 += (shapes[j].pivot[k] - p.pivot[k]) * (shapes[j].pivot[k] - p.pivot[k]);
-    p.radius = std::max(p.radius, std::sqrt(d2) + shapes[j].radius);
-  }
-  std::vector<JointCode> codes(count);
-  std::vector<std::array<double, kValues>> tau(count), lane_units(count);
-  size_t series = 0;
-  for (size_t j = 0; j < count; ++j) {
-    JointCode& code = codes[j];
-    code.parent = joints[j].parent;
-    for (int k = 0; k < 3; ++k) code.pivot[k] = static_cast<float>(shapes[j].pivot[k]);
-    // A parent that shrinks towards zero scale (rigs hide parts that way) has no usable
-    // inverse: its child is coded on its own (against the identity) instead.
-    if (code.parent >= 0) {
-      double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
-      for (size_t r = 0; r < rows; ++r) {
-        const double scale = std::abs(targets[r * count + static_cast<size_t>(code.parent)].s);
-        smallest = std::min(smallest, scale);
-        largest = std::max(largest, scale);
-      }
-      if (!(smallest > kSmallestParentScale * largest)) code.parent = -1;
-    }
-    // note: ranges come from the exact parents; the decoded parents differ from them by their
-    // own coding error, which the ranges' margins absorb (verified below regardless).
-    double parent_scale = 1.0;
-    std::vector<Similarity> relative(rows);
-    for (size_t r = 0; r < rows; ++r) {
-      const Similarity parent =
-          code.parent < 0 ? Similarity{} : targets[r * count + static_cast<size_t>(code.parent)];
-      parent_scale = std::max(parent_scale, std::abs(parent.s));
-      relative[r] = compose(inverse(parent), targets[r * count + j]);
-    }
-    // The implied component: the one whose magnitude stays largest over the rows.
-    std::array<double, 4> smallest{};
-    smallest.fill(std::numeric_limits<double>::infinity());
-    for (const Similarity& x : relative)
-      for (int i = 0; i < 4; ++i) smallest[i] = std::min(smallest[i], std::abs(x.q[i]));
-    const int best =
-        static_cast<int>(std::max_element(smallest.begin(), smallest.end()) - smallest.begin());
-    code.implied = smallest[best] >= kImpliedMinimum ? static_cast<uint8_t>(best) : kNoneImplied;
-    std::array<double, kValues> lo, hi;
-    lo.fill(std::numeric_limits<double>::infinity());
-    hi.fill(-std::numeric_limits<double>::infinity());
-    std::array<double, 4> previous{0, 0, 0, 1};
-    for (const Similarity& x : relative) {
-      const auto v = lane_values(code, x, previous);
-      previous = {v[0], v[1], v[2], v[3]};
-      for (int i = 0; i < kValues; ++i) {
-        lo[i] = std::min(lo[i], v[i]);
-        hi[i] = std::max(hi[i], v[i]);
-      }
-    }
-    tau[j] = tolerances(bound, shapes[j].radius, parent_scale);
-    // The margin: the joint's own error, and the parent's, which the relative transform
-    // takes up (a parent turned by e turns the child's relative transform back by e; its
-    // pivot moves by up to the bound).
-    std::array<double, kValues> margin{};
-    for (int i = 0; i < kValues; ++i) {
-      double reach = 0.0;
-      if (code.parent >= 0)
-        for (int k = 0; k < 3; ++k)
-          reach += (shapes[j].pivot[k] - shapes[static_cast<size_t>(code.parent)].pivot[k]) *
-                   (shapes[j].pivot[k] - shapes[static_cast<size_t>(code.parent)].pivot[k]);
-      reach = std::sqrt(reach);
-      const double inherited =
-          code.parent < 0 ? 0.0
-          : i >= 4 && i < 7
-              ? 2.0 * bound / parent_scale + 4.0 * tau[static_cast<size_t>(code.parent)][0] * reach
-              : 4.0 * tau[static_cast<size_t>(code.parent)][i];
-      margin[i] = 2.0 * tau[j][i] + inherited;
-    }
-    for (int i = 0; i < kValues; ++i) {
-      if (!std::isfinite(lo[i]) || !std::isfinite(hi[i])) return fail("non-finite joint transform");
-      const double center = 0.5 * (lo[i] + hi[i]);
-      code.center[i] = static_cast<float>(center);
-      const double need =
-          0.5 * (hi[i] - lo[i]) + std::abs(center - double{code.center[i]}) + margin[i];
-      code.half[i] = round_up(std::max(need, 1e-12 * (1.0 + std::abs(center))));
-      const double units = tau[j][i] * kSnorm / double{code.half[i]};
-      lane_units[j][i] = units;
-    }
-    series += static_cast<size_t>(code.lanes());
-  }
-
+  // The search: tolerances in lane units at `scale` times the estimate, coded and measured.
+  std::vector<JointCode>& codes = plan.codes;
   out.texture = texture;
-  std::vector<int16_t> residuals(series * rows);
-  // Tolerances in lane units at `scale` times the estimate; the coding with them, measured.
+  std::vector<int16_t> residuals(plan.series * rows);
   std::vector<std::array<int, kValues>> tolerance(count);
   const auto scaled = [&](double scale) {
     for (size_t j = 0; j < count; ++j)
       for (int i = 0; i < kValues; ++i)
         tolerance[j][i] = static_cast<int>(
-            std::clamp(std::floor(lane_units[j][i] * scale), 0.0, double{kMaxTolerance}));
+            std::clamp(std::floor(plan.lane_units[j][i] * scale), 0.0, double{kMaxTolerance}));
   };
   const auto code_and_measure = [&]() {
     for (size_t j = 0; j < count; ++j)
       for (int i = 0; i < kValues; ++i)
         codes[j].step[i] = static_cast<uint16_t>(2 * tolerance[j][i] + 1);
-    run_rows(codes, &targets, residuals, out.texture);
+    run_rows(codes, &targets.rows, residuals, out.texture);
     return measure(texture, out.texture, geometry, bound);
   };
   // The estimate is conservative where errors do not line up: loosen every tolerance together

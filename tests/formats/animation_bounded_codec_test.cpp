@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,11 @@ void multiply(const double a[12], const double b[12], double out[12]) {
 }
 
 // The test character with a quantized texture of smooth motion: each joint turns about its
-// own pivot on a slow sine, on top of its parent, and the root walks.
-PackContents animated_contents() {
+// own pivot on a slow sine, on top of its parent, and the root walks. `hard` adds what the
+// coding treats specially: the left arm spins whole turns (no quaternion component stays away
+// from zero, so all four are stored) and the spine shrinks to zero scale and back (its children
+// are coded against the identity).
+PackContents animated_contents(bool hard = false) {
   PackContents c = test::make_test_contents(12, 3);
   const uint32_t joints = static_cast<uint32_t>(c.joints.size()), rows = c.animation.rows;
   std::vector<double> matrices(size_t{rows} * joints * 12);
@@ -50,13 +54,18 @@ PackContents animated_contents() {
   for (uint32_t r = 0; r < rows; ++r)
     for (uint32_t j = 0; j < joints; ++j) {
       const double pivot[3] = {0.2 * j - 0.4, 0.3 * j, 0.0};
-      const double angle = 0.6 * std::sin(0.15 * r + j);
+      const double angle = hard && j == 3 ? 0.9 * r : 0.6 * std::sin(0.15 * r + j);
       double back[12], turn[12], local[12];
       const double minus[3] = {-pivot[0], -pivot[1], -pivot[2]};
       rigid(0.0, axes[0], minus, back);
       rigid(angle, axes[j], pivot, turn);
       multiply(turn, back, local);
       if (j == 0) local[3] += 0.02 * r;
+      if (hard && j == 1) {
+        const double shrink = std::abs(std::cos(std::acos(-1.0) * r / 16));  // 0 at row 8
+        for (int i = 0; i < 12; ++i)
+          if (i % 4 != 3) local[i] *= shrink;
+      }
       double* out = &matrices[(size_t{r} * joints + j) * 12];
       const int parent = c.joints[j].parent;
       if (parent < 0)
@@ -133,6 +142,34 @@ TEST(BoundedAnimation, EveryVertexStaysWithinTheBound) {
     // note: the runtime decodes in float; 1e-5 of the diagonal covers its rounding.
     EXPECT_LE(measured, stored.bound + 1e-5 * d) << error;
     EXPECT_NEAR(measured, stored.max_error, 1e-5 * d) << error;
+  }
+}
+
+TEST(BoundedAnimation, SpinsAndVanishingParentsStayWithinTheBound) {
+  const PackContents c = animated_contents(true);
+  const double d = diagonal(c);
+  for (double error : {1e-4, 1e-3}) {
+    pack_io::BoundedAnimationCode code;
+    std::string why;
+    ASSERT_TRUE(
+        pack_io::encode_bounded_animation(c.animation, c.joints, c.geometry, error * d, code, &why))
+        << error << ": " << why;
+    // Joint headers: the joints under the spine (2, 3, 4) are coded against the identity, and
+    // the spinning arm stores all four quaternion components.
+    size_t at = 4;
+    for (size_t j = 0; j < c.joints.size(); ++j) {
+      int32_t parent;
+      std::memcpy(&parent, &code.stream[at], 4);
+      const uint8_t implied = code.stream[at + 4];
+      // note: the whole subtree under the spine vanishes with it, so joint 4 (under 3) too.
+      const int32_t expected = j >= 2 ? -1 : c.joints[j].parent;
+      EXPECT_EQ(parent, expected) << j;
+      if (j == 3) {
+        EXPECT_EQ(implied, 4) << "a spinning joint stores every component";
+      }
+      at += 4 + 1 + 12 + (implied < 4 ? 7 : 8) * 10;
+    }
+    EXPECT_LE(largest_vertex_distance(c, c.animation, code.texture), error * d + 1e-5 * d) << error;
   }
 }
 
