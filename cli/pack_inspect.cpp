@@ -50,6 +50,13 @@ double per(uint64_t bytes, uint64_t count) {
   return count ? static_cast<double>(bytes) / count : 0.0;
 }
 
+// How the pack stores the animation texels (docs/pack-format.md 3.8): crowdbake writes ANIM v3
+// only for the coding within the bake's animation.max_error, earlier versions losslessly.
+const char* animation_storage(const PackFile& pack) {
+  const PackChunk* anim = find_chunk(pack, pack_format::kTagAnim);
+  return anim && anim->version >= pack_format::kAnimVersion ? "error-bounded" : "lossless";
+}
+
 std::string hex32(uint32_t v) {
   char s[16];
   std::snprintf(s, sizeof s, "0x%08x", v);
@@ -113,7 +120,8 @@ ordered_json to_json(const PackFile& pack) {
                     {"height", a.rows},
                     {"texels_per_joint", a.texels_per_joint},
                     {"bytes_per_texel", a.bytes_per_texel},
-                    {"bytes", a.data.size()}};
+                    {"bytes", a.data.size()},
+                    {"stored", animation_storage(pack)}};
   const PartitionMask& m = c.partition;
   const auto texels = region_texels(m);
   j["partition"] = {{"width", m.width},
@@ -204,9 +212,10 @@ void print_text(const PackFile& pack) {
                 clip.frame_count, clip.fps, clip.duration, clip.looping ? "yes" : "no",
                 clip.root_motion.empty() ? "no" : "yes");
   const AnimationTexture& a = c.animation;
-  std::printf("  animation  %s, %u joints x %u rows: %u x %u texels of %u bytes, %zu bytes\n",
-              animation_encoding_name(a.encoding), a.joints, a.rows, a.width(), a.rows,
-              a.bytes_per_texel, a.data.size());
+  std::printf(
+      "  animation  %s, %u joints x %u rows: %u x %u texels of %u bytes, %zu bytes, stored %s\n",
+      animation_encoding_name(a.encoding), a.joints, a.rows, a.width(), a.rows, a.bytes_per_texel,
+      a.data.size(), animation_storage(pack));
   const PartitionMask& m = c.partition;
   const auto texels = region_texels(m);
   std::printf(

@@ -217,6 +217,7 @@ TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
   EXPECT_EQ(j["clips"][0]["looping"], c.clips[0].looping);
   EXPECT_EQ(j["clips"][0]["root_motion"], true);
   EXPECT_EQ(j["animation"]["encoding"], "float16");
+  EXPECT_EQ(j["animation"]["stored"], "lossless") << "only quantized textures are coded";
   EXPECT_EQ(j["animation"]["width"], c.animation.width());
   EXPECT_EQ(j["animation"]["height"], c.animation.rows);
   EXPECT_EQ(j["partition"]["width"], 64);
@@ -231,6 +232,26 @@ TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
   EXPECT_EQ(j["settings"]["partition"]["size"], 64);
   EXPECT_EQ(j["bytes_per_component"]["chunks"]["GEOM"], geom);
   EXPECT_DOUBLE_EQ(j["bytes_per_component"]["geometry_per_vertex"].get<double>(), geom / 64.0);
+}
+
+// The default bake codes its quantized animation within animation.max_error (ANIM v3); 0 keeps
+// it lossless (ANIM v2); inspect says which.
+TEST_F(PackCommands, InspectSaysHowTheAnimationIsStored) {
+  for (const char* max_error : {"1e-4", "0"}) {
+    const bool bounded = std::string(max_error) != "0";
+    const fs::path pack = bake(std::string("tube_anim") + (bounded ? "_bounded" : "_lossless"),
+                               std::string(R"("animation": {"max_error": )") + max_error + "}");
+    uint32_t version = 0;
+    for (const PackChunk& chunk : chunks(pack))
+      if (chunk.tag == pack_format::kTagAnim) version = chunk.version;
+    const test::CommandResult r = run_crowdbake({"inspect", pack.string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["animation"]["stored"], version == 3 ? "error-bounded" : "lossless") << max_error;
+    if (!bounded) {
+      EXPECT_EQ(version, 2u);
+    }
+  }
 }
 
 TEST_F(PackCommands, InspectOfACharacterFileIsUnchanged) {
