@@ -175,9 +175,13 @@ std::array<double, kValues> lane_values(const JointCode& code, Similarity x,
   return {x.q[0], x.q[1], x.q[2], x.q[3], p[0], p[1], p[2], x.s};
 }
 
-int predict(int previous, int before, size_t row) {
-  if (row == 0) return 0;
-  if (row == 1) return previous;
+// The prediction of a lane at row `k` of its segment (a clip): the lane's value at the first
+// row of the segment before (0 for the first), then the previous value, then the linear
+// extrapolation of the two before. Clips start from poses alike more often than they continue
+// the clip before them.
+int predict(int previous, int before, int segment_first, size_t k) {
+  if (k == 0) return segment_first;
+  if (k == 1) return previous;
   return std::clamp(2 * previous - before, -32767, 32767);
 }
 
@@ -207,16 +211,25 @@ int16_t unzigzag(uint16_t z) { return static_cast<int16_t>((z >> 1) ^ ((z & 1u) 
 // Runs the coding over every row: with `targets` (encoder) it chooses the residuals and writes
 // them to `residuals`; without (decoder) it reads them. Either way `out` receives the texels a
 // reader expands. Residuals are laid out joint-major, then stored lane, then row.
-void run_rows(const std::vector<JointCode>& codes, const std::vector<Similarity>* targets,
-              std::vector<int16_t>& residuals, AnimationTexture& out) {
+void run_rows(const std::vector<JointCode>& codes, const std::vector<uint32_t>& segments,
+              const std::vector<Similarity>* targets, std::vector<int16_t>& residuals,
+              AnimationTexture& out) {
   const size_t joints = out.joints, rows = out.rows;
-  std::vector<int> previous(joints * kValues, 0), before(joints * kValues, 0);
+  std::vector<int> previous(joints * kValues, 0), before(joints * kValues, 0),
+      segment_first(joints * kValues, 0), first_of_next(joints * kValues, 0);
+  size_t segment = 0, segment_start = 0;
   std::vector<size_t> first_series(joints, 0);
   for (size_t j = 1; j < joints; ++j)
     first_series[j] = first_series[j - 1] + static_cast<size_t>(codes[j - 1].lanes());
   std::vector<Similarity> decoded(joints);
   std::vector<std::array<double, 4>> last_q(joints, {0, 0, 0, 1});
   for (size_t r = 0; r < rows; ++r) {
+    if (segment + 1 < segments.size() && r == segments[segment + 1]) {
+      ++segment;
+      segment_start = r;
+      segment_first = first_of_next;
+    }
+    const size_t k = r - segment_start;
     for (size_t j = 0; j < joints; ++j) {
       const JointCode& code = codes[j];
       const Similarity parent =
@@ -229,7 +242,7 @@ void run_rows(const std::vector<JointCode>& codes, const std::vector<Similarity>
       for (int i = 0; i < kValues; ++i) {
         if (!code.stored(i)) continue;
         const size_t state = j * kValues + static_cast<size_t>(i);
-        const int prediction = predict(previous[state], before[state], r);
+        const int prediction = predict(previous[state], before[state], segment_first[state], k);
         int16_t& residual = residuals[series++ * rows + r];
         if (targets) {
           const int target = to_snorm((values[i] - double{code.center[i]}) / double{code.half[i]});
@@ -238,6 +251,7 @@ void run_rows(const std::vector<JointCode>& codes, const std::vector<Similarity>
         lanes[i] = reconstruct(prediction, residual, code.step[i]);
         before[state] = previous[state];
         previous[state] = lanes[i];
+        if (k == 0) first_of_next[state] = lanes[i];
       }
       const Similarity x = relative_from_lanes(code, lanes);
       last_q[j] = x.q;
@@ -354,10 +368,12 @@ Measured measure(const AnimationTexture& reference, const AnimationTexture& code
   return m;
 }
 
-void write_stream(const std::vector<JointCode>& codes, const std::vector<int16_t>& residuals,
-                  std::vector<uint8_t>& stream) {
+void write_stream(const std::vector<JointCode>& codes, const std::vector<uint32_t>& segments,
+                  const std::vector<int16_t>& residuals, std::vector<uint8_t>& stream) {
   ByteWriter w;
   w.u32(static_cast<uint32_t>(codes.size()));
+  w.u32(static_cast<uint32_t>(segments.size()));
+  for (uint32_t start : segments) w.u32(start);
   for (const JointCode& c : codes) {
     w.i32(c.parent);
     w.u8(c.implied);
@@ -498,11 +514,12 @@ bool plan_joint(const Targets& targets, size_t row_count, const std::vector<Join
 }  // namespace
 
 uint64_t bounded_stream_limit(uint32_t joints, uint32_t rows) {
-  return 4 + uint64_t{joints} * (kJointFixedBytes + kValues * kLaneHeaderBytes) +
+  return 8 + 4ull * rows + uint64_t{joints} * (kJointFixedBytes + kValues * kLaneHeaderBytes) +
          2ull * kValues * joints * rows;
 }
 
 bool encode_bounded_animation(const AnimationTexture& texture, const std::vector<PackJoint>& joints,
+                              const std::vector<uint32_t>& clip_starts,
                               const PackGeometry& geometry, double bound, BoundedAnimationCode& out,
                               std::string* why) {
   const auto fail = [&](const std::string& reason) {
@@ -516,6 +533,11 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
   if (joints.size() != texture.joints) return fail("joint count differs from the texture's");
 
   const size_t count = texture.joints, rows = texture.rows;
+  std::vector<uint32_t> segments{0};
+  for (uint32_t start : clip_starts)
+    if (start < rows) segments.push_back(start);
+  std::sort(segments.begin(), segments.end());
+  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
   Targets targets{std::vector<Similarity>(rows * count), count};
   for (size_t r = 0; r < rows; ++r)
     for (size_t j = 0; j < count; ++j)
@@ -542,7 +564,7 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
     for (size_t j = 0; j < count; ++j)
       for (int i = 0; i < kValues; ++i)
         codes[j].step[i] = static_cast<uint16_t>(2 * tolerance[j][i] + 1);
-    run_rows(codes, &targets.rows, residuals, out.texture);
+    run_rows(codes, segments, &targets.rows, residuals, out.texture);
     return measure(texture, out.texture, geometry, bound);
   };
   // The estimate is conservative where errors do not line up: loosen every tolerance together
@@ -577,7 +599,7 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
   }
   out.max_error = m.max_error;
   out.mean_error = m.mean_error;
-  write_stream(codes, residuals, out.stream);
+  write_stream(codes, segments, residuals, out.stream);
   return true;
 }
 
@@ -597,6 +619,19 @@ bool decode_bounded_animation(const uint8_t* stream, size_t size, AnimationTextu
   if (stored_joints != count)
     return fail("stream codes " + std::to_string(stored_joints) + " joints, the texture has " +
                 std::to_string(count));
+  uint32_t segment_count = 0;
+  in.u32(segment_count, "segment count");
+  if (!in.ok()) return fail(in.error());
+  if (segment_count == 0 || segment_count > rows)
+    return fail("segment count " + std::to_string(segment_count) + " is not 1.." +
+                std::to_string(rows));
+  std::vector<uint32_t> segments(segment_count);
+  for (uint32_t& start : segments) in.u32(start, "segment start");
+  if (!in.ok()) return fail(in.error());
+  for (size_t i = 0; i < segments.size(); ++i)
+    if (i == 0 ? segments[i] != 0 : (segments[i] <= segments[i - 1] || segments[i] >= rows))
+      return fail("segment " + std::to_string(i) + " starts at row " + std::to_string(segments[i]) +
+                  ": starts must be 0, then increasing rows of the texture");
   std::vector<JointCode> codes(count);
   size_t series = 0;
   for (size_t j = 0; j < count; ++j) {
@@ -633,7 +668,7 @@ bool decode_bounded_animation(const uint8_t* stream, size_t size, AnimationTextu
   for (size_t i = 0; i < n; ++i)
     residuals[i] = unzigzag(static_cast<uint16_t>(planes[i] | (planes[n + i] << 8)));
   texture.data.assign(rows * count * 16, 0);
-  run_rows(codes, nullptr, residuals, texture);
+  run_rows(codes, segments, nullptr, residuals, texture);
   return true;
 }
 

@@ -9,7 +9,8 @@
 // spread around c_j instead of their distance from the model origin. Seven 16-bit lanes per
 // joint (three quaternion components, the fourth implied when it stays well away from zero
 // over every row, otherwise eight with all four; p; s), each over its own range, are
-// predicted from the two rows before (as the lossless coding does) and the residual is
+// predicted from the two rows before within each clip (and a clip's first row from the first
+// row of the clip before, as clips tend to start alike) and the residual is
 // quantised with a step of 2k + 1 lane units, closed-loop, so no lane is ever more than k
 // units from its target. k per joint and lane is estimated from the error bound, the spread
 // of the vertices of the joint's subtree and its parent's scale; the encoder then expands
@@ -41,7 +42,10 @@ struct BoundedAnimationCode {
 // Codes `texture` (kQuantized, rows > 0) so that no vertex of `geometry`, skinned at any
 // row, moves more than `bound` (model units, > 0) from where `texture` puts it. False with a
 // reason when it cannot (another encoding, no rows, a bound below the texture's own rounding).
+// `clip_starts`: the rows where clips start (PackClip::first_row), where the prediction
+// starts afresh.
 bool encode_bounded_animation(const AnimationTexture& texture, const std::vector<PackJoint>& joints,
+                              const std::vector<uint32_t>& clip_starts,
                               const PackGeometry& geometry, double bound, BoundedAnimationCode& out,
                               std::string* why);
 

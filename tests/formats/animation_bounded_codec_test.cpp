@@ -109,6 +109,20 @@ double largest_vertex_distance(const PackContents& c, const AnimationTexture& a,
   return worst;
 }
 
+std::vector<uint32_t> clip_starts(const PackContents& c) {
+  std::vector<uint32_t> starts;
+  for (const PackClip& clip : c.clips) starts.push_back(clip.first_row);
+  return starts;
+}
+
+// Where joint 0's header starts in a stream: after the joint count, the segment count and the
+// segments' first rows.
+size_t first_joint_header(const std::vector<uint8_t>& stream) {
+  uint32_t segments;
+  std::memcpy(&segments, &stream[4], 4);
+  return 8 + 4 * size_t{segments};
+}
+
 PackWriteOptions bounded(double error) {
   PackWriteOptions o;
   o.animation_error = error;
@@ -151,12 +165,12 @@ TEST(BoundedAnimation, SpinsAndVanishingParentsStayWithinTheBound) {
   for (double error : {1e-4, 1e-3}) {
     pack_io::BoundedAnimationCode code;
     std::string why;
-    ASSERT_TRUE(
-        pack_io::encode_bounded_animation(c.animation, c.joints, c.geometry, error * d, code, &why))
+    ASSERT_TRUE(pack_io::encode_bounded_animation(c.animation, c.joints, clip_starts(c), c.geometry,
+                                                  error * d, code, &why))
         << error << ": " << why;
     // Joint headers: the joints under the spine (2, 3, 4) are coded against the identity, and
     // the spinning arm stores all four quaternion components.
-    size_t at = 4;
+    size_t at = first_joint_header(code.stream);
     for (size_t j = 0; j < c.joints.size(); ++j) {
       int32_t parent;
       std::memcpy(&parent, &code.stream[at], 4);
@@ -220,7 +234,7 @@ TEST(BoundedAnimation, MalformedStreamsAreRefused) {
   const PackContents c = animated_contents();
   pack_io::BoundedAnimationCode code;
   std::string why;
-  ASSERT_TRUE(pack_io::encode_bounded_animation(c.animation, c.joints, c.geometry,
+  ASSERT_TRUE(pack_io::encode_bounded_animation(c.animation, c.joints, clip_starts(c), c.geometry,
                                                 1e-3 * diagonal(c), code, &why))
       << why;
   ASSERT_LE(code.stream.size(),
@@ -247,21 +261,33 @@ TEST(BoundedAnimation, MalformedStreamsAreRefused) {
   s = code.stream;
   test::put32(s, 0, 4);
   expect_refused(s, "stream codes 4 joints");
-  // Joint 0's header starts at byte 4: parent (i32), implied component (u8), pivot (3 f32),
-  // then per stored lane: centre (f32), half range (f32), step (u16).
+  // The segments: one per clip, the first at row 0.
+  EXPECT_EQ(first_joint_header(code.stream), 8 + 4 * c.clips.size());
+  s = code.stream;
+  test::put32(s, 8, 1);
+  expect_refused(s, "segment 0 starts at row 1");
+  s = code.stream;
+  test::put32(s, 16, 1);  // the third clip's start, before the second's
+  expect_refused(s, "starts must be 0, then increasing rows");
   s = code.stream;
   test::put32(s, 4, 0);
+  expect_refused(s, "segment count 0 is not 1..");
+  // Joint 0's header: parent (i32), implied component (u8), pivot (3 f32), then per stored
+  // lane: centre (f32), half range (f32), step (u16).
+  const size_t j0 = first_joint_header(code.stream);
+  s = code.stream;
+  test::put32(s, j0, 0);
   expect_refused(s, "is not an earlier joint");
   s = code.stream;
-  s[8] = 5;
+  s[j0 + 4] = 5;
   expect_refused(s, "implied component 5 is not 0..4");
   s = code.stream;
-  s[29] = 2;  // the first lane's step, low byte: even
-  s[30] = 0;
+  s[j0 + 25] = 2;  // the first lane's step, low byte: even
+  s[j0 + 26] = 0;
   expect_refused(s, "is not an odd number");
   s = code.stream;
   const float nan = std::nanf("");
-  std::memcpy(&s[25], &nan, 4);  // the first lane's half range
+  std::memcpy(&s[j0 + 21], &nan, 4);  // the first lane's half range
   expect_refused(s, "not a finite number");
   s.resize(20);
   expect_refused(s, "");

@@ -258,8 +258,10 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
     const auto start = std::chrono::steady_clock::now();
     pack_io::BoundedAnimationCode code;
     std::string why;
-    if (!pack_io::encode_bounded_animation(quantized.texture, contents.joints, contents.geometry,
-                                           kBounds[b] * diagonal, code, &why)) {
+    std::vector<uint32_t> starts;
+    for (const PackClip& clip : quantized.clips) starts.push_back(clip.first_row);
+    if (!pack_io::encode_bounded_animation(quantized.texture, contents.joints, starts,
+                                           contents.geometry, kBounds[b] * diagonal, code, &why)) {
       std::fprintf(stderr, "  %s: error-bounded coding at %g: %s\n", label.c_str(), kBounds[b],
                    why.c_str());
       continue;
