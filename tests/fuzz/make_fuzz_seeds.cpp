@@ -50,6 +50,10 @@ int write_packs(const std::string& dir) {
     emit(codec_name + "_points", points, {codec, 8, 4, 6});
     emit(codec_name + "_empty", PackContents{}, {codec});
   }
+  // ANIM v3: the animation coded within a bound (docs/pack-format.md 3.8).
+  PackWriteOptions bounded;
+  bounded.animation_error = 1e-2;
+  emit("bounded_animation", fuzz::bounded_animation_contents(50), bounded);
   return written;
 }
 
