@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -320,6 +321,13 @@ std::array<double, kValues> tolerances(double bound, double radius, double paren
   return {rotation, rotation, rotation, rotation, pivot, pivot, pivot, scale};
 }
 
+// A number as printf's %g writes it (std::to_string's fixed six decimals lose small errors).
+std::string shortest(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 float round_up(double x) {
   float f = static_cast<float>(x);
   if (double{f} < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
@@ -593,8 +601,9 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
             tightened = true;
           }
     if (!tightened || round + 1 == kTightenRounds)
-      return fail("the bound is below what the texture's own rounding allows (largest error " +
-                  std::to_string(m.max_error) + " model units)");
+      return fail("the bound (" + shortest(bound) +
+                  " model units) is below what the texture's own rounding allows (largest error " +
+                  shortest(m.max_error) + ")");
     m = code_and_measure();
   }
   out.max_error = m.max_error;

@@ -285,9 +285,12 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
   report.animation_coding = stored.error_bounded ? "error-bounded" : "lossless";
   report.animation_coding_max_error = stored.max_error / diagonal;
   report.animation_coding_mean_error = stored.mean_error / diagonal;
-  if (!stored.lossless_reason.empty() && !stored.lossless_smaller)
-    report.warnings.push_back("animation: stored losslessly, not within animation.max_error " +
-                              std::to_string(settings.pack.animation_error) + ": " +
+  // note: the bound applies to quantized textures in compressed packs only (bake-config.md); a
+  // bake that asked for another encoding or none gets no warning for the choice it made.
+  const bool codable = settings.animation.encoding == AnimationEncoding::kQuantized &&
+                       settings.pack.compression == PackCompression::kZstd;
+  if (codable && !stored.lossless_reason.empty() && !stored.lossless_smaller)
+    report.warnings.push_back("animation: stored losslessly, not within animation.max_error: " +
                               stored.lossless_reason);
   measure_animation(asset, pack, stored.texture, diagonal, 0.5 * (lo + hi), report,
                     pack.bounds.radius);

@@ -99,6 +99,26 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   EXPECT_LE(j["accuracy"]["animation_coding_max_error"].get<double>(), bound);
 }
 
+// A bound below the quantized texture's own rounding cannot be met: the pack keeps the texels
+// losslessly and the report says why (a warning, not an error: the pack is still right).
+TEST(BakeCommand, UnreachableAnimationBoundStaysLosslessWithAWarning) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << R"({"animation": {"max_error": 1e-12}})";
+  const test::CommandResult r =
+      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
+                           (dir / "config.json").string(), "--report", (dir / "r.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  EXPECT_EQ(j["accuracy"]["animation_coding"], "lossless");
+  EXPECT_EQ(j["accuracy"]["animation_coding_max_error"], 0.0);
+  bool warned = false;
+  for (const auto& w : j["warnings"])
+    warned |= w.get<std::string>().find("stored losslessly, not within animation.max_error") !=
+              std::string::npos;
+  EXPECT_TRUE(warned) << j["warnings"].dump();
+}
+
 TEST(BakeCommandErrors, AnimationErrorOutOfRangeNamesTheKey) {
   test::TempDir dir;
   const auto input = write_character(dir);
