@@ -339,28 +339,51 @@ struct Measured {
   std::vector<uint8_t> over;  // per joint: 1 when one of its vertices is out of bound
 };
 
-Measured measure(const AnimationTexture& reference, const AnimationTexture& coded,
-                 const PackGeometry& g, double bound) {
+// A similarity as a 3x4 row-major matrix.
+std::array<double, 12> matrix_of(const Similarity& a) {
+  std::array<double, 12> m{};
+  for (int c = 0; c < 3; ++c) {
+    std::array<double, 3> axis{0, 0, 0};
+    axis[c] = 1.0;
+    const std::array<double, 3> r = rotate(a.q, axis);
+    for (int k = 0; k < 3; ++k) m[4 * k + c] = a.s * r[k];
+  }
+  for (int k = 0; k < 3; ++k) m[4 * k + 3] = a.t[k];
+  return m;
+}
+
+// The rows of a texture as matrices, row-major (what measure() compares against).
+std::vector<std::array<double, 12>> texture_matrices(const AnimationTexture& t) {
+  std::vector<std::array<double, 12>> out(size_t{t.rows} * t.joints);
+  for (size_t r = 0; r < t.rows; ++r)
+    for (size_t j = 0; j < t.joints; ++j)
+      out[r * t.joints + j] = matrix_of(texel_similarity(t, r, j));
+  return out;
+}
+
+// How far the coded texture moves each skinned vertex from the reference's, at every row.
+Measured measure(const std::vector<std::array<double, 12>>& reference,
+                 const AnimationTexture& coded, const PackGeometry& g, double bound) {
   Measured m;
-  m.over.assign(reference.joints, 0);
-  const size_t n = g.vertex_count(), joints = reference.joints;
-  std::vector<Similarity> a(joints), b(joints);
+  const size_t n = g.vertex_count(), joints = coded.joints;
+  m.over.assign(joints, 0);
+  std::vector<std::array<double, 12>> difference(joints);
   double sum = 0.0;
-  for (size_t r = 0; r < reference.rows; ++r) {
+  for (size_t r = 0; r < coded.rows; ++r) {
     for (size_t j = 0; j < joints; ++j) {
-      a[j] = texel_similarity(reference, r, j);
-      b[j] = texel_similarity(coded, r, j);
+      difference[j] = matrix_of(texel_similarity(coded, r, j));
+      for (int k = 0; k < 12; ++k) difference[j][k] -= reference[r * joints + j][k];
     }
     for (size_t v = 0; v < n; ++v) {
-      const std::array<double, 3> p{g.positions[3 * v], g.positions[3 * v + 1],
-                                    g.positions[3 * v + 2]};
+      const double x = g.positions[3 * v], y = g.positions[3 * v + 1], z = g.positions[3 * v + 2];
       double e[3] = {0, 0, 0};
       for (int i = 0; i < 4; ++i) {
         const double w = g.weights[4 * v + i];
         const size_t j = g.joints[4 * v + i];
         if (w == 0.0 || j >= joints) continue;
-        const std::array<double, 3> pa = apply(a[j], p), pb = apply(b[j], p);
-        for (int k = 0; k < 3; ++k) e[k] += w * (pb[k] - pa[k]);
+        const std::array<double, 12>& d = difference[j];
+        for (int k = 0; k < 3; ++k)
+          e[k] += w * (d[4 * k] * x + d[4 * k + 1] * y + d[4 * k + 2] * z + d[4 * k + 3]);
       }
       const double d = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
       sum += d;
@@ -371,7 +394,7 @@ Measured measure(const AnimationTexture& reference, const AnimationTexture& code
             m.over[g.joints[4 * v + i]] = 1;
     }
   }
-  const double count = static_cast<double>(n) * reference.rows;
+  const double count = static_cast<double>(n) * coded.rows;
   m.mean_error = count > 0 ? sum / count : 0.0;
   return m;
 }
@@ -558,6 +581,7 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
       return fail("non-finite joint transform");
 
   // The search: tolerances in lane units at `scale` times the estimate, coded and measured.
+  const std::vector<std::array<double, 12>> reference = texture_matrices(texture);
   std::vector<JointCode>& codes = plan.codes;
   out.texture = texture;
   std::vector<int16_t> residuals(plan.series * rows);
@@ -573,7 +597,7 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
       for (int i = 0; i < kValues; ++i)
         codes[j].step[i] = static_cast<uint16_t>(2 * tolerance[j][i] + 1);
     run_rows(codes, segments, &targets.rows, residuals, out.texture);
-    return measure(texture, out.texture, geometry, bound);
+    return measure(reference, out.texture, geometry, bound);
   };
   // The estimate is conservative where errors do not line up: loosen every tolerance together
   // while the bound still holds. Otherwise tighten the joints whose vertices are out of bound.
