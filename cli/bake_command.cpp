@@ -66,10 +66,11 @@ int run_bake(const BakeCommandSettings& s) {
                std::to_string(asset.skeleton.joints.size()) + " joints, " +
                std::to_string(asset.clips.size()) + " clips");
   BakeReport report;
-  const PackContents pack = build_pack(asset, settings, report);
+  StoredAnimation animation;
+  const PackContents pack = build_pack(asset, settings, report, &animation);
   progress.say("writing " + s.output);
   const auto write_start = std::chrono::steady_clock::now();
-  const std::vector<uint8_t> bytes = write_pack(pack, settings.pack);
+  const std::vector<uint8_t> bytes = write_pack(pack, settings.pack, animation);
   write_file_atomically(s.output, bytes);
   report.stages.push_back(
       {"write",

@@ -51,6 +51,11 @@ void check_options(const PackWriteOptions& o) {
         std::to_string(o.animation_error));
 }
 
+void check_contents(const PackContents& contents) {
+  const PackStatus valid = validate_pack_contents(contents);
+  if (!valid) throw std::invalid_argument("write_pack: invalid pack contents: " + valid.message);
+}
+
 double bind_diagonal(const PackBounds& bounds) {
   double diagonal2 = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -100,6 +105,7 @@ AnimationChoice choose_animation(const PackContents& contents, const PackWriteOp
 
 StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options) {
   check_options(options);
+  check_contents(contents);
   StoredAnimation stored;
   AnimationChoice choice = choose_animation(contents, options);
   stored.lossless_reason = choice.reason;
@@ -113,6 +119,7 @@ StoredAnimation stored_animation(const PackContents& contents, const PackWriteOp
   stored.bound = options.animation_error * bind_diagonal(contents.bounds);
   stored.max_error = choice.code.max_error;
   stored.mean_error = choice.code.mean_error;
+  stored.coded = std::move(choice.frame);
   return stored;
 }
 
@@ -164,10 +171,11 @@ PackStatus validate_pack_contents(const PackContents& c) {
   return {};
 }
 
-std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options) {
-  check_options(options);
-  const PackStatus valid = validate_pack_contents(contents);
-  if (!valid) throw std::invalid_argument("write_pack: invalid pack contents: " + valid.message);
+namespace {
+
+std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
+                                       const PackWriteOptions& options,
+                                       const std::vector<uint8_t>* bounded_animation) {
 
   std::vector<EncodedChunk> chunks;
   const auto add = [&](uint32_t tag, uint32_t version) -> ByteWriter& {
@@ -187,10 +195,8 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   pack_io::encode_geometry(contents.geometry, options,
                            add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
   const bool compressed = options.compression == PackCompression::kZstd;
-  const AnimationChoice animation = choose_animation(contents, options);
-  pack_io::encode_animation(contents.animation, compressed,
-                            animation.bounded ? &animation.frame : nullptr,
-                            add(kTagAnim, animation.bounded ? kAnimVersion
+  pack_io::encode_animation(contents.animation, compressed, bounded_animation,
+                            add(kTagAnim, bounded_animation ? kAnimVersion
                                           : compressed      ? kAnimLosslessVersion
                                                             : kAnimOldestVersion));
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
@@ -244,6 +250,28 @@ std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOpt
   crc = pack_io::crc32c(file.bytes().data() + table_at, chunks.size() * kChunkEntrySize, crc);
   file.patch_u32(checksum_at, crc);
   return std::move(file.bytes());
+}
+
+}  // namespace
+
+std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options) {
+  check_options(options);
+  check_contents(contents);
+  const AnimationChoice animation = choose_animation(contents, options);
+  return write_pack_chunks(contents, options, animation.bounded ? &animation.frame : nullptr);
+}
+
+std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options,
+                                const StoredAnimation& animation) {
+  check_options(options);
+  check_contents(contents);
+  if (animation.error_bounded &&
+      (animation.coded.empty() || animation.texture.rows != contents.animation.rows ||
+       animation.texture.joints != contents.animation.joints))
+    throw std::invalid_argument(
+        "write_pack: the stored animation does not fit the contents; pass what "
+        "stored_animation() returned for them");
+  return write_pack_chunks(contents, options, animation.error_bounded ? &animation.coded : nullptr);
 }
 
 }  // namespace crowdbake

@@ -201,8 +201,8 @@ std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex
   return out;
 }
 
-PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
-                        BakeReport& report) {
+PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
+                        StoredAnimation* stored_out) {
   StageClock clock(report);
   PackContents pack;
   pack.name = std::filesystem::path(asset.source).stem().string();
@@ -278,10 +278,9 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
       lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
   for (int k = 0; k < 3; ++k)
     pack.bounds.min[k] = static_cast<float>(lo[k]), pack.bounds.max[k] = static_cast<float>(hi[k]);
-  // note: the writer codes the texture again, deterministically, to the same result; the bake
-  // measures what a reader will get.
+  // note: the bake measures what a reader will get.
   const double diagonal = std::max(glm::length(hi - lo), 1e-30);
-  const StoredAnimation stored = stored_animation(pack, settings.pack);
+  StoredAnimation stored = stored_animation(pack, settings.pack);
   report.animation_coding = stored.error_bounded ? "error-bounded" : "lossless";
   report.animation_coding_max_error = stored.max_error / diagonal;
   report.animation_coding_mean_error = stored.mean_error / diagonal;
@@ -294,6 +293,7 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
                               stored.lossless_reason);
   measure_animation(asset, pack, stored.texture, diagonal, 0.5 * (lo + hi), report,
                     pack.bounds.radius);
+  if (stored_out) *stored_out = std::move(stored);
   clock.done("measure");
   return pack;
 }

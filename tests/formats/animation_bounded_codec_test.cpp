@@ -199,6 +199,19 @@ TEST(BoundedAnimation, SmallerThanLosslessAndDeterministic) {
       << "without a bound the pack stays readable by 1.4 readers";
 }
 
+// A writer that has the coding already (the bake) stores exactly what write_pack() would.
+TEST(BoundedAnimation, WritingThePreparedCodingGivesTheSameBytes) {
+  const PackContents c = animated_contents();
+  for (double error : {0.0, 1e-12, 1e-3}) {
+    const StoredAnimation stored = stored_animation(c, bounded(error));
+    EXPECT_EQ(write_pack(c, bounded(error), stored), write_pack(c, bounded(error))) << error;
+    EXPECT_EQ(stored.coded.empty(), !stored.error_bounded) << error;
+  }
+  StoredAnimation foreign = stored_animation(c, bounded(1e-3));
+  foreign.texture.rows += 1;
+  EXPECT_THROW(write_pack(c, bounded(1e-3), foreign), std::invalid_argument);
+}
+
 TEST(BoundedAnimation, WhatItCannotCodeStaysLosslessWithAReason) {
   PackContents c = animated_contents();
   struct Case {

@@ -209,8 +209,16 @@ struct StoredAnimation {
   double mean_error = 0.0;        // every vertex at every row, and its mean; model units
   std::string lossless_reason;    // why a requested bound was not used (empty otherwise)
   bool lossless_smaller = false;  // the reason is only that the lossless texels are smaller
+  std::vector<uint8_t> coded;     // the coding as ANIM v3 stores it (empty when lossless)
 };
 StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options);
+
+// write_pack() with the animation's storage already chosen: `animation` must be what
+// stored_animation(contents, options) returned. The same bytes, without coding the animation
+// a second time (the coding measures every vertex at every row: seconds on a large character).
+// Throws std::invalid_argument when `animation` does not fit the contents.
+std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options,
+                                const StoredAnimation& animation);
 
 struct PackChunk {
   uint32_t tag = 0;      // four ASCII characters, little-endian (pack_format::kTagGeom, ...)

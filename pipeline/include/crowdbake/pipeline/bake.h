@@ -77,7 +77,9 @@ struct BakeReport {
 
 // Builds the pack contents. Deterministic for equal inputs and settings, whatever
 // settings.simplify.threads is.
-PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
-                        BakeReport& report);
+// `stored` (may be null) receives how settings.pack stores the animation, for
+// write_pack(pack, settings.pack, *stored), which then does not code it again.
+PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
+                        StoredAnimation* stored = nullptr);
 
 }  // namespace crowdbake
