@@ -4,11 +4,11 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 
 #include "byte_reader.h"
 #include "byte_writer.h"
+#include "similarity.h"
 
 namespace crowdbake::pack_io {
 namespace {
@@ -38,61 +38,6 @@ constexpr double kRotationShare = 0.45, kPivotShare = 0.45, kScaleShare = 0.1;
 // lanes' errors rarely line up, so the estimate starts at 3 and the loosening search and the
 // verification below settle the rest.
 constexpr double kRotationGain = 3.0;
-
-// v -> s · R(q) · v + t with q a unit quaternion (x, y, z, w).
-struct Similarity {
-  std::array<double, 4> q{0, 0, 0, 1};
-  double s = 1.0;
-  std::array<double, 3> t{0, 0, 0};
-};
-
-void normalize(std::array<double, 4>& q) {
-  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  if (!(n2 > 1e-24)) {
-    q = {0, 0, 0, 1};
-    return;
-  }
-  const double inv = 1.0 / std::sqrt(n2);
-  for (double& c : q) c *= inv;
-}
-
-std::array<double, 4> multiply(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-  return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
-          a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
-          a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
-          a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
-}
-
-std::array<double, 3> rotate(const std::array<double, 4>& q, const std::array<double, 3>& v) {
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  return {
-      (1 - 2 * (y * y + z * z)) * v[0] + 2 * (x * y - w * z) * v[1] + 2 * (x * z + w * y) * v[2],
-      2 * (x * y + w * z) * v[0] + (1 - 2 * (x * x + z * z)) * v[1] + 2 * (y * z - w * x) * v[2],
-      2 * (x * z - w * y) * v[0] + 2 * (y * z + w * x) * v[1] + (1 - 2 * (x * x + y * y)) * v[2]};
-}
-
-std::array<double, 3> apply(const Similarity& a, const std::array<double, 3>& v) {
-  const std::array<double, 3> r = rotate(a.q, v);
-  return {a.s * r[0] + a.t[0], a.s * r[1] + a.t[1], a.s * r[2] + a.t[2]};
-}
-
-Similarity compose(const Similarity& a, const Similarity& b) {
-  Similarity c;
-  c.q = multiply(a.q, b.q);
-  normalize(c.q);
-  c.s = a.s * b.s;
-  c.t = apply(a, b.t);
-  return c;
-}
-
-Similarity inverse(const Similarity& a) {
-  Similarity c;
-  c.q = {-a.q[0], -a.q[1], -a.q[2], a.q[3]};
-  c.s = a.s != 0.0 ? 1.0 / a.s : 0.0;
-  const std::array<double, 3> r = rotate(c.q, a.t);
-  c.t = {-c.s * r[0], -c.s * r[1], -c.s * r[2]};
-  return c;
-}
 
 double snorm(int c) { return std::max(c / kSnorm, -1.0); }
 int to_snorm(double x) { return static_cast<int>(std::lround(std::clamp(x, -1.0, 1.0) * kSnorm)); }
@@ -223,7 +168,8 @@ void run_rows(const std::vector<JointCode>& codes, const std::vector<uint32_t>& 
   for (size_t j = 1; j < joints; ++j)
     first_series[j] = first_series[j - 1] + static_cast<size_t>(codes[j - 1].lanes());
   std::vector<Similarity> decoded(joints);
-  std::vector<std::array<double, 4>> last_q(joints, {0, 0, 0, 1});
+  std::vector<std::array<double, 4>> last_q(joints);
+  for (std::array<double, 4>& q : last_q) q = {0, 0, 0, 1};
   for (size_t r = 0; r < rows; ++r) {
     if (segment + 1 < segments.size() && r == segments[segment + 1]) {
       ++segment;
