@@ -551,15 +551,20 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
   scaled(scale);
   Measured m = code_and_measure();
   if (m.max_error <= bound) {
-    for (int step = 0; step < kLoosenSteps; ++step) {
+    bool coded_at_scale = true;  // the texture and residuals hold the coding at `scale`
+    for (int step = 0; step < kLoosenSteps && coded_at_scale; ++step) {
       scaled(scale * kLoosenFactor);
       const Measured looser = code_and_measure();
-      if (looser.max_error > bound) break;
-      scale *= kLoosenFactor;
-      m = looser;
+      coded_at_scale = looser.max_error <= bound;
+      if (coded_at_scale) {
+        scale *= kLoosenFactor;
+        m = looser;
+      }
     }
-    scaled(scale);
-    m = code_and_measure();
+    if (!coded_at_scale) {
+      scaled(scale);
+      m = code_and_measure();
+    }
   }
   for (int round = 0; m.max_error > bound; ++round) {
     bool tightened = false;

@@ -176,7 +176,6 @@ namespace {
 std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
                                        const PackWriteOptions& options,
                                        const std::vector<uint8_t>* bounded_animation) {
-
   std::vector<EncodedChunk> chunks;
   const auto add = [&](uint32_t tag, uint32_t version) -> ByteWriter& {
     chunks.push_back({tag, version, ByteWriter{}});

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cli/cli_runner.h"
 #include "crowdbake/formats/pack.h"
@@ -17,6 +19,18 @@ std::filesystem::path write_character(const test::TempDir& dir) {
   b.doc["images"] = nlohmann::json::array({nlohmann::json{{"uri", "skin tone.png"}}});
   std::ofstream(dir / "skin tone.png") << "not really a png";
   return b.write(dir / "character.gltf");
+}
+
+// Bakes the test character into dir/x.crowdpack with `config` (JSON) as dir/config.json.
+test::CommandResult bake_with_config(const test::TempDir& dir, const std::string& config,
+                                     const std::vector<std::string>& extra = {}) {
+  const auto input = write_character(dir);
+  std::ofstream(dir / "config.json") << config;
+  std::vector<std::string> args = {"bake",     input.string(),
+                                   "-o",       (dir / "x.crowdpack").string(),
+                                   "--config", (dir / "config.json").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return test::run_crowdbake(args);
 }
 
 TEST(BakeCommand, WritesAPackThatReadsBack) {
@@ -103,11 +117,8 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
 // losslessly and the report says why (a warning, not an error: the pack is still right).
 TEST(BakeCommand, UnreachableAnimationBoundStaysLosslessWithAWarning) {
   test::TempDir dir;
-  const auto input = write_character(dir);
-  std::ofstream(dir / "config.json") << R"({"animation": {"max_error": 1e-12}})";
-  const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
-                           (dir / "config.json").string(), "--report", (dir / "r.json").string()});
+  const test::CommandResult r = bake_with_config(dir, R"({"animation": {"max_error": 1e-12}})",
+                                                 {"--report", (dir / "r.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
   EXPECT_EQ(j["accuracy"]["animation_coding"], "lossless");
@@ -121,11 +132,7 @@ TEST(BakeCommand, UnreachableAnimationBoundStaysLosslessWithAWarning) {
 
 TEST(BakeCommandErrors, AnimationErrorOutOfRangeNamesTheKey) {
   test::TempDir dir;
-  const auto input = write_character(dir);
-  std::ofstream(dir / "config.json") << R"({"animation": {"max_error": 0.5}})";
-  const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
-                           (dir / "config.json").string()});
+  const test::CommandResult r = bake_with_config(dir, R"({"animation": {"max_error": 0.5}})");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("animation.max_error"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
@@ -133,11 +140,7 @@ TEST(BakeCommandErrors, AnimationErrorOutOfRangeNamesTheKey) {
 
 TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {
   test::TempDir dir;
-  const auto input = write_character(dir);
-  std::ofstream(dir / "config.json") << R"({"simplify": {"smaples": 4}})";
-  const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
-                           (dir / "config.json").string()});
+  const test::CommandResult r = bake_with_config(dir, R"({"simplify": {"smaples": 4}})");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("key 'simplify.smaples': unknown key"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
@@ -146,11 +149,8 @@ TEST(BakeCommandErrors, UnknownConfigKeyNamesTheKey) {
 // The two-phase simplifier's switch is gone; an old config says so instead of being ignored.
 TEST(BakeCommandErrors, RemovedRelaxWhenStuckKeyIsNamed) {
   test::TempDir dir;
-  const auto input = write_character(dir);
-  std::ofstream(dir / "config.json") << R"({"simplify": {"relax_when_stuck": true}})";
   const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
-                           (dir / "config.json").string()});
+      bake_with_config(dir, R"({"simplify": {"relax_when_stuck": true}})");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("'simplify.relax_when_stuck': is no longer an option"), std::string::npos)
@@ -160,11 +160,7 @@ TEST(BakeCommandErrors, RemovedRelaxWhenStuckKeyIsNamed) {
 
 TEST(BakeCommandErrors, BadConfigValue) {
   test::TempDir dir;
-  const auto input = write_character(dir);
-  std::ofstream(dir / "config.json") << R"({"animation": {"encoding": "jpeg"}})";
-  const test::CommandResult r =
-      test::run_crowdbake({"bake", input.string(), "-o", (dir / "x.crowdpack").string(), "--config",
-                           (dir / "config.json").string()});
+  const test::CommandResult r = bake_with_config(dir, R"({"animation": {"encoding": "jpeg"}})");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("must be one of float16, float32, quantized"), std::string::npos) << r.err;
 }

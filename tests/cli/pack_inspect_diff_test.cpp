@@ -252,6 +252,15 @@ TEST_F(PackCommands, InspectSaysHowTheAnimationIsStored) {
       EXPECT_EQ(version, 2u);
     }
   }
+  // note: the small tube's lossless texels are the smaller, so its bounded bake stays ANIM v2;
+  // the frozen 1.5 spectator is coded (ANIM v3), the 1.4 one is not.
+  const fs::path frozen = fs::path(CROWDBAKE_SOURCE_DIR) / "tests" / "data" / "packs";
+  for (const auto& [set, stored] : {std::pair{"v1.5", "error-bounded"}, {"v1.4", "lossless"}}) {
+    const fs::path pack = frozen / set / "spectator_draco.crowdpack";
+    const test::CommandResult r = run_crowdbake({"inspect", pack.string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out)["animation"]["stored"], stored) << set;
+  }
 }
 
 TEST_F(PackCommands, InspectOfACharacterFileIsUnchanged) {
