@@ -1,10 +1,13 @@
 // Bake configuration files (docs/bake-config.md): JSON over the defaults, every key
 // checked, paths resolved against the file's folder.
+#include <array>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <utility>
 
+#include "crowdbake/base/json_reader.h"
 #include "crowdbake/formats/pack_format.h"
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/error.h"
@@ -14,194 +17,141 @@ namespace {
 
 using nlohmann::json;
 
-const std::map<std::string, DqemForm> kForms = {{"pullback", DqemForm::kPullback},
-                                                {"exact", DqemForm::kExact}};
-const std::map<std::string, PoseSource> kSources = {{"sampled", PoseSource::kSampled},
-                                                    {"clips", PoseSource::kClips}};
-const std::map<std::string, AnimationEncoding> kEncodings = {
-    {"float32", AnimationEncoding::kFloat32},
-    {"float16", AnimationEncoding::kFloat16},
-    {"quantized", AnimationEncoding::kQuantized}};
-const std::map<std::string, PackCompression> kCompressions = {{"zstd", PackCompression::kZstd},
-                                                              {"none", PackCompression::kNone}};
-const std::map<std::string, GeometryCodec> kCodecs = {{"draco", GeometryCodec::kDraco},
-                                                      {"meshopt", GeometryCodec::kMeshopt},
-                                                      {"raw", GeometryCodec::kRaw}};
+using json_reader::Json;
 
-template <typename T>
-std::string name_of(const std::map<std::string, T>& names, T value) {
+constexpr std::array<std::pair<const char*, DqemForm>, 2> kForms = {
+    {{"pullback", DqemForm::kPullback}, {"exact", DqemForm::kExact}}};
+constexpr std::array<std::pair<const char*, PoseSource>, 2> kSources = {
+    {{"sampled", PoseSource::kSampled}, {"clips", PoseSource::kClips}}};
+constexpr std::array<std::pair<const char*, AnimationEncoding>, 3> kEncodings = {
+    {{"float32", AnimationEncoding::kFloat32},
+     {"float16", AnimationEncoding::kFloat16},
+     {"quantized", AnimationEncoding::kQuantized}}};
+constexpr std::array<std::pair<const char*, PackCompression>, 2> kCompressions = {
+    {{"zstd", PackCompression::kZstd}, {"none", PackCompression::kNone}}};
+constexpr std::array<std::pair<const char*, GeometryCodec>, 3> kCodecs = {
+    {{"draco", GeometryCodec::kDraco},
+     {"meshopt", GeometryCodec::kMeshopt},
+     {"raw", GeometryCodec::kRaw}}};
+
+template <typename T, size_t N>
+std::string name_of(const std::array<std::pair<const char*, T>, N>& names, T value) {
   for (const auto& [name, v] : names)
     if (v == value) return name;
   return "?";
 }
 
+// Each section's keys, checked with json_reader (base/json_reader.h): a problem is
+// "<section.key>: <problem>".
 class ConfigReader {
  public:
   ConfigReader(const std::string& path, BakeSettings& out) : path_(path), out_(out) {}
 
-  void read() {
-    std::ifstream in(path_);
-    if (!in) throw input_error(path_, "bake config: cannot open the file; check the path");
-    json doc;
-    try {
-      doc = json::parse(in);
-    } catch (const json::exception& e) {
-      throw input_error(path_, std::string("bake config: not valid JSON (") + e.what() + ")");
-    }
-    if (!doc.is_object()) fail("", "the top level must be an object");
-    for (const auto& [section, body] : doc.items()) {
-      if (section == "comment") continue;
-      if (!body.is_object()) fail(section, "must be an object");
-      if (section == "simplify")
-        simplify(body);
-      else if (section == "animation")
-        animation(body);
-      else if (section == "partition")
-        partition(body);
-      else if (section == "geometry")
-        geometry(body);
-      else if (section == "level_errors")
-        level_errors(body);
-      else if (section == "pack")
-        pack(body);
-      else
-        fail(section,
-             "unknown section (expected simplify, level_errors, animation, partition, "
-             "geometry or pack)");
-    }
+  void read(const Json& doc) {
+    json_reader::check_object(
+        doc, "",
+        {"comment", "simplify", "level_errors", "animation", "partition", "geometry", "pack"});
+    if (const Json* p = find(doc, "simplify")) simplify(*p);
+    if (const Json* p = find(doc, "level_errors")) level_errors(*p);
+    if (const Json* p = find(doc, "animation")) animation(*p);
+    if (const Json* p = find(doc, "partition")) partition(*p);
+    if (const Json* p = find(doc, "geometry")) geometry(*p);
+    if (const Json* p = find(doc, "pack")) pack(*p);
   }
 
  private:
-  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
-    throw input_error(path_, "bake config" + (key.empty() ? std::string() : ", key '" + key + "'") +
-                                 ": " + why + "; see docs/bake-config.md");
+  static const Json* find(const Json& object, const char* key) {
+    return json_reader::find(object, key);
+  }
+  static double number(const Json& v, const std::string& key, double lo, double hi) {
+    return json_reader::number_in(v, key, lo, hi);
   }
 
-  double number(const std::string& key, const json& v, double lo, double hi) const {
-    if (!v.is_number()) fail(key, "must be a number");
-    const double x = v.get<double>();
-    if (!(x >= lo && x <= hi))
-      fail(key, "must be in [" + json(lo).dump() + ", " + json(hi).dump() + "]");
-    return x;
-  }
-  bool boolean(const std::string& key, const json& v) const {
-    if (!v.is_boolean()) fail(key, "must be true or false");
-    return v.get<bool>();
-  }
-  template <typename T>
-  T choice(const std::string& key, const json& v, const std::map<std::string, T>& names) const {
-    if (v.is_string()) {
-      auto it = names.find(v.get<std::string>());
-      if (it != names.end()) return it->second;
-    }
-    std::string list;
-    for (const auto& [name, value] : names) list += (list.empty() ? "" : ", ") + name;
-    fail(key, "must be one of " + list);
-  }
-
-  void simplify(const json& body) {
+  void simplify(const Json& body) {
     SimplifyOptions& s = out_.simplify;
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "simplify." + k;
-      if (k == "samples")
-        s.samples = static_cast<int>(number(key, v, 1, 4096));
-      else if (k == "seed")
-        s.seed = static_cast<uint64_t>(number(key, v, 0, 9007199254740991.0));
-      else if (k == "stratified")
-        s.stratified = boolean(key, v);
-      else if (k == "form")
-        s.form = choice(key, v, kForms);
-      else if (k == "pose_source")
-        s.pose_source = choice(key, v, kSources);
-      else if (k == "check_flips_in_all_poses")
-        s.check_flips_in_all_poses = boolean(key, v);
-      else if (k == "relax_when_stuck")
-        fail(key,
-             "is no longer an option: the simplifier keeps one set of rules down to its minimum "
-             "(docs/simplification.md); remove the key");
-      else if (k == "ranges") {
-        if (!v.is_string()) fail(key, "must be a path");
-        s.ranges_file =
-            (std::filesystem::path(path_).parent_path() / v.get<std::string>()).string();
-      } else
-        fail(key, "unknown key");
-    }
+    if (body.is_object() && find(body, "relax_when_stuck"))
+      json_reader::fail("simplify.relax_when_stuck",
+                        "is no longer an option: the simplifier keeps one set of rules down to "
+                        "its minimum (docs/simplification.md); remove the key");
+    json_reader::check_object(body, "simplify",
+                              {"samples", "seed", "stratified", "form", "pose_source",
+                               "check_flips_in_all_poses", "ranges"});
+    if (const Json* p = find(body, "samples"))
+      s.samples = static_cast<int>(json_reader::integer(*p, "simplify.samples", 1, 4096));
+    if (const Json* p = find(body, "seed"))
+      s.seed = static_cast<uint64_t>(
+          json_reader::integer(*p, "simplify.seed", 0, int64_t{9007199254740991}));
+    if (const Json* p = find(body, "stratified"))
+      s.stratified = json_reader::boolean(*p, "simplify.stratified");
+    if (const Json* p = find(body, "form"))
+      s.form = json_reader::choice(*p, "simplify.form", kForms);
+    if (const Json* p = find(body, "pose_source"))
+      s.pose_source = json_reader::choice(*p, "simplify.pose_source", kSources);
+    if (const Json* p = find(body, "check_flips_in_all_poses"))
+      s.check_flips_in_all_poses = json_reader::boolean(*p, "simplify.check_flips_in_all_poses");
+    if (const Json* p = find(body, "ranges"))
+      s.ranges_file =
+          (std::filesystem::path(path_).parent_path() / json_reader::string(*p, "simplify.ranges"))
+              .string();
   }
 
-  void animation(const json& body) {
+  void animation(const Json& body) {
     AnimationBakeOptions& a = out_.animation;
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "animation." + k;
-      if (k == "fps")
-        a.fps = number(key, v, 1, 240);
-      else if (k == "encoding")
-        a.encoding = choice(key, v, kEncodings);
-      else if (k == "root_motion")
-        a.extract_root_motion = boolean(key, v);
-      else if (k == "max_error")
-        out_.pack.animation_error = number(key, v, 0, 0.1);
-      else
-        fail(key, "unknown key");
-    }
+    json_reader::check_object(body, "animation", {"fps", "encoding", "root_motion", "max_error"});
+    if (const Json* p = find(body, "fps")) a.fps = number(*p, "animation.fps", 1, 240);
+    if (const Json* p = find(body, "encoding"))
+      a.encoding = json_reader::choice(*p, "animation.encoding", kEncodings);
+    if (const Json* p = find(body, "root_motion"))
+      a.extract_root_motion = json_reader::boolean(*p, "animation.root_motion");
+    if (const Json* p = find(body, "max_error"))
+      out_.pack.animation_error = number(*p, "animation.max_error", 0, 0.1);
   }
 
-  void level_errors(const json& body) {
+  void level_errors(const Json& body) {
     LevelErrorOptions& e = out_.level_errors;
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "level_errors." + k;
-      if (k == "samples") {
-        e.samples = static_cast<uint32_t>(number(key, v, 0, 64));
-        if (e.samples == 1) fail(key, "must be 0 (none) or 2..64");
-      } else if (k == "fps") {
-        e.fps = number(key, v, 0.1, 240);
-      } else {
-        fail(key, "unknown key");
-      }
+    json_reader::check_object(body, "level_errors", {"samples", "fps"});
+    if (const Json* p = find(body, "samples")) {
+      e.samples = static_cast<uint32_t>(json_reader::integer(*p, "level_errors.samples", 0, 64));
+      if (e.samples == 1) json_reader::fail("level_errors.samples", "must be 0 (none) or 2..64");
     }
+    if (const Json* p = find(body, "fps")) e.fps = number(*p, "level_errors.fps", 0.1, 240);
   }
 
-  void partition(const json& body) {
+  void partition(const Json& body) {
     PartitionOptions& p = out_.partition;
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "partition." + k;
-      if (k == "size")
-        p.size = static_cast<uint32_t>(number(key, v, 1, 8192));
-      else if (k == "neck_height")
-        p.neck_height = static_cast<float>(number(key, v, -1e30, 1e30));
-      else if (k == "waist_height")
-        p.waist_height = static_cast<float>(number(key, v, -1e30, 1e30));
-      else
-        fail(key, "unknown key");
-    }
+    json_reader::check_object(body, "partition", {"size", "neck_height", "waist_height"});
+    if (const Json* v = find(body, "size"))
+      p.size = static_cast<uint32_t>(json_reader::integer(*v, "partition.size", 1, 8192));
+    if (const Json* v = find(body, "neck_height"))
+      p.neck_height = static_cast<float>(json_reader::number(*v, "partition.neck_height"));
+    if (const Json* v = find(body, "waist_height"))
+      p.waist_height = static_cast<float>(json_reader::number(*v, "partition.waist_height"));
   }
 
-  void geometry(const json& body) {
+  void geometry(const Json& body) {
     PackWriteOptions& g = out_.pack;
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "geometry." + k;
-      if (k == "codec")
-        g.codec = choice(key, v, kCodecs);
-      else if (k == "position_bits")
-        g.position_bits = static_cast<int>(number(key, v, 0, 30));
-      else if (k == "normal_bits")
-        g.normal_bits = static_cast<int>(number(key, v, 0, 30));
-      else if (k == "uv_bits")
-        g.uv_bits = static_cast<int>(number(key, v, 0, 30));
-      else if (k == "weight_bits")
-        g.weight_bits = static_cast<int>(number(key, v, 0, pack_format::kMaxWeightBits));
-      else
-        fail(key, "unknown key");
-    }
+    json_reader::check_object(body, "geometry",
+                              {"codec", "position_bits", "normal_bits", "uv_bits", "weight_bits"});
+    if (const Json* p = find(body, "codec"))
+      g.codec = json_reader::choice(*p, "geometry.codec", kCodecs);
+    const struct {
+      const char* key;
+      int* bits;
+      int most;
+    } fields[] = {{"position_bits", &g.position_bits, 30},
+                  {"normal_bits", &g.normal_bits, 30},
+                  {"uv_bits", &g.uv_bits, 30},
+                  {"weight_bits", &g.weight_bits, pack_format::kMaxWeightBits}};
+    for (const auto& f : fields)
+      if (const Json* p = find(body, f.key))
+        *f.bits =
+            static_cast<int>(json_reader::integer(*p, std::string("geometry.") + f.key, 0, f.most));
   }
 
-  void pack(const json& body) {
-    for (const auto& [k, v] : body.items()) {
-      const std::string key = "pack." + k;
-      if (k == "compression")
-        out_.pack.compression = choice(key, v, kCompressions);
-      else
-        fail(key, "unknown key");
-    }
+  void pack(const Json& body) {
+    json_reader::check_object(body, "pack", {"compression"});
+    if (const Json* p = find(body, "compression"))
+      out_.pack.compression = json_reader::choice(*p, "pack.compression", kCompressions);
   }
 
   std::string path_;
@@ -211,8 +161,16 @@ class ConfigReader {
 }  // namespace
 
 BakeSettings read_bake_config(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path, "bake config: cannot open the file; check the path");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  json_reader::Json doc;
   BakeSettings settings;
-  ConfigReader(path, settings).read();
+  Status s = json_reader::parse_json(text, "bake config", StatusCode::kInvalidArgument, doc);
+  if (s.ok())
+    s = json_reader::read_json("bake config", StatusCode::kInvalidArgument,
+                               [&] { ConfigReader(path, settings).read(doc); });
+  if (!s.ok()) throw input_error(path, s.message() + "; see docs/bake-config.md");
   return settings;
 }
 
@@ -235,9 +193,9 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["animation"]["max_error"] = s.pack.animation_error;
   j["partition"]["size"] = s.partition.size;
   j["partition"]["neck_height"] =
-      s.partition.neck_height ? json(*s.partition.neck_height) : json(nullptr);
+      s.partition.neck_height ? Json(*s.partition.neck_height) : Json(nullptr);
   j["partition"]["waist_height"] =
-      s.partition.waist_height ? json(*s.partition.waist_height) : json(nullptr);
+      s.partition.waist_height ? Json(*s.partition.waist_height) : Json(nullptr);
   j["geometry"]["codec"] = name_of(kCodecs, s.pack.codec);
   j["geometry"]["position_bits"] = s.pack.position_bits;
   j["geometry"]["normal_bits"] = s.pack.normal_bits;

@@ -4,17 +4,18 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <iterator>
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/json_reader.h"
 #include "crowdbake/pipeline/error.h"
 #include "simplify/pose_sampler.h"
 
 namespace crowdbake {
 namespace {
 
-using Json = nlohmann::json;
+using json_reader::Json;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr const char* kAngleNames[3] = {"roll", "pitch", "yaw"};
@@ -28,15 +29,6 @@ struct Range {
   int angle;      // 0 roll, 1 pitch, 2 yaw
   double lo, hi;  // radians
 };
-
-std::string type_name(const Json& j) {
-  if (j.is_array()) return "an array of " + std::to_string(j.size());
-  if (j.is_string()) return "a string";
-  if (j.is_boolean()) return "a boolean";
-  if (j.is_null()) return "null";
-  if (j.is_object()) return "an object";
-  return "a number";
-}
 
 // The value as written, shortened: the user sees what was read.
 std::string shown(const Json& j) {
@@ -78,91 +70,78 @@ std::string unknown_joint(const Skeleton& skeleton, const std::string& name) {
          list(all, 8);
 }
 
+// Walks the document with json_reader (base/json_reader.h): a problem is "<key path>:
+// <problem>", e.g. "joints.LeftArm.roll: min 80 > max -10; write [min, max]".
 class Reader {
  public:
-  Reader(const std::string& path, const Skeleton& skeleton) : path_(path), skeleton_(skeleton) {}
+  explicit Reader(const Skeleton& skeleton) : skeleton_(skeleton) {}
 
-  std::vector<Range> read() {
-    const Json doc = parse();
-    if (!doc.is_object())
-      fail(
-          "the top level must be an object like {\"joints\": {\"LeftArm\": {\"roll\": [-10, "
-          "80]}}}, not " +
-          type_name(doc));
+  std::vector<Range> read(const Json& doc) const {
+    json_reader::check_object(doc, "", {"comment", "default", "joints"});
     std::vector<Range> ranges;
-    for (const auto& [key, value] : doc.items()) {
-      if (key == "comment") continue;
-      if (key == "default") {
-        angles(value, "default", -1, ranges);
-      } else if (key == "joints") {
-        if (!value.is_object())
-          fail("'joints' must be an object mapping joint names to ranges, not " + type_name(value));
-        for (const auto& [name, joint_ranges] : value.items()) {
-          const int joint = skeleton_.find(name);
-          if (joint < 0) fail(unknown_joint(skeleton_, name));
-          angles(joint_ranges, "joints." + name, joint, ranges);
-        }
-      } else {
-        fail("unknown key '" + key +
-             "' at the top level (expected 'default', 'joints' or 'comment')");
+    if (const Json* p = json_reader::find(doc, "default")) angles(*p, "default", -1, ranges);
+    if (const Json* p = json_reader::find(doc, "joints")) {
+      if (!p->is_object())
+        json_reader::fail("joints", "expected an object mapping joint names to ranges, got " +
+                                        json_reader::describe(*p));
+      for (const auto& [name, joint_ranges] : p->items()) {
+        const int joint = skeleton_.find(name);
+        if (joint < 0) json_reader::fail("joints." + name, unknown_joint(skeleton_, name));
+        angles(joint_ranges, "joints." + name, joint, ranges);
       }
     }
     return ranges;
   }
 
  private:
-  [[noreturn]] void fail(const std::string& why) const {
-    throw input_error(path_, "pose ranges: " + why + " (" + kFormatHint + ")");
-  }
-
-  Json parse() const {
-    std::error_code ec;
-    if (!std::filesystem::exists(path_, ec)) fail("file not found; check the path");
-    if (std::filesystem::is_directory(path_, ec)) fail("this is a directory; give the JSON file");
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) fail("cannot open the file for reading; check its permissions");
-    try {
-      return Json::parse(in);
-    } catch (const Json::exception& e) {
-      // note: nlohmann prefixes "[json.exception.parse_error.101] "; the rest says where.
-      std::string what = e.what();
-      if (!what.empty() && what[0] == '[' && what.find("] ") != std::string::npos)
-        what.erase(0, what.find("] ") + 2);
-      fail("not valid JSON (" + what + ")");
-    }
-  }
-
   void angles(const Json& object, const std::string& where, int joint,
               std::vector<Range>& out) const {
-    if (!object.is_object())
-      fail("'" + where + "' must be an object like {\"roll\": [-10, 80]}, not " +
-           type_name(object));
+    json_reader::check_object(object, where, {"roll", "pitch", "yaw"});
     for (const auto& [key, value] : object.items()) {
       int k = 0;
       while (k < 3 && key != kAngleNames[k]) ++k;
-      if (k == 3)
-        fail("unknown key '" + key + "' in '" + where + "' (expected roll, pitch or yaw)");
       const std::string at = where + "." + key;
       if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
-        fail("'" + at + "' must be [min, max] in degrees, not " + shown(value));
+        json_reader::fail(at, "expected [min, max] in degrees, got " + shown(value));
       const double lo = value[0].get<double>(), hi = value[1].get<double>();
-      if (!std::isfinite(lo) || !std::isfinite(hi)) fail("'" + at + "' is not finite");
+      if (!std::isfinite(lo) || !std::isfinite(hi)) json_reader::fail(at, "is not finite");
       if (lo > hi)
-        fail("'" + at + "' has min " + value[0].dump() + " > max " + value[1].dump() +
-             "; write [min, max]");
+        json_reader::fail(
+            at, "min " + value[0].dump() + " > max " + value[1].dump() + "; write [min, max]");
       const double limit = kAngleLimits[k];
       if (lo < -limit || hi > limit)
-        fail("'" + at + "' = " + shown(value) + " is outside [-" +
-             std::to_string(static_cast<int>(limit)) + ", " +
-             std::to_string(static_cast<int>(limit)) +
-             "] degrees (wider ranges only repeat rotations)");
+        json_reader::fail(at, shown(value) + " is outside [-" +
+                                  std::to_string(static_cast<int>(limit)) + ", " +
+                                  std::to_string(static_cast<int>(limit)) +
+                                  "] degrees (wider ranges only repeat rotations)");
       out.push_back({joint, k, lo * kPi / 180.0, hi * kPi / 180.0});
     }
   }
 
-  const std::string& path_;
   const Skeleton& skeleton_;
 };
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw input_error(path, "pose ranges: " + why + " (" + kFormatHint + ")");
+}
+
+std::vector<Range> read_ranges(const std::string& path, const Skeleton& skeleton) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "file not found; check the path");
+  if (std::filesystem::is_directory(path, ec))
+    fail(path, "this is a directory; give the JSON file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file for reading; check its permissions");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Json doc;
+  std::vector<Range> ranges;
+  Status s = json_reader::parse_json(text, "pose ranges", StatusCode::kInvalidArgument, doc);
+  if (s.ok())
+    s = json_reader::read_json("pose ranges", StatusCode::kInvalidArgument,
+                               [&] { ranges = Reader(skeleton).read(doc); });
+  if (!s.ok()) throw input_error(path, s.message() + " (" + kFormatHint + ")");
+  return ranges;
+}
 
 AngleDensity uniform(double lo, double hi) {
   if (hi > lo) return AngleDensity{lo, hi, {1.0}};
@@ -177,7 +156,7 @@ void apply_pose_ranges(PoseDistribution& distribution, const Skeleton& skeleton,
     throw Error(Error::Kind::kUsage, path,
                 "pose distribution has " + std::to_string(distribution.joints.size()) +
                     " joints but the skeleton has " + std::to_string(skeleton.joints.size()));
-  const std::vector<Range> ranges = Reader(path, skeleton).read();
+  const std::vector<Range> ranges = read_ranges(path, skeleton);
   // note: "default" first, so a joint's own entry wins whatever the key order in the file.
   size_t overridden = 0;
   std::vector<bool> named(skeleton.joints.size(), false);

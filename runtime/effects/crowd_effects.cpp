@@ -20,7 +20,6 @@ namespace crowdbake::effects {
 
 using runtime::EffectFrame;
 using runtime::Scene;
-using runtime::SceneEffects;
 using runtime::Status;
 using runtime::StatusCode;
 
@@ -101,9 +100,11 @@ Status CrowdEffects::create(const Scene& scene, std::unique_ptr<CrowdEffects>& o
 }
 
 Status CrowdEffects::Impl::build(const Scene& scene) {
-  decl = scene.effects;
+  const SceneEffects* declared = find_scene_effects(scene);
+  decl = declared ? *declared : SceneEffects{};
   instance_count = static_cast<uint32_t>(scene.instances.size());
-  counters.placement = decl.placement;
+  for (const runtime::InstanceRange& range : scene.generated)
+    counters.placement = counters.placement || range.relaxation;
   if (!decl.animation_sharing && !decl.spectators) return {};  // nothing on the CPU
   types = decl.types.empty() ? std::vector<uint32_t>{decl.type} : decl.types;
   driven_of.assign(scene.types.size(), kNotDriven);
@@ -121,7 +122,7 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
     const runtime::CharacterType& ct = scene.types[types[d]];
     for (size_t s = 0; s < decl.states.size(); ++s) {
       for (size_t k = 0; k < decl.states[s].clips.size(); ++k) {
-        const runtime::EffectClip& c = decl.states[s].clips[k];
+        const EffectClip& c = decl.states[s].clips[k];
         const int32_t clip = scene.find_clip(types[d], c.clip);
         if (clip < 0)
           return invalid("effects.states[" + std::to_string(s) + "].clips[" + std::to_string(k) +
@@ -135,7 +136,7 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
   // note: without events and idle edges nobody ever leaves the home state, so the FSM would
   // only cost: it is not built, and team members play their scene clips like everyone else.
   bool idle_walk = false;
-  for (const runtime::EffectTransition& t : decl.fsm_transitions)
+  for (const EffectTransition& t : decl.fsm_transitions)
     idle_walk = idle_walk || t.idle_weight > 0.0f;
   if (decl.spectators && (!decl.events.empty() || idle_walk))
     if (Status s = build_behaviour(scene); !s) return s;
@@ -159,7 +160,7 @@ Status CrowdEffects::Impl::build(const Scene& scene) {
 Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   crowd::BehaviourFsmDef def;
   for (size_t s = 0; s < decl.states.size(); ++s) {
-    const runtime::EffectState& st = decl.states[s];
+    const EffectState& st = decl.states[s];
     crowd::StateDef sd;
     sd.name = st.name;
     sd.pose_in = st.pose_in;
@@ -174,9 +175,9 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
     }
     def.states.push_back(std::move(sd));
   }
-  for (const runtime::EffectTransition& t : decl.fsm_transitions)
+  for (const EffectTransition& t : decl.fsm_transitions)
     def.transitions.push_back({t.from, t.to, t.idle_weight});
-  for (const runtime::EffectReaction& r : decl.reactions)
+  for (const EffectReaction& r : decl.reactions)
     def.reactions.push_back({r.event, r.supporters, r.opponents, r.decay});
   fsm = std::make_unique<crowd::BehaviourFsm>();
   if (crowd::Status s = crowd::build_behaviour_fsm(def, *fsm); !s.ok())
@@ -198,7 +199,7 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   crowd::SpectatorSceneDef sdef;
   const runtime::InstanceArrays& in = scene.instances;
   for (size_t t = 0; t < decl.teams.size(); ++t) {
-    const runtime::EffectTeam& team = decl.teams[t];
+    const EffectTeam& team = decl.teams[t];
     sdef.teams.push_back({team.name, team.embarrassment, team.embarrassment_spread});
     for (uint32_t g : team.generators) {
       if (g >= scene.generated.size())
@@ -218,13 +219,13 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
       }
     }
   }
-  for (const runtime::EffectEvent& e : decl.events)
+  for (const EffectEvent& e : decl.events)
     sdef.events.push_back({e.kind, e.time, e.team, e.excitement});
-  const runtime::EffectSpectatorParams& p = decl.params;
+  const EffectSpectatorParams& p = decl.params;
   crowd::SpectatorParams& sp = sdef.params;
   sp.home_state = p.home_state;
   if (sp.home_state.empty())
-    for (const runtime::EffectState& st : decl.states)
+    for (const EffectState& st : decl.states)
       if (st.rest) {
         sp.home_state = st.name;
         break;
@@ -270,7 +271,7 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene, uint32_t driven) {
   std::map<std::pair<uint32_t, bool>, uint32_t> clip_index;
   const uint32_t first_clip = scene.types[type].first_clip;
   for (size_t s = 0; s < decl.states.size(); ++s) {
-    const runtime::EffectState& st = decl.states[s];
+    const EffectState& st = decl.states[s];
     AnimState as;
     as.id = static_cast<StateId>(s);
     as.is_additive = st.additive;

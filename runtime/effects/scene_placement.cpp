@@ -1,11 +1,13 @@
 // The "relaxation" scene generator's placer: crowdbake_crowd's place_crowd (crowd-patches
 // Lloyd relaxation of a power diagram), handed to load_scene through SceneLoadOptions so the
 // runtime core itself never links the placement code.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "crowdbake/runtime/crowd/placement.h"
 #include "crowdbake/runtime/effects/crowd_effects.h"
+#include "crowdbake/runtime/effects/scene_effects.h"
 
 namespace crowdbake::effects {
 namespace {
@@ -40,6 +42,10 @@ runtime::Status place_relaxed(const runtime::RelaxationRequest& request,
 
 runtime::SceneLoadOptions crowd_scene_load_options(runtime::SceneLoadOptions options) {
   options.relaxation = place_relaxed;
+  const bool has_effects =
+      std::any_of(options.sections.begin(), options.sections.end(),
+                  [](const runtime::SceneSection& section) { return section.key == "effects"; });
+  if (!has_effects) options.sections.push_back(scene_effects_section());
   return options;
 }
 

@@ -342,6 +342,14 @@ const std::string& Pack::source_name() const {
 uint16_t Pack::version_major() const { return impl_ ? impl_->major : 0; }
 uint16_t Pack::version_minor() const { return impl_ ? impl_->minor : 0; }
 
+std::string Pack::clip_names() const {
+  std::string out;
+  const auto& clips = contents().clips;
+  for (size_t i = 0; i < clips.size() && i < 12; ++i) out += (i ? ", " : "") + clips[i].name;
+  if (clips.size() > 12) out += ", ...";
+  return out;
+}
+
 int32_t Pack::find_clip(std::string_view name) const {
   const auto& clips = contents().clips;
   for (size_t i = 0; i < clips.size(); ++i)

@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   runtime::EffectFrame frame;
-  const auto& teams = scene.effects.teams;
+  const effects::SceneEffects* declared = effects::find_scene_effects(scene);
+  const std::vector<effects::EffectTeam> teams =
+      declared ? declared->teams : std::vector<effects::EffectTeam>{};
   const int steps = static_cast<int>(duration * fps);
   const int every = std::max(1, static_cast<int>(fps / 2));
   for (int step = 0; step <= steps; ++step) {

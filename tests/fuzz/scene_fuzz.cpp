@@ -1,4 +1,5 @@
-// libFuzzer target: scene.json text -> Scene (parse_scene) -> one CPU-reference frame
+// libFuzzer target: scene.json text -> Scene (parse_scene, with the "effects" section's reader
+// registered; relaxation generators have no placer, so they are refused) -> one CPU-reference frame
 // (update_frame: crowd update, culling, LoD selection) and one reconstructed level. The
 // scene's packs resolve against a private folder holding one small pack, "type.crowdpack".
 // Property beyond "no crash, no leak, no huge allocation": an accepted scene yields a
@@ -8,6 +9,7 @@
 #include <fstream>
 
 #include "crowdbake/runtime/cpu_reference.h"
+#include "crowdbake/runtime/effects/scene_effects.h"
 #include "crowdbake/runtime/scene.h"
 #include "fuzz_input_file.h"
 #include "small_pack.h"
@@ -31,7 +33,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace crowdbake::runtime;
   Scene scene;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  const Status parsed = parse_scene(text, "scene.json", crowdbake::fuzz::private_folder(), scene);
+  SceneLoadOptions options;
+  options.sections.push_back(crowdbake::effects::scene_effects_section());
+  const Status parsed =
+      parse_scene(text, "scene.json", crowdbake::fuzz::private_folder(), scene, options);
   if (!parsed) {
     crowdbake::fuzz::refused(parsed.message());
     return 0;

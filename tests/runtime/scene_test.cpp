@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <any>
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
@@ -444,7 +446,7 @@ TEST(SceneErrors, WrongTypes) {
   expect_error(scene_with(R"("lod": {"budget": 2.5})"),
                {"lod.budget: expected an integer, got number 2.5"});
   expect_error(scene_with(R"("instances": {"position": [0, 0, 0]})"),
-               {"instances: expected an array, got object"});
+               {"instances: expected an array, got an object"});
   expect_error(scene_with(R"("instances": [{"position": [0, 0]}])"),
                {"instances[0].position: expected an array of 3 numbers, got an array of 2"});
   expect_error(scene_with(R"("instances": [{"position": [0, "1", 0]}])"),
@@ -454,8 +456,62 @@ TEST(SceneErrors, WrongTypes) {
   expect_error(scene_with(R"("lod": {"mode": "fancy"})"), {"lod.mode: unknown mode \"fancy\""});
   expect_error(scene_with("", kCamera, R"("character_types": [{"name": 3, "pack": "x"}])"),
                {"character_types[0].name: expected a string, got number 3"});
-  expect_error(scene_with("", R"("camera": [0, 1, 2])"), {"camera: expected an object, got array"});
-  expect_error("[1, 2]", {"scene: expected an object, got array"});
+  expect_error(scene_with("", R"("camera": [0, 1, 2])"),
+               {"camera: expected an object, got an array of 3"});
+  expect_error("[1, 2]", {"top level: expected an object, got an array of 2"});
+}
+
+// A top-level key the core does not know, read by a library through SceneLoadOptions::sections
+// (as crowdbake_scene_effects reads "effects"): read before any pack is opened, resolved once
+// the scene is built, its problems prefixed with the file's name.
+SceneSection weather_section() {
+  SceneSection section;
+  section.key = "weather";
+  section.read = [](const nlohmann::json& value, const SceneOutline& outline, std::any& data) {
+    if (!value.is_number()) return Status{StatusCode::kInvalidScene, "weather: expected a number"};
+    data = std::make_pair(value.get<double>(), outline.type_names);
+    return Status{};
+  };
+  section.resolve = [](std::any data, Scene& scene) {
+    using Read = std::pair<double, std::vector<std::string>>;
+    if (const Read* read = std::any_cast<Read>(&data)) {
+      if (scene.instances.size() == 0) return Status{StatusCode::kInvalidScene, "weather: no one"};
+      scene.sections["weather"] = read->first * static_cast<double>(read->second.size());
+    }
+    return Status{};
+  };
+  return section;
+}
+
+TEST(SceneSections, ALibraryReadsItsOwnKey) {
+  SceneFiles files;
+  SceneLoadOptions options;
+  options.sections.push_back(weather_section());
+  Scene scene;
+  const std::string one = R"("instances": [{"position": [0, 0, 0]}])";
+  const Status s = files.load(scene_with(one + R"(, "weather": 2.5)"), scene, options);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(scene.sections.count("weather"), 1u);
+  EXPECT_EQ(std::any_cast<double>(scene.sections.at("weather")), 2.5);  // 2.5 × one type
+
+  Scene without;
+  ASSERT_TRUE(files.load(scene_with(""), without, options).ok());
+  EXPECT_TRUE(without.sections.empty()) << "resolve sees an empty value for an absent key";
+
+  const Status bad = files.load(scene_with(one + R"(, "weather": "rain")"), scene, options);
+  EXPECT_EQ(bad.code(), StatusCode::kInvalidScene);
+  EXPECT_EQ(bad.message(), files.write("") + ": weather: expected a number");
+  const Status nobody = files.load(scene_with(R"("weather": 1)"), scene, options);
+  EXPECT_EQ(nobody.message(), files.write("") + ": weather: no one") << "resolve's problem";
+  EXPECT_EQ(std::any_cast<double>(scene.sections.at("weather")), 2.5) << "kept on failure";
+
+  const Status unread = files.load(scene_with(one + R"(, "weather": 2.5)"), scene);
+  EXPECT_NE(unread.message().find("weather: unknown key"), std::string::npos) << unread.message();
+
+  options.sections.push_back(weather_section());
+  const Status twice = files.load(scene_with(""), scene, options);
+  EXPECT_EQ(twice.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(twice.message().find("weather: two readers"), std::string::npos) << twice.message();
 }
 
 TEST(SceneErrors, UnknownAndMissingKeys) {

@@ -616,23 +616,25 @@ TEST_F(PoseSamplerRanges, UnreadableFiles) {
 }
 
 TEST_F(PoseSamplerRanges, WrongShapes) {
-  expect_error(write("[1, 2]"), {"top level must be an object", "not an array of 2"});
-  expect_error(write(R"({"joint": {}})"), {"unknown key 'joint'", "'default', 'joints'"});
-  expect_error(write(R"({"joints": [1]})"), {"'joints' must be an object"});
+  expect_error(write("[1, 2]"), {"top level: expected an object, got an array of 2"});
+  expect_error(write(R"({"joint": {}})"),
+               {"joint: unknown key (expected one of: comment, default, joints)"});
+  expect_error(write(R"({"joints": [1]})"),
+               {"joints: expected an object mapping joint names to ranges, got an array of 1"});
   expect_error(write(R"({"joints": {"joint1": [-10, 80]}})"),
-               {"'joints.joint1' must be an object"});
+               {"joints.joint1: expected an object, got an array of 2"});
   expect_error(write(R"({"joints": {"joint1": {"rol": [-10, 80]}}})"),
-               {"unknown key 'rol' in 'joints.joint1'", "roll, pitch or yaw"});
+               {"joints.joint1.rol: unknown key (expected one of: roll, pitch, yaw)"});
   expect_error(write(R"({"joints": {"joint1": {"roll": "-10..80"}}})"),
-               {"'joints.joint1.roll' must be [min, max] in degrees, not \"-10..80\""});
-  expect_error(write(R"({"joints": {"joint1": {"roll": [-10]}}})"), {"not [-10]"});
+               {"joints.joint1.roll: expected [min, max] in degrees, got \"-10..80\""});
+  expect_error(write(R"({"joints": {"joint1": {"roll": [-10]}}})"), {"got [-10]"});
   expect_error(write(R"({"default": {"yaw": [-10, true]}})"),
-               {"'default.yaw' must be [min, max] in degrees, not [-10,true]"});
+               {"default.yaw: expected [min, max] in degrees, got [-10,true]"});
 }
 
 TEST_F(PoseSamplerRanges, BadValues) {
   expect_error(write(R"({"joints": {"joint1": {"roll": [80, -10]}}})"),
-               {"'joints.joint1.roll' has min 80 > max -10", "write [min, max]"});
+               {"joints.joint1.roll: min 80 > max -10; write [min, max]"});
   // note: JSON has no NaN or infinity; nlohmann rejects both the literal and an overflowing
   // number while parsing, so they surface as parse errors that say which.
   expect_error(write(R"({"joints": {"joint1": {"pitch": [-1e999, 10]}}})"),
@@ -640,14 +642,15 @@ TEST_F(PoseSamplerRanges, BadValues) {
   expect_error(write(R"({"joints": {"joint1": {"pitch": [NaN, 10]}}})"),
                {"not valid JSON", "invalid literal", "column 34"});
   expect_error(write(R"({"joints": {"joint1": {"pitch": [-95, 10]}}})"),
-               {"'joints.joint1.pitch' = [-95,10] is outside [-90, 90] degrees"});
+               {"joints.joint1.pitch: [-95,10] is outside [-90, 90] degrees"});
   expect_error(write(R"({"joints": {"joint1": {"yaw": [-10, 181]}}})"),
                {"is outside [-180, 180] degrees"});
 }
 
 TEST_F(PoseSamplerRanges, UnknownJointsListValidNames) {
-  expect_error(write(R"({"joints": {"LeftArm": {"roll": [0, 1]}}})"),
-               {"unknown joint 'LeftArm'", "3 joints include 'joint0', 'joint1', 'joint2'"});
+  expect_error(
+      write(R"({"joints": {"LeftArm": {"roll": [0, 1]}}})"),
+      {"joints.LeftArm: unknown joint 'LeftArm'", "3 joints include 'joint0', 'joint1', 'joint2'"});
   expect_error(write(R"({"joints": {"Joint1": {"roll": [0, 1]}}})"), {"did you mean 'joint1'?"});
   expect_error(write(R"({"joints": {"int": {"roll": [0, 1]}}})"),
                {"did you mean 'joint0', 'joint1', 'joint2'?"});

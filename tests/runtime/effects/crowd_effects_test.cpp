@@ -185,7 +185,8 @@ TEST_F(CrowdEffectsTest, SeveralSkeletonTypesShareStatesEachInTheirOwnPoseBuffer
                            test::spectators_block() + "}}";
   const Status s = files_.load(json, scene_);
   ASSERT_TRUE(s.ok()) << s.message();
-  ASSERT_EQ(scene_.effects.types, (std::vector<uint32_t>{0, 1}));
+  ASSERT_NE(find_scene_effects(scene_), nullptr);
+  ASSERT_EQ(find_scene_effects(scene_)->types, (std::vector<uint32_t>{0, 1}));
   ASSERT_TRUE(CrowdEffects::create(scene_, effects_).ok());
   EXPECT_EQ(counters().state_instances, 2u * 3u * 2u);
   EXPECT_EQ(counters().transition_instances, 2u * 3u);

@@ -1,6 +1,7 @@
-// scene.json "effects" (docs/scene-format.md, "Effects"): what load_scene reads into
-// Scene::effects, and a clear "<file>: <key path>: <problem>" error for every bad declaration.
-// Uses the hand-built small pack (clips walk (looping), wave, pose; joints root, spine, head).
+// scene.json "effects" (docs/scene-format.md, "Effects"): what the section's reader
+// (scene_effects_section) makes of it for find_scene_effects, and a clear "<file>: <key path>:
+// <problem>" error for every bad declaration. Uses the hand-built small pack (clips walk (looping),
+// wave, pose; joints root, spine, head).
 #include <gtest/gtest.h>
 
 #include <initializer_list>
@@ -10,6 +11,9 @@
 
 namespace crowdbake::runtime {
 namespace {
+
+using effects::find_scene_effects;
+using effects::SceneEffects;
 
 // Two seat grids of the small type (generators 0 and 1) and `effects`.
 std::string small_scene(const std::string& effects, const std::string& extra_generator = "") {
@@ -59,15 +63,14 @@ TEST(SceneEffects, AbsentDeclarationMeansBakedClipsOnly) {
   test::EffectScenes files;
   Scene scene;
   ASSERT_TRUE(files.load(small_scene(""), scene).ok());
-  EXPECT_FALSE(scene.effects.declared);
-  EXPECT_FALSE(scene.effects.animation_sharing || scene.effects.spectators ||
-               scene.effects.crossfade || scene.effects.placement);
-  EXPECT_TRUE(scene.effects.lod && scene.effects.texture_partition && scene.effects.color_variety);
+  EXPECT_EQ(find_scene_effects(scene), nullptr);
+  EXPECT_TRUE(scene.sections.empty());
   ASSERT_EQ(scene.generated.size(), 2u);
   EXPECT_EQ(scene.generated[0].first, 0u);
   EXPECT_EQ(scene.generated[0].count, 6u);
   EXPECT_EQ(scene.generated[1].first, 6u);
   EXPECT_EQ(scene.generated[1].count, 4u);
+  EXPECT_FALSE(scene.generated[0].relaxation || scene.generated[1].relaxation);
 }
 
 TEST(SceneEffects, FullDeclarationIsRead) {
@@ -86,7 +89,8 @@ TEST(SceneEffects, FullDeclarationIsRead) {
       "parameters": {"tick": 0.05, "neighbour_radius": 2}}})";
   const Status s = files.load(small_scene(effects), scene);
   ASSERT_TRUE(s.ok()) << s.message();
-  const SceneEffects& e = scene.effects;
+  ASSERT_NE(find_scene_effects(scene), nullptr);
+  const SceneEffects& e = *find_scene_effects(scene);
   EXPECT_TRUE(e.declared);
   EXPECT_FALSE(e.lod);
   EXPECT_TRUE(e.texture_partition);
@@ -252,6 +256,24 @@ TEST(SceneEffectsErrors, RelaxationGeneratorNeedsAPlacer) {
                {"generators[2].region: a polygon needs at least 3 [x, z] points, got 2"});
 }
 
+TEST(SceneEffectsErrors, EffectsWithoutTheirReader) {
+  test::EffectScenes files;
+  Scene scene;
+  const std::string path =
+      files.write(small_scene(std::string("{") + kSmallStates + R"(, "animation_sharing": true})"));
+  const Status s = load_scene(path, scene);  // plain options: nobody reads "effects"
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.code(), StatusCode::kInvalidScene);
+  EXPECT_NE(s.message().find("effects: unknown key"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("SceneLoadOptions::sections"), std::string::npos) << s.message();
+  SceneLoadOptions options;
+  options.sections.push_back(effects::scene_effects_section());
+  const Status read = load_scene(path, scene, options);
+  ASSERT_TRUE(read.ok()) << read.message();
+  ASSERT_NE(find_scene_effects(scene), nullptr);
+  EXPECT_TRUE(find_scene_effects(scene)->animation_sharing);
+}
+
 TEST(SceneEffects, RelaxationGeneratorPlacesAtMinimumDistance) {
   test::EffectScenes files;
   Scene scene;
@@ -260,9 +282,9 @@ TEST(SceneEffects, RelaxationGeneratorPlacesAtMinimumDistance) {
           "min_distance": 0.7, "group_spacing": 0.8, "seed": 4, "y": 0.5})";
   const Status s = files.load(small_scene("", relax), scene);
   ASSERT_TRUE(s.ok()) << s.message();
-  EXPECT_TRUE(scene.effects.placement);
   ASSERT_EQ(scene.generated.size(), 3u);
   const InstanceRange r = scene.generated[2];
+  EXPECT_TRUE(r.relaxation);
   EXPECT_EQ(r.count, 30u);
   const std::vector<float>& p = scene.instances.position;
   for (uint32_t i = r.first; i < r.first + r.count; ++i) {

@@ -93,6 +93,8 @@ class Pack {
   // Index of the clip or joint with this exact name, or -1.
   int32_t find_clip(std::string_view name) const;
   int32_t find_joint(std::string_view name) const;
+  // The first 12 clip names, for messages ("idle, sit, ...").
+  std::string clip_names() const;
 
   // LoD range in vertices: the ProgressiveMesh's min_vertices and the full vertex count.
   // A pack without progressive data (PROG vertex count 0) has min == max: full resolution only.

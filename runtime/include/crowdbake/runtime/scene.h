@@ -7,8 +7,11 @@
 // uploads to a GPU buffer as is (read it as float[] / uint[] in std430).
 #pragma once
 
+#include <any>
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,10 +22,16 @@
 #include "crowdbake/runtime/cull_job.h"
 #include "crowdbake/runtime/lod_select_job.h"
 #include "crowdbake/runtime/pack.h"
-#include "crowdbake/runtime/scene_effects.h"
+#include "crowdbake/runtime/scene_extensions.h"
 #include "crowdbake/runtime/status.h"
 
 namespace crowdbake::runtime {
+
+// Instances [first, first + count) came from one generator (Scene::generated, in order).
+struct InstanceRange {
+  uint32_t first = 0, count = 0;
+  bool relaxation = false;  // a "relaxation" generator (placed by SceneLoadOptions::relaxation)
+};
 
 // Upper bound on instances in one scene (generators are checked against it before anything
 // is allocated).
@@ -107,9 +116,9 @@ struct Scene {
   std::vector<CharacterType> types;
   std::vector<ClipRef> clips;  // every type's clips, type by type (CharacterType::first_clip)
   InstanceArrays instances;
-  // The effects the scene declares (scene.json "effects"; scene_effects.h). A scene built from
-  // code declares none unless it fills this in.
-  SceneEffects effects;
+  // What the sections read by other libraries made of their keys (SceneSection::resolve), by
+  // key: "effects" holds crowdbake_scene_effects' declaration (effects/scene_effects.h).
+  std::map<std::string, std::any, std::less<>> sections;
   // Per scene.json generator, in file order: the instances it made.
   std::vector<InstanceRange> generated;
 
@@ -137,6 +146,9 @@ struct SceneLoadOptions {
   // placement of its own: crowdbake_scene_effects' crowd_scene_load_options() sets this; a
   // scene with a relaxation generator and no placer fails to load, saying so.
   RelaxationPlacer relaxation;
+  // Readers of top-level keys the core does not know (scene_extensions.h), each key once.
+  // crowd_scene_load_options() adds the "effects" reader.
+  std::vector<SceneSection> sections;
 };
 
 // Reads and checks a scene file, opens its packs (paths relative to the file's folder) and

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "crowdbake/runtime/effect_frame.h"
+#include "crowdbake/runtime/effects/scene_effects.h"
 #include "crowdbake/runtime/scene.h"
 #include "crowdbake/runtime/status.h"
 
@@ -64,7 +65,7 @@ struct EffectCounters {
   double total_ms_sharing = 0.0;
   double total_ms_pose_buffer = 0.0;
   double total_ms_crossfade = 0.0;
-  // Load time of "relaxation" generators (from Scene::effects; placed by load_scene).
+  // The scene has "relaxation" generators (InstanceRange::relaxation; placed by load_scene).
   bool placement = false;
 };
 
@@ -77,9 +78,10 @@ class CrowdEffects {
   CrowdEffects(const CrowdEffects&) = delete;
   CrowdEffects& operator=(const CrowdEffects&) = delete;
 
-  // Builds what scene.effects declares. Needs the driven type's animation loaded when
-  // animation sharing is declared (kNotLoaded otherwise). kInvalidScene ("effects...: ...")
-  // when the declaration does not fit the scene (e.g. built from code with unknown names).
+  // Builds what the scene's effects declaration (find_scene_effects) declares. Needs the driven
+  // type's animation loaded when animation sharing is declared (kNotLoaded otherwise).
+  // kInvalidScene ("effects...: ...") when the declaration does not fit the scene (e.g. built from
+  // code with unknown names).
   static runtime::Status create(const runtime::Scene& scene, std::unique_ptr<CrowdEffects>& out);
 
   // Advances every constructed system to scene time `time` (dt = time since the last call,
@@ -101,8 +103,9 @@ class CrowdEffects {
   std::unique_ptr<Impl> impl_;
 };
 
-// SceneLoadOptions whose relaxation placer is crowdbake_crowd's place_crowd (power-diagram
-// Lloyd relaxation): load scenes with "relaxation" generators through this.
+// SceneLoadOptions that read everything this library adds to a scene file: the "effects"
+// section (scene_effects_section()) and "relaxation" generators, placed by crowdbake_crowd's
+// place_crowd (power-diagram Lloyd relaxation). Load scenes that use either through this.
 runtime::SceneLoadOptions crowd_scene_load_options(runtime::SceneLoadOptions options = {});
 
 }  // namespace crowdbake::effects

@@ -1,22 +1,22 @@
 // The scene's effects declaration (scene.json "effects", docs/scene-format.md): which crowd
-// effects a scene uses, read and checked by load_scene() into plain data. The runtime core only
-// describes them; crowdbake_scene_effects (runtime/effects/crowd_effects.h) builds the systems
-// the declaration names and nothing else, so an effect a scene does not declare costs nothing.
+// effects a scene uses, as plain data. scene_effects_section() reads and checks it when
+// load_scene() is given that reader (crowd_scene_load_options() does); the runtime core knows
+// nothing of it. CrowdEffects (crowd_effects.h) builds the systems the declaration names and
+// nothing else, so an effect a scene does not declare costs nothing.
 //
-// Names (states, clips, teams, events) are kept as written; load_scene() has already checked
+// Names (states, clips, teams, events) are kept as written; the reader has already checked
 // that they resolve (clips against the packs, states, teams and reactions against each other)
 // and that the behaviour FSM has an exit, so the builders can trust them.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
-#include "crowdbake/runtime/status.h"
+#include "crowdbake/runtime/scene.h"
 
-namespace crowdbake::runtime {
+namespace crowdbake::effects {
 
 // One clip variant of a behaviour state: a clip of the driven character type.
 struct EffectClip {
@@ -117,34 +117,17 @@ struct SceneEffects {
   // GPU crossfade of clip changes (without animation_sharing: the FSM's changes fade).
   bool crossfade = false;
   float crossfade_time = 0.4f;
-
-  // Relaxation placement: the scene has "relaxation" generators (placed at load).
-  bool placement = false;
 };
 
-// Instances [first, first + count) came from one generator (Scene::generated, in order).
-struct InstanceRange {
-  uint32_t first = 0, count = 0;
-};
+// The declaration load_scene() read (Scene::sections["effects"]), or null when the scene
+// declares no effects (no "effects" key, or a scene built from code that declared none).
+const SceneEffects* find_scene_effects(const runtime::Scene& scene);
 
-// A "relaxation" generator's request (crowd-patches placement, crowdbake_crowd's place_crowd).
-// The runtime core does not place crowds itself: SceneLoadOptions::relaxation does.
-struct RelaxationRequest {
-  std::vector<std::array<float, 2>> region;  // (x, z) polygon, >= 3 vertices
-  uint32_t people = 0;
-  float min_distance = 0.5f;
-  float group_spacing = 0.7f;
-  float single_fraction = 0.3f;
-  int iterations = 60;
-  uint64_t seed = 0;
-};
+// The declaration of a scene built from code: created (declared = true) when it has none.
+SceneEffects& declare_scene_effects(runtime::Scene& scene);
 
-struct RelaxationResult {
-  std::vector<std::array<float, 2>> positions;  // (x, z) per person, group members together
-  std::vector<float> yaw_degrees;               // heading per person (about +Y, +Z towards +X)
-  double seconds = 0.0;                         // time the placement took
-};
+// The reader of scene.json's "effects" key (docs/scene-format.md), for
+// SceneLoadOptions::sections; crowd_scene_load_options() adds it.
+runtime::SceneSection scene_effects_section();
 
-using RelaxationPlacer = std::function<Status(const RelaxationRequest&, RelaxationResult&)>;
-
-}  // namespace crowdbake::runtime
+}  // namespace crowdbake::effects
