@@ -293,7 +293,7 @@ TEST(Scene, SeveralCharacterTypesFromBakedAndHandBuiltPacks) {
                     "rectangle": {"min": [-5, -5], "max": [5, 5]}, "clips": ["idle", "clap", "walk"]}])",
                  kCamera, R"("character_types": [{"name": "small", "pack": "packs/small.crowdpack"},
                                       {"name": "spectator", "pack": "packs/spectator.crowdpack"}])"),
-      scene, SceneLoadOptions{kPackTables, nullptr});
+      scene, SceneLoadOptions{kPackTables, nullptr, {}});
   ASSERT_TRUE(s) << s.message();
   ASSERT_EQ(scene.types.size(), 2u);
   EXPECT_EQ(scene.types[1].first_clip, 3u);
@@ -324,7 +324,7 @@ TEST(Scene, DocumentedExampleLoads) {
   files.add_spectator();
   Scene scene;
   const Status s = files.load(doc.substr(start + 8, end - start - 8), scene,
-                              SceneLoadOptions{kPackTables, nullptr});
+                              SceneLoadOptions{kPackTables, nullptr, {}});
   ASSERT_TRUE(s) << s.message();
   EXPECT_GT(scene.instances.size(), 201u + 4000u);  // 4800 seats, 8% empty
   EXPECT_LT(scene.instances.size(), 201u + 4800u);
