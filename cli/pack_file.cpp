@@ -31,13 +31,13 @@ PackFile load_pack_file(const std::string& path) {
   PackFile pack;
   pack.path = path;
   pack.bytes = data.size();
-  PackStatus status = read_pack_chunks(data.data(), data.size(), pack.chunks, &pack.version_major,
-                                       &pack.version_minor);
+  Status status = read_pack_chunks(data.data(), data.size(), pack.chunks, &pack.version_major,
+                                   &pack.version_minor);
   if (status) status = read_pack(data.data(), data.size(), pack.contents);
   if (!status) {
     // note: the reader's message says what is wrong; some already say what to do
     // ("...; update crowdbake"), the others get the general advice.
-    std::string message = status.message;
+    std::string message = status.message();
     if (message.find("; ") == std::string::npos)
       message += "; the file is damaged or not a complete pack: re-bake it with 'crowdbake bake'";
     throw input_error(path, message);

@@ -63,9 +63,9 @@ int main(int argc, char** argv) {
     std::ifstream file(argv[a], std::ios::binary);
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), {});
     PackContents pack;
-    const PackStatus s = read_pack(bytes.data(), bytes.size(), pack);
-    if (!s.ok) {
-      std::fprintf(stderr, "%s: %s\n", argv[a], s.message.c_str());
+    const Status s = read_pack(bytes.data(), bytes.size(), pack);
+    if (!s.ok()) {
+      std::fprintf(stderr, "%s: %s\n", argv[a], s.message().c_str());
       return 1;
     }
     const AnimationTexture& t = pack.animation;
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       if (c.tag == pack_format::kTagAnim) anim = c;
     PackContents back;
     const double read =
-        time_ms([&] { ok = ok && read_pack_chunk(anim, coded.data() + anim.offset, back).ok; });
+        time_ms([&] { ok = ok && read_pack_chunk(anim, coded.data() + anim.offset, back).ok(); });
     if (!ok || back.animation.data != stored.texture.data) {
       std::fprintf(stderr, "%s: the coded texels did not come back as stored_animation says\n",
                    argv[a]);

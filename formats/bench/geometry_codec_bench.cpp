@@ -96,9 +96,9 @@ double max_angle_degrees(const std::vector<float>& a, const std::vector<float>& 
 PackGeometry decode_geom(const std::vector<uint8_t>& bytes) {
   const PackChunk geom = geom_chunk(bytes);
   PackContents out;
-  const PackStatus s = read_pack_chunk(geom, bytes.data() + geom.offset, out);
+  const Status s = read_pack_chunk(geom, bytes.data() + geom.offset, out);
   if (!s) {
-    std::fprintf(stderr, "decode failed: %s\n", s.message.c_str());
+    std::fprintf(stderr, "decode failed: %s\n", s.message().c_str());
     std::exit(2);
   }
   return out.geometry;

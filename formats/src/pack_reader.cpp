@@ -1,6 +1,6 @@
 // read_pack_chunks / read_pack_chunk / read_pack: the bytes are hostile. Every field goes
 // through a bounds-checked ByteReader; every count is checked against the bytes left
-// before anything is allocated; every failure is a PackStatus naming the chunk and field.
+// before anything is allocated; every failure is a Status naming the chunk and field.
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -18,7 +18,7 @@ namespace {
 using namespace pack_format;
 using pack_io::ByteReader;
 
-PackStatus error(std::string message) { return {false, std::move(message)}; }
+Status error(std::string message) { return {StatusCode::kInvalidPack, std::move(message)}; }
 
 // note: fuzzing builds ignore checksum mismatches so the fuzzer reaches the chunk
 // decoders (the usual FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION convention).
@@ -71,8 +71,8 @@ struct Header {
   uint32_t chunk_count = 0;
 };
 
-PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h,
-                                 std::vector<PackChunk>& chunks) {
+Status read_header_and_table(const uint8_t* data, size_t size, Header& h,
+                             std::vector<PackChunk>& chunks) {
   chunks.clear();
   if (data == nullptr && size != 0) return error("no data");
   if (size < kMagic.size() || std::memcmp(data, kMagic.data(), kMagic.size()) != 0)
@@ -162,8 +162,8 @@ PackStatus read_header_and_table(const uint8_t* data, size_t size, Header& h,
 }
 
 // Decodes one chunk whose payload bytes are [payload, payload + chunk.size).
-PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
-                        pack_io::HeadCounts* counts) {
+Status decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
+                    pack_io::HeadCounts* counts) {
   const std::string name = "chunk " + tag_name(chunk.tag);
   const uint32_t crc = pack_io::crc32c(payload, static_cast<size_t>(chunk.size));
   if (!checksum_matches(chunk.checksum, crc))
@@ -231,7 +231,7 @@ PackStatus decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackCont
   return {};
 }
 
-PackStatus check_head_counts(const pack_io::HeadCounts& h, const PackContents& c) {
+Status check_head_counts(const pack_io::HeadCounts& h, const PackContents& c) {
   const pack_io::HeadCounts actual = pack_io::head_counts(c);
   const struct {
     const char* what;
@@ -263,27 +263,27 @@ std::string tag_name(uint32_t tag) {
 }
 }  // namespace pack_format
 
-PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
-                            uint16_t* version_major, uint16_t* version_minor) {
+Status read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
+                        uint16_t* version_major, uint16_t* version_minor) {
   Header h;
-  PackStatus status = read_header_and_table(data, size, h, chunks);
+  Status status = read_header_and_table(data, size, h, chunks);
   if (version_major) *version_major = h.major;
   if (version_minor) *version_minor = h.minor;
   if (!status) chunks.clear();
   return status;
 }
 
-PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out) {
+Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out) {
   if (payload == nullptr && chunk.size != 0)
     return error("chunk " + tag_name(chunk.tag) + ": no data");
   return decode_chunk(chunk, payload, out, nullptr);
 }
 
-PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
+Status read_pack(const uint8_t* data, size_t size, PackContents& out) {
   out = PackContents{};
   Header h;
   std::vector<PackChunk> chunks;
-  PackStatus status = read_header_and_table(data, size, h, chunks);
+  Status status = read_header_and_table(data, size, h, chunks);
   if (!status) return status;
   if (size != h.file_size)
     return error("truncated pack: " + std::to_string(size) + " bytes, the header records " +
@@ -291,7 +291,7 @@ PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out) {
   // Every byte outside the header, the table and the chunks must be zero padding, so a
   // corrupted byte anywhere in the file is detected.
   uint64_t at = h.table_offset + uint64_t{h.chunk_count} * kChunkEntrySize;
-  const auto zero_gap = [&](uint64_t from, uint64_t to) -> PackStatus {
+  const auto zero_gap = [&](uint64_t from, uint64_t to) -> Status {
     for (uint64_t i = from; i < to; ++i)
       if (data[i] != 0)
         return error("padding byte at offset " + std::to_string(i) + " is not zero");

@@ -52,8 +52,8 @@ void check_options(const PackWriteOptions& o) {
 }
 
 void check_contents(const PackContents& contents) {
-  const PackStatus valid = validate_pack_contents(contents);
-  if (!valid) throw std::invalid_argument("write_pack: invalid pack contents: " + valid.message);
+  const Status valid = validate_pack_contents(contents);
+  if (!valid) throw std::invalid_argument("write_pack: invalid pack contents: " + valid.message());
 }
 
 double bind_diagonal(const PackBounds& bounds) {
@@ -147,7 +147,7 @@ const char* geometry_codec_name(GeometryCodec codec) {
   return "unknown";
 }
 
-PackStatus validate_pack_contents(const PackContents& c) {
+Status validate_pack_contents(const PackContents& c) {
   using namespace pack_io;
   const std::pair<const char*, std::string> checks[] = {
       {"HEAD", c.name.size() > kMaxStringBytes || c.settings_json.size() > kMaxSettingsBytes
@@ -165,9 +165,10 @@ PackStatus validate_pack_contents(const PackContents& c) {
       {"IMGS", check_images(c.images)},
   };
   for (const auto& [tag, problem] : checks)
-    if (!problem.empty()) return {false, std::string("chunk ") + tag + ": " + problem};
+    if (!problem.empty())
+      return {StatusCode::kInvalidPack, std::string("chunk ") + tag + ": " + problem};
   const std::string cross = check_cross_references(c);
-  if (!cross.empty()) return {false, "chunk " + cross};
+  if (!cross.empty()) return {StatusCode::kInvalidPack, "chunk " + cross};
   return {};
 }
 

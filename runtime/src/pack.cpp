@@ -91,8 +91,8 @@ struct Pack::Impl {
     if (!chunk) return fail("missing chunk " + tag_name(tag));
     std::vector<uint8_t> payload(static_cast<size_t>(chunk->size));
     if (Status s = source->read(chunk->offset, payload.size(), payload.data()); !s) return s;
-    const PackStatus decoded = read_pack_chunk(*chunk, payload.data(), contents);
-    if (!decoded) return fail(decoded.message);
+    const Status decoded = read_pack_chunk(*chunk, payload.data(), contents);
+    if (!decoded) return fail(decoded.message());
     if (keep_payload) *keep_payload = std::move(payload);
     return {};
   }
@@ -115,8 +115,8 @@ struct Pack::Impl {
         if (Status s = source->read(old, front.size() - old, front.data() + old); !s) return s;
       }
     }
-    const PackStatus table = read_pack_chunks(front.data(), front.size(), chunks, &major, &minor);
-    if (!table) return fail(table.message);
+    const Status table = read_pack_chunks(front.data(), front.size(), chunks, &major, &minor);
+    if (!table) return fail(table.message());
     const uint64_t recorded = load_u64(&front[32]);
     if (size < recorded)
       return fail("truncated pack: " + std::to_string(size) + " bytes, the header records " +
@@ -247,10 +247,10 @@ struct Pack::Impl {
     loaded |= part;
     if (loaded == kPackAll) {
       // note: everything is in memory: the whole-pack rules read_pack guarantees must hold.
-      const PackStatus all = validate_pack_contents(contents);
+      const Status all = validate_pack_contents(contents);
       if (!all) {
         clear(part);
-        return fail(all.message);
+        return fail(all.message());
       }
     }
     return {};

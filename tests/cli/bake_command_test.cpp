@@ -43,9 +43,9 @@ TEST(BakeCommand, WritesAPackThatReadsBack) {
   EXPECT_TRUE(r.out.empty()) << "stdout is not a terminal: nothing should be printed\n" << r.out;
   const std::string bytes = test::slurp(output);
   PackContents pack;
-  const PackStatus status =
+  const Status status =
       read_pack(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), pack);
-  ASSERT_TRUE(status.ok) << status.message;
+  ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(pack.joints.size(), 2u);
   EXPECT_EQ(pack.geometry.vertex_count(), 3u);
   ASSERT_EQ(pack.clips.size(), 1u);

@@ -103,9 +103,9 @@ class PackCommands : public ::testing::Test {
   static PackContents read(const fs::path& path) {
     const std::string bytes = test::slurp(path);
     PackContents contents;
-    const PackStatus status =
+    const Status status =
         read_pack(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), contents);
-    EXPECT_TRUE(status.ok) << status.message;
+    EXPECT_TRUE(status.ok()) << status.message();
     return contents;
   }
 
@@ -113,7 +113,7 @@ class PackCommands : public ::testing::Test {
     const std::string bytes = test::slurp(path);
     std::vector<PackChunk> out;
     EXPECT_TRUE(
-        read_pack_chunks(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), out).ok);
+        read_pack_chunks(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), out).ok());
     return out;
   }
 

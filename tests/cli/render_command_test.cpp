@@ -253,7 +253,7 @@ TEST_F(RenderCommand, PackWithoutLevelErrorsRendersByBudgetWithANote) {
     std::ifstream in(pack_, std::ios::binary);
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                      std::istreambuf_iterator<char>());
-    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok);
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok());
   }
   contents.level_errors = {};
   const std::vector<uint8_t> bytes = write_pack(contents, {});

@@ -136,8 +136,8 @@ TEST(BoundedAnimation, ReaderGetsWhatStoredAnimationSays) {
   const std::vector<uint8_t> bytes = write_pack(c, bounded(1e-3));
   EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagAnim).version, pack_format::kAnimVersion);
   PackContents back;
-  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
-  ASSERT_TRUE(s.ok) << s.message;
+  const Status s = read_pack(bytes.data(), bytes.size(), back);
+  ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(back.animation.data, stored.texture.data);
   EXPECT_EQ(back.animation.decode_params, c.animation.decode_params);
   EXPECT_NE(back.animation.data, c.animation.data) << "a bound of 1e-3 should change some texel";
@@ -236,7 +236,7 @@ TEST(BoundedAnimation, WhatItCannotCodeStaysLosslessWithAReason) {
     EXPECT_EQ(stored.texture.data, k.contents.animation.data) << k.name;
     const std::vector<uint8_t> bytes = write_pack(k.contents, k.options);
     PackContents back;
-    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), back).ok) << k.name;
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), back).ok()) << k.name;
     EXPECT_EQ(back.animation.data, k.contents.animation.data) << k.name;
   }
   EXPECT_THROW(write_pack(c, bounded(-1.0)), std::invalid_argument);
@@ -313,9 +313,10 @@ TEST(BoundedAnimation, OnlyVersion3MaySayBounded) {
     if (chunk.tag == pack_format::kTagAnim) chunk.version = 2;
   PackContents back;
   const std::vector<uint8_t> bytes = test::assemble_pack(chunks, 1, kPackVersionMinor);
-  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
-  EXPECT_FALSE(s.ok);
-  EXPECT_NE(s.message.find("unknown compression 2 for version 2"), std::string::npos) << s.message;
+  const Status s = read_pack(bytes.data(), bytes.size(), back);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("unknown compression 2 for version 2"), std::string::npos)
+      << s.message();
 }
 
 }  // namespace

@@ -50,8 +50,8 @@ TEST(FrozenPacks, EverySetReadsToItsDigests) {
       std::memcpy(&minor, bytes.data() + 10, 2);
       EXPECT_EQ("v" + std::to_string(major) + "." + std::to_string(minor), version);
       PackContents contents;
-      const PackStatus status = read_pack(bytes.data(), bytes.size(), contents);
-      ASSERT_TRUE(status.ok) << status.message;
+      const Status status = read_pack(bytes.data(), bytes.size(), contents);
+      ASSERT_TRUE(status.ok()) << status.message();
       const auto now = test::pack_digests(contents);
       for (const auto& [part, digest] : parts.items()) {
         ASSERT_TRUE(now.count(part)) << part;

@@ -110,15 +110,15 @@ TEST(PackCompression, PacksStoreAnimV2AndStillWriteV1OnRequest) {
     options.compression = compression;
     const std::vector<uint8_t> bytes = write_pack(in, options);
     std::vector<PackChunk> chunks;
-    ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok);
+    ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok());
     for (const PackChunk& c : chunks)
       if (c.tag == pack_format::kTagAnim) {
         EXPECT_EQ(c.version, compression == PackCompression::kZstd ? 2u : 1u);
         anim_bytes.push_back(static_cast<size_t>(c.size));
       }
     PackContents out;
-    const PackStatus s = read_pack(bytes.data(), bytes.size(), out);
-    ASSERT_TRUE(s.ok) << s.message;
+    const Status s = read_pack(bytes.data(), bytes.size(), out);
+    ASSERT_TRUE(s.ok()) << s.message();
     EXPECT_EQ(out.animation.data, in.animation.data);
     EXPECT_EQ(out.animation.rows, in.animation.rows);
   }
@@ -136,11 +136,11 @@ TEST(PackCompression, TableChunksWrappedAndReadBack) {
     options.compression = compression;
     const std::vector<uint8_t> bytes = write_pack(in, options);
     std::vector<PackChunk> chunks;
-    ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok);
+    ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok());
     for (const PackChunk& c : chunks) versions[pack_format::tag_name(c.tag)].push_back(c.version);
     PackContents out;
-    const PackStatus s = read_pack(bytes.data(), bytes.size(), out);
-    ASSERT_TRUE(s.ok) << s.message;
+    const Status s = read_pack(bytes.data(), bytes.size(), out);
+    ASSERT_TRUE(s.ok()) << s.message();
     test::expect_same_contents(in, out);
   }
   for (const char* tag : {"SKEL", "CLIP", "PROG", "PART"})

@@ -75,8 +75,8 @@ TEST(PackImage, MaterialsAndImagesRoundTrip) {
   exact.codec = GeometryCodec::kRaw;
   const std::vector<uint8_t> bytes = write_pack(c, exact);
   PackContents back;
-  const PackStatus status = read_pack(bytes.data(), bytes.size(), back);
-  ASSERT_TRUE(status.ok) << status.message;
+  const Status status = read_pack(bytes.data(), bytes.size(), back);
+  ASSERT_TRUE(status.ok()) << status.message();
   test::expect_same_contents(c, back);
   EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagMatl).version, 1u);
   EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagMatx).version, 1u);
@@ -86,7 +86,7 @@ TEST(PackImage, MaterialsAndImagesRoundTrip) {
 TEST(PackImage, PlainMaterialsWriteNeitherMatxNorImgs) {
   const std::vector<uint8_t> bytes = write_pack(test::make_test_contents());
   std::vector<PackChunk> chunks;
-  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok);
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok());
   for (const PackChunk& chunk : chunks) {
     EXPECT_NE(chunk.tag, pack_format::kTagMatx);
     EXPECT_NE(chunk.tag, pack_format::kTagImgs);
@@ -102,8 +102,8 @@ TEST(PackImage, AReaderWithoutMatxAndImgsReadsThePacksOwnColours) {
       kept.push_back(std::move(chunk));
   const std::vector<uint8_t> old = test::assemble_pack(kept, 1, 1);
   PackContents back;
-  const PackStatus s = read_pack(old.data(), old.size(), back);
-  ASSERT_TRUE(s.ok) << s.message;
+  const Status s = read_pack(old.data(), old.size(), back);
+  ASSERT_TRUE(s.ok()) << s.message();
   ASSERT_EQ(back.materials.size(), c.materials.size());
   EXPECT_EQ(back.materials[0].base_color, c.materials[0].base_color);
   EXPECT_EQ(back.materials[0].base_color_texture, "skin.png");
@@ -117,29 +117,29 @@ TEST(PackImage, MatxWithAnotherMaterialCountIsRefused) {
     if (chunk.tag == pack_format::kTagMatx) chunk.payload[0] += 1;  // count + 1 (and too short)
   const std::vector<uint8_t> bytes = test::assemble_pack(chunks, 1, 2);
   PackContents back;
-  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
-  EXPECT_FALSE(s.ok);
-  EXPECT_NE(s.message.find("chunk MATX"), std::string::npos) << s.message;
+  const Status s = read_pack(bytes.data(), bytes.size(), back);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("chunk MATX"), std::string::npos) << s.message();
 }
 
 TEST(PackImage, BadReferencesAndImagesAreRefused) {
   PackContents c = textured_contents();
   c.materials[0].base_color_image = 1;
-  PackStatus s = validate_pack_contents(c);
-  EXPECT_FALSE(s.ok);
-  EXPECT_NE(s.message.find("uses image 1, there are 1"), std::string::npos) << s.message;
+  Status s = validate_pack_contents(c);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("uses image 1, there are 1"), std::string::npos) << s.message();
   EXPECT_THROW(write_pack(c), std::invalid_argument);
 
   c = textured_contents();
   c.images[0].mime_type = "image/jpeg";
   s = validate_pack_contents(c);
-  EXPECT_NE(s.message.find("says image/jpeg but the bytes are image/png"), std::string::npos)
-      << s.message;
+  EXPECT_NE(s.message().find("says image/jpeg but the bytes are image/png"), std::string::npos)
+      << s.message();
 
   c = textured_contents();
   c.materials[0].alpha_cutoff = 1.5f;
   s = validate_pack_contents(c);
-  EXPECT_NE(s.message.find("alpha cutoff"), std::string::npos) << s.message;
+  EXPECT_NE(s.message().find("alpha cutoff"), std::string::npos) << s.message();
 }
 
 TEST(PackImage, ReaderRefusesImageBytesThatAreNoImage) {
@@ -150,9 +150,9 @@ TEST(PackImage, ReaderRefusesImageBytesThatAreNoImage) {
   bytes[signature] = 'X';
   test::reseal(bytes);
   PackContents back;
-  const PackStatus s = read_pack(bytes.data(), bytes.size(), back);
-  EXPECT_FALSE(s.ok);
-  EXPECT_NE(s.message.find("neither PNG nor JPEG"), std::string::npos) << s.message;
+  const Status s = read_pack(bytes.data(), bytes.size(), back);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("neither PNG nor JPEG"), std::string::npos) << s.message();
 }
 
 }  // namespace

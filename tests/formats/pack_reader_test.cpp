@@ -23,14 +23,14 @@ using namespace pack_format;
 using test::RawChunk;
 
 // Largest single allocation made while reading `bytes`.
-size_t largest_allocation_reading(const std::vector<uint8_t>& bytes, PackStatus& status) {
+size_t largest_allocation_reading(const std::vector<uint8_t>& bytes, Status& status) {
   PackContents out;
   test::start_tracking_allocations();
   status = read_pack(bytes.data(), bytes.size(), out);
   return test::stop_tracking_allocations();
 }
 
-PackStatus read_copy(const uint8_t* data, size_t size) {
+Status read_copy(const uint8_t* data, size_t size) {
   // note: a fresh heap block of exactly `size` bytes, so ASAN reports any overread.
   std::unique_ptr<uint8_t[]> copy(new uint8_t[size]);
   if (size) std::memcpy(copy.get(), data, size);
@@ -38,15 +38,15 @@ PackStatus read_copy(const uint8_t* data, size_t size) {
   return read_pack(copy.get(), size, out);
 }
 
-PackStatus read(const std::vector<uint8_t>& bytes) { return read_copy(bytes.data(), bytes.size()); }
+Status read(const std::vector<uint8_t>& bytes) { return read_copy(bytes.data(), bytes.size()); }
 
-PackStatus read(const std::vector<uint8_t>& bytes, PackContents& out) {
+Status read(const std::vector<uint8_t>& bytes, PackContents& out) {
   return read_pack(bytes.data(), bytes.size(), out);
 }
 
-void expect_error(const PackStatus& s, const std::string& needle) {
-  EXPECT_FALSE(s.ok) << "accepted; expected an error containing '" << needle << "'";
-  EXPECT_NE(s.message.find(needle), std::string::npos) << s.message;
+void expect_error(const Status& s, const std::string& needle) {
+  EXPECT_FALSE(s.ok()) << "accepted; expected an error containing '" << needle << "'";
+  EXPECT_NE(s.message().find(needle), std::string::npos) << s.message();
 }
 
 std::vector<uint8_t> small_pack(GeometryCodec codec,
@@ -59,8 +59,8 @@ std::vector<uint8_t> small_pack(GeometryCodec codec,
 class Hostile : public ::testing::TestWithParam<GeometryCodec> {};
 
 TEST_P(Hostile, GoodPackReads) {
-  const PackStatus s = read(small_pack(GetParam()));
-  EXPECT_TRUE(s.ok) << s.message;
+  const Status s = read(small_pack(GetParam()));
+  EXPECT_TRUE(s.ok()) << s.message();
 }
 
 TEST_P(Hostile, EveryTruncatedPrefixIsACleanError) {
@@ -69,18 +69,18 @@ TEST_P(Hostile, EveryTruncatedPrefixIsACleanError) {
   ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks));
   const size_t table_end = kHeaderSize + kChunkEntrySize * chunks.size();
   for (size_t size = 0; size < bytes.size(); ++size) {
-    const PackStatus s = read_copy(bytes.data(), size);
-    ASSERT_FALSE(s.ok) << "prefix of " << size << " bytes accepted";
-    ASSERT_FALSE(s.message.empty());
+    const Status s = read_copy(bytes.data(), size);
+    ASSERT_FALSE(s.ok()) << "prefix of " << size << " bytes accepted";
+    ASSERT_FALSE(s.message().empty());
     if (size < 8)
-      ASSERT_NE(s.message.find("not a crowdbake pack"), std::string::npos) << s.message;
+      ASSERT_NE(s.message().find("not a crowdbake pack"), std::string::npos) << s.message();
     else
-      ASSERT_NE(s.message.find("truncated"), std::string::npos) << size << ": " << s.message;
+      ASSERT_NE(s.message().find("truncated"), std::string::npos) << size << ": " << s.message();
     // The front of a file is enough for the chunk table (streaming).
     std::unique_ptr<uint8_t[]> copy(new uint8_t[size]);
     if (size) std::memcpy(copy.get(), bytes.data(), size);
     std::vector<PackChunk> listed;
-    EXPECT_EQ(read_pack_chunks(copy.get(), size, listed).ok, size >= table_end) << size;
+    EXPECT_EQ(read_pack_chunks(copy.get(), size, listed).ok(), size >= table_end) << size;
   }
 }
 
@@ -92,10 +92,10 @@ TEST_P(Hostile, EverySingleByteFlipIsDetected) {
     for (uint8_t mask : {0x01, 0x80, 0xff}) {
       std::vector<uint8_t> bad = bytes;
       bad[i] ^= mask;
-      const PackStatus s = read(bad);
-      ASSERT_FALSE(s.ok) << "flip 0x" << std::hex << int{mask} << " at byte " << std::dec << i
-                         << " accepted";
-      ASSERT_FALSE(s.message.empty());
+      const Status s = read(bad);
+      ASSERT_FALSE(s.ok()) << "flip 0x" << std::hex << int{mask} << " at byte " << std::dec << i
+                           << " accepted";
+      ASSERT_FALSE(s.message().empty());
     }
   }
 }
@@ -115,14 +115,14 @@ TEST_P(Hostile, ResealedFlipsInEveryChunkNeverCrash) {
         bad[i] ^= mask;
         test::reseal(bad);
         PackContents out;
-        const PackStatus s = read(bad, out);
+        const Status s = read(bad, out);
         ++total;
-        if (s.ok) {
+        if (s.ok()) {
           ++accepted;
-          const PackStatus valid = validate_pack_contents(out);
-          ASSERT_TRUE(valid.ok) << "accepted invalid contents: " << valid.message;
+          const Status valid = validate_pack_contents(out);
+          ASSERT_TRUE(valid.ok()) << "accepted invalid contents: " << valid.message();
         } else {
-          ASSERT_EQ(s.message.rfind("chunk ", 0), 0u) << s.message;
+          ASSERT_EQ(s.message().rfind("chunk ", 0), 0u) << s.message();
         }
       }
     }
@@ -158,11 +158,11 @@ TEST(PackReader, WrongMagic) {
 
 TEST(PackReader, UnsupportedMajorVersionMessage) {
   const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
-  PackStatus s = read(test::assemble_pack(chunks, 2, 0));
-  EXPECT_FALSE(s.ok);
-  EXPECT_EQ(s.message, "unsupported pack version 2 (this build reads <= 1); update crowdbake");
+  Status s = read(test::assemble_pack(chunks, 2, 0));
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), "unsupported pack version 2 (this build reads <= 1); update crowdbake");
   s = read(test::assemble_pack(chunks, 0, 3));
-  EXPECT_EQ(s.message, "unsupported pack version 0 (this build reads 1); re-bake the pack");
+  EXPECT_EQ(s.message(), "unsupported pack version 0 (this build reads 1); re-bake the pack");
   // note: the version is checked before anything else past the magic, so even a header
   // too short for v1 gets the version message.
   std::vector<uint8_t> front = test::assemble_pack(chunks, 65535, 0);
@@ -173,8 +173,8 @@ TEST(PackReader, UnsupportedMajorVersionMessage) {
 TEST(PackReader, NewerMinorVersionStillReads) {
   const PackContents in = test::make_test_contents(4, 22);
   PackContents out;
-  const PackStatus s = read(test::assemble_pack(test::split_pack(write_pack(in)), 1, 9), out);
-  ASSERT_TRUE(s.ok) << s.message;
+  const Status s = read(test::assemble_pack(test::split_pack(write_pack(in)), 1, 9), out);
+  ASSERT_TRUE(s.ok()) << s.message();
   test::expect_same_contents(in, out, {1e-3, 1e-2, 1e-3, 1e-4});
 }
 
@@ -182,8 +182,8 @@ TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
   const auto chunks = test::split_pack(small_pack(GeometryCodec::kRaw));
   expect_error(read(test::assemble_pack(chunks, 1, 0, 0x4)),
                "unsupported required feature flags 0x00000004");
-  const PackStatus s = read(test::assemble_pack(chunks, 1, 0, 0x10000));
-  EXPECT_TRUE(s.ok) << s.message;
+  const Status s = read(test::assemble_pack(chunks, 1, 0, 0x10000));
+  EXPECT_TRUE(s.ok()) << s.message();
 }
 
 TEST(PackReader, UnknownChunksAreSkipped) {
@@ -193,8 +193,8 @@ TEST(PackReader, UnknownChunksAreSkipped) {
                 RawChunk{make_tag('X', 'T', 'R', 'A'), 7, std::vector<uint8_t>(37, 0xab)});
   chunks.push_back(RawChunk{0xdeadbeef, 1, {}});
   PackContents out;
-  const PackStatus s = read(test::assemble_pack(chunks), out);
-  ASSERT_TRUE(s.ok) << s.message;
+  const Status s = read(test::assemble_pack(chunks), out);
+  ASSERT_TRUE(s.ok()) << s.message();
   test::expect_same_contents(in, out);
   std::vector<PackChunk> listed;
   const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
@@ -232,7 +232,7 @@ TEST(PackReader, QuantisedWeightsNeedGeomVersion2) {
   ASSERT_NE(geom, nullptr);
   EXPECT_EQ(geom->version, 2u);
   EXPECT_EQ(geom->payload[19], 16u) << "the default stores 16-bit weights";
-  EXPECT_TRUE(read(test::assemble_pack(chunks)).ok);
+  EXPECT_TRUE(read(test::assemble_pack(chunks)).ok());
   geom->version = 1;
   expect_error(read(test::assemble_pack(chunks)), "reserved header fields are not zero");
   geom->version = 2;
@@ -263,8 +263,8 @@ TEST(PackReader, ChunksInAnyFileOrderRead) {
   auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0}));
   std::reverse(chunks.begin(), chunks.end());
   PackContents out;
-  const PackStatus s = read(test::assemble_pack(chunks), out);
-  ASSERT_TRUE(s.ok) << s.message;
+  const Status s = read(test::assemble_pack(chunks), out);
+  ASSERT_TRUE(s.ok()) << s.message();
   test::expect_same_contents(in, out);
 }
 
@@ -333,12 +333,12 @@ TEST(PackReader, RandomGarbageIsRejected) {
     std::mt19937 rng(seed);
     std::vector<uint8_t> bytes(rng() % 8192);
     for (uint8_t& b : bytes) b = static_cast<uint8_t>(rng());
-    ASSERT_FALSE(read(bytes).ok) << "seed " << seed;
+    ASSERT_FALSE(read(bytes).ok()) << "seed " << seed;
     // Garbage behind a valid magic and version goes further into the header checks.
     if (bytes.size() >= 12) {
       const std::vector<uint8_t> good = small_pack(GeometryCodec::kRaw);
       std::copy(good.begin(), good.begin() + 12, bytes.begin());
-      ASSERT_FALSE(read(bytes).ok) << "seed " << seed;
+      ASSERT_FALSE(read(bytes).ok()) << "seed " << seed;
     }
   }
 }
@@ -353,9 +353,9 @@ TEST(PackReader, GarbageChunkPayloadsAreRejected) {
       std::vector<uint8_t>& p = chunks[i].payload;
       p.resize(rng() % 600);
       for (uint8_t& b : p) b = static_cast<uint8_t>(rng() % 4 ? rng() : 0);
-      const PackStatus s = read(test::assemble_pack(chunks));
-      ASSERT_FALSE(s.ok) << "seed " << seed << " chunk " << i;
-      ASSERT_EQ(s.message.rfind("chunk ", 0), 0u) << s.message;
+      const Status s = read(test::assemble_pack(chunks));
+      ASSERT_FALSE(s.ok()) << "seed " << seed << " chunk " << i;
+      ASSERT_EQ(s.message().rfind("chunk ", 0), 0u) << s.message();
     }
   }
 }
@@ -371,7 +371,7 @@ void expect_cheap_rejection(uint32_t tag, const std::vector<uint8_t>& payload,
       c.version = version;
     }
   const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
-  PackStatus s;
+  Status s;
   const size_t largest = largest_allocation_reading(bytes, s);
   expect_error(s, needle);
   EXPECT_LT(largest, size_t{1} << 20) << "for " << needle;
@@ -445,8 +445,8 @@ TEST(PackReader, ReadOneChunkForStreaming) {
   const std::vector<uint8_t> bytes = write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0});
   const PackChunk geom = test::find_chunk(bytes, kTagGeom);
   PackContents out;
-  PackStatus s = read_pack_chunk(geom, bytes.data() + geom.offset, out);
-  ASSERT_TRUE(s.ok) << s.message;
+  Status s = read_pack_chunk(geom, bytes.data() + geom.offset, out);
+  ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(out.geometry.triangles, in.geometry.triangles);
   EXPECT_TRUE(test::same_bits(out.geometry.positions, in.geometry.positions));
   PackChunk corrupt = geom;
@@ -455,7 +455,7 @@ TEST(PackReader, ReadOneChunkForStreaming) {
                "chunk GEOM: checksum mismatch");
   PackChunk unknown = geom;
   unknown.tag = make_tag('Z', 'Z', 'Z', 'Z');
-  EXPECT_TRUE(read_pack_chunk(unknown, bytes.data() + geom.offset, out).ok);
+  EXPECT_TRUE(read_pack_chunk(unknown, bytes.data() + geom.offset, out).ok());
 }
 
 }  // namespace

@@ -32,8 +32,8 @@ inline uint32_t get32(const std::vector<uint8_t>& b, size_t at) {
 
 inline std::vector<RawChunk> split_pack(const std::vector<uint8_t>& bytes) {
   std::vector<PackChunk> chunks;
-  const PackStatus s = read_pack_chunks(bytes.data(), bytes.size(), chunks);
-  EXPECT_TRUE(s.ok) << s.message;
+  const Status s = read_pack_chunks(bytes.data(), bytes.size(), chunks);
+  EXPECT_TRUE(s.ok()) << s.message();
   std::vector<RawChunk> out;
   for (const PackChunk& c : chunks)
     out.push_back(

@@ -21,8 +21,8 @@ using test::make_test_contents;
 PackContents round_trip(const PackContents& in, const PackWriteOptions& options) {
   const std::vector<uint8_t> bytes = write_pack(in, options);
   PackContents out;
-  const PackStatus status = read_pack(bytes.data(), bytes.size(), out);
-  EXPECT_TRUE(status.ok) << status.message;
+  const Status status = read_pack(bytes.data(), bytes.size(), out);
+  EXPECT_TRUE(status.ok()) << status.message();
   return out;
 }
 
@@ -259,9 +259,9 @@ TEST(PackWriter, RefusesInvalidContents) {
 }
 
 TEST(PackWriter, ValidatePackContentsAcceptsTheTestCharacter) {
-  const PackStatus s = validate_pack_contents(make_test_contents());
-  EXPECT_TRUE(s.ok) << s.message;
-  EXPECT_TRUE(validate_pack_contents(PackContents{}).ok);
+  const Status s = validate_pack_contents(make_test_contents());
+  EXPECT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(validate_pack_contents(PackContents{}).ok());
 }
 
 }  // namespace

@@ -16,9 +16,9 @@ int main(int argc, char** argv) {
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                      std::istreambuf_iterator<char>());
     crowdbake::PackContents contents;
-    const crowdbake::PackStatus status = crowdbake::read_pack(bytes.data(), bytes.size(), contents);
-    if (!status.ok) {
-      std::fprintf(stderr, "error: %s: %s\n", argv[i], status.message.c_str());
+    const crowdbake::Status status = crowdbake::read_pack(bytes.data(), bytes.size(), contents);
+    if (!status.ok()) {
+      std::fprintf(stderr, "error: %s: %s\n", argv[i], status.message().c_str());
       return 1;
     }
     const std::string name = std::string(argv[i]).substr(std::string(argv[i]).rfind('/') + 1);

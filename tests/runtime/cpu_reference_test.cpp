@@ -187,7 +187,7 @@ TEST(UpdateFrame, ErrorModeAndItsFallbackWithoutLevelErrors) {
     std::ifstream in(test::BakedPacks::get().spectator(), std::ios::binary);
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                      std::istreambuf_iterator<char>());
-    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok);
+    ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok());
   }
   ASSERT_FALSE(contents.level_errors.vertices.empty());
   contents.level_errors = {};

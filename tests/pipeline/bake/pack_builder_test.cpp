@@ -72,8 +72,8 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   const PackContents pack = build_pack(asset, settings, report);
   const std::vector<uint8_t> bytes = write_pack(pack, settings.pack);
   PackContents back;
-  const PackStatus status = read_pack(bytes.data(), bytes.size(), back);
-  ASSERT_TRUE(status.ok) << status.message;
+  const Status status = read_pack(bytes.data(), bytes.size(), back);
+  ASSERT_TRUE(status.ok()) << status.message();
 
   // The progressive arrays exactly, and equal to what simplify() gives.
   const ProgressiveMesh pm = simplify(asset, settings.simplify);

@@ -96,7 +96,7 @@ class MaterialShadingTest : public test::GpuTest {
     const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in),
                                      std::istreambuf_iterator<char>()};
     PackContents contents;
-    EXPECT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok);
+    EXPECT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok());
     edit(contents);
     Scene scene;
     EXPECT_TRUE(test::add_pack_bytes(scene, "spectator", write_pack(contents)).ok());

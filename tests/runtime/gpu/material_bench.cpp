@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in),
                                      std::istreambuf_iterator<char>()};
     PackContents pack;
-    if (const PackStatus s = read_pack(bytes.data(), bytes.size(), pack); !s.ok) {
-      std::fprintf(stderr, "%s: %s\n", argv[a], s.message.c_str());
+    if (const Status s = read_pack(bytes.data(), bytes.size(), pack); !s.ok()) {
+      std::fprintf(stderr, "%s: %s\n", argv[a], s.message().c_str());
       return 1;
     }
     for (const PackImage& image : pack.images) {

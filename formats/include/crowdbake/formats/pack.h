@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/status.h"
 #include "crowdbake/formats/pack_format.h"  // kPackVersionMajor/Minor, tags, limits
 
 namespace crowdbake {
@@ -148,12 +149,6 @@ struct PackContents {
   PackBounds bounds;
 };
 
-struct PackStatus {
-  bool ok = true;
-  std::string message;  // what is wrong, for the user ("chunk GEOM: checksum mismatch ...")
-  explicit operator bool() const { return ok; }
-};
-
 enum class GeometryCodec : uint32_t {
   kDraco = 0,    // Draco sequential encoding (keeps vertex and face order)
   kMeshopt = 1,  // meshoptimizer vertex/index codecs (faster to decode)
@@ -191,7 +186,7 @@ struct PackWriteOptions {
 // The rules every pack obeys (counts consistent between parts, indices in range, no NaN,
 // ProgressiveMesh structure): what write_pack() requires and read_pack() guarantees.
 // docs/pack-format.md "Validity rules" lists them.
-PackStatus validate_pack_contents(const PackContents& contents);
+Status validate_pack_contents(const PackContents& contents);
 
 // Serialises deterministically: equal contents and options give identical bytes.
 // Throws std::invalid_argument when validate_pack_contents() fails or an option is out
@@ -232,21 +227,21 @@ struct PackChunk {
 // be just the front of the file (at least the header and table): chunk offsets and sizes
 // are checked against the file size the header records, the header/table checksum is
 // verified, nothing else. Chunks are returned in file order, unknown tags included.
-PackStatus read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
-                            uint16_t* version_major = nullptr, uint16_t* version_minor = nullptr);
+Status read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
+                        uint16_t* version_major = nullptr, uint16_t* version_minor = nullptr);
 
 // Verifies one chunk's checksum and decodes it into its part of `out` (HEAD: name and
 // settings; SKEL: joints; ...). `payload` points at the chunk's `chunk.size` bytes. Checks
 // everything inside the chunk; rules that span chunks (joint indices < joint count, clip
 // rows < texture rows, ...) are checked by read_pack() or validate_pack_contents().
 // Unknown tags are accepted and ignored. For streaming GEOM, ANIM and PART separately.
-PackStatus read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out);
+Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out);
 
 // Parses and validates every size, offset, count, index and checksum. Never crashes,
 // hangs or allocates more than a small multiple of `size` on any input (a compressed
 // GEOM chunk decodes to at most pack_format::kGeomExpansionRatio times its size plus
 // pack_format::kGeomExpansionSlack). On failure `out` holds partial contents.
-PackStatus read_pack(const uint8_t* data, size_t size, PackContents& out);
+Status read_pack(const uint8_t* data, size_t size, PackContents& out);
 
 // "opaque", "mask", "blend".
 const char* alpha_mode_name(AlphaMode mode);
