@@ -160,12 +160,12 @@ RenderPlan plan_render(const RenderSettings& s) {
     scene.camera.width = width;
     scene.camera.height = height;
   }
-  std::string why;
-  if (!runtime::check_lod_settings(scene.lod, &why)) throw input_error(s.scene, "lod: " + why);
+  if (const runtime::Status lod = runtime::check_lod_settings(scene.lod); !lod)
+    throw input_error(s.scene, "lod: " + lod.message());
   for (float t : plan.times) {
     runtime::View view;
-    if (!runtime::make_view(scene.camera_at_time(t), view, &why))
-      throw input_error(s.scene, "camera at t = " + std::to_string(t) + " s: " + why);
+    if (const runtime::Status camera = runtime::make_view(scene.camera_at_time(t), view); !camera)
+      throw input_error(s.scene, "camera at t = " + std::to_string(t) + " s: " + camera.message());
   }
   return plan;
 }

@@ -322,10 +322,9 @@ AnimationTextureFormat animation_texture_format(AnimationEncoding encoding) {
   return {};
 }
 
-bool check_animation_texture(const AnimationTexture& t, std::string* why) {
-  auto fail = [&](const std::string& message) {
-    if (why) *why = message;
-    return false;
+Status check_animation_texture(const AnimationTexture& t) {
+  auto fail = [](const std::string& message) {
+    return Status(StatusCode::kInvalidArgument, message);
   };
   const AnimationTextureFormat f = animation_texture_format(t.encoding);
   if (f.texels_per_joint == 0)
@@ -358,7 +357,7 @@ bool check_animation_texture(const AnimationTexture& t, std::string* why) {
       if ((get_u16(t.data.data() + 2 * i) & 0x7C00) == 0x7C00)
         return fail("non-finite half at byte " + std::to_string(2 * i));
   }
-  return true;
+  return {};
 }
 
 // ---- similarity fit ----

@@ -234,9 +234,7 @@ std::string check_animation(const AnimationTexture& a) {
   else if (a.decode_params.size() > kMaxDecodeParams)
     out << too_many("decode parameters", a.decode_params.size(), kMaxDecodeParams);
   if (!out.str().empty()) return out.str();
-  std::string why;
-  if (!check_animation_texture(a, &why)) return why.empty() ? "invalid animation texture" : why;
-  return "";
+  return check_animation_texture(a).message();
 }
 
 std::string check_partition(const PartitionMask& p) {

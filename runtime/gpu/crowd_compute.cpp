@@ -267,8 +267,7 @@ Status CrowdCompute::upload(const Scene& scene, const FrameState& state,
   if (scene.types.size() != type_count_ || state.lod_types.size() != type_count_ ||
       state.bounds.size() != type_count_)
     return invalid("the scene's character types changed since create (or no update_frame)");
-  std::string why;
-  if (!check_lod_settings(scene.lod, &why)) return invalid("lod: " + why);
+  if (const Status s = check_lod_settings(scene.lod); !s) return invalid("lod: " + s.message());
   for (const GpuInstance& g : instances)
     if (g.type >= type_count_) return invalid("an instance has a bad type index");
   instance_count_ = static_cast<uint32_t>(n);

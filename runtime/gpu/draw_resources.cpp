@@ -154,10 +154,9 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
                 "': the GPU path needs its pack's geometry and animation loaded"};
   const PackContents& c = pack.contents();
   const AnimationTexture& anim = c.animation;
-  std::string why;
-  if (!check_animation_texture(anim, &why))
+  if (const Status checked = check_animation_texture(anim); !checked)
     return {StatusCode::kInvalidPack,
-            "character type '" + type.name + "': animation texture: " + why};
+            "character type '" + type.name + "': animation texture: " + checked.message()};
 
   TypeConstants k{};
   k.anim_layout[0] = static_cast<uint32_t>(anim.encoding);

@@ -26,10 +26,7 @@ void set_plane(std::array<float, 24>& planes, int index, const Vec3& normal, flo
   planes[4 * index + 3] = d / len;
 }
 
-bool fail(std::string* why, const char* what) {
-  if (why) *why = what;
-  return false;
-}
+Status invalid(const char* what) { return {StatusCode::kInvalidArgument, what}; }
 
 }  // namespace
 
@@ -58,28 +55,28 @@ Camera camera_at(const Camera& base, Span<const CameraKey> path, float time) {
   return c;
 }
 
-bool make_view(const Camera& camera, View& out, std::string* why) {
+Status make_view(const Camera& camera, View& out) {
   if (!finite(camera.position) || !finite(camera.target) || !finite(camera.up))
-    return fail(why, "camera position, target and up must be finite");
+    return invalid("camera position, target and up must be finite");
   if (!(camera.fov_y_degrees > 0.0f && camera.fov_y_degrees < 180.0f))
-    return fail(why, "camera field of view must be in (0, 180) degrees");
+    return invalid("camera field of view must be in (0, 180) degrees");
   if (!(camera.near_plane > 0.0f) || !std::isfinite(camera.near_plane))
-    return fail(why, "camera near plane must be > 0");
+    return invalid("camera near plane must be > 0");
   if (!(camera.far_plane > camera.near_plane) || !std::isfinite(camera.far_plane))
-    return fail(why, "camera far plane must be beyond the near plane");
+    return invalid("camera far plane must be beyond the near plane");
   if (camera.width == 0 || camera.height == 0 || camera.width > kMaxResolution ||
       camera.height > kMaxResolution)
-    return fail(why, "camera resolution must be 1..16384 pixels in each direction");
+    return invalid("camera resolution must be 1..16384 pixels in each direction");
   const Vec3 dir = sub(camera.target, camera.position);
   const float len = std::sqrt(dot(dir, dir));
-  if (!(len > 0.0f)) return fail(why, "camera position and target are the same point");
+  if (!(len > 0.0f)) return invalid("camera position and target are the same point");
   View v;
   v.forward = scaled(dir, 1.0f / len);
   Vec3 right = cross(v.forward, camera.up);
   const float right_len = std::sqrt(dot(right, right));
   const float up_len = std::sqrt(dot(camera.up, camera.up));
   if (!(up_len > 0.0f) || !(right_len > 1e-6f * up_len))
-    return fail(why, "camera up direction is zero or parallel to the view direction");
+    return invalid("camera up direction is zero or parallel to the view direction");
   v.right = scaled(right, 1.0f / right_len);
   v.up = cross(v.right, v.forward);
   v.eye = camera.position;
@@ -102,7 +99,7 @@ bool make_view(const Camera& camera, View& out, std::string* why) {
   set_plane(v.planes, 4, v.forward, -dot(v.forward, v.eye) - v.near_plane);
   set_plane(v.planes, 5, scaled(v.forward, -1.0f), dot(v.forward, v.eye) + v.far_plane);
   out = v;
-  return true;
+  return {};
 }
 
 void view_matrix(const View& v, float out[16]) {

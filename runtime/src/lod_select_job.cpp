@@ -9,31 +9,28 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-bool fail(std::string* why, const char* what) {
-  if (why) *why = what;
-  return false;
-}
+Status invalid(const char* what) { return {StatusCode::kInvalidArgument, what}; }
 
 }  // namespace
 
-bool check_lod_settings(const LodSettings& s, std::string* why) {
-  if (s.budget < 1) return fail(why, "budget must be at least 1 vertex");
+Status check_lod_settings(const LodSettings& s) {
+  if (s.budget < 1) return invalid("budget must be at least 1 vertex");
   if (!(s.alpha > 1.0f) || !std::isfinite(s.alpha))
-    return fail(why, "alpha must be a finite number > 1 (beta = alpha - 1 must be positive)");
-  if (!(s.min_t >= 0.0f && s.min_t <= 1.0f)) return fail(why, "min_t must be in [0, 1]");
+    return invalid("alpha must be a finite number > 1 (beta = alpha - 1 must be positive)");
+  if (!(s.min_t >= 0.0f && s.min_t <= 1.0f)) return invalid("min_t must be in [0, 1]");
   if (!(s.max_pixel_error > 0.0f) || !std::isfinite(s.max_pixel_error))
-    return fail(why, "max_pixel_error must be a finite number of pixels > 0");
+    return invalid("max_pixel_error must be a finite number of pixels > 0");
   if (!(s.geomorph >= 0.0f && s.geomorph < 1.0f))
-    return fail(why, "geomorph must be a fraction in [0, 1) (0: off)");
+    return invalid("geomorph must be a fraction in [0, 1) (0: off)");
   if (s.discrete_level_count < 1 || s.discrete_level_count > kMaxDiscreteLevels)
-    return fail(why, "discrete levels: 1 to 8 levels");
+    return invalid("discrete levels: 1 to 8 levels");
   for (uint32_t k = 0; k < s.discrete_level_count; ++k) {
     const float f = s.discrete_levels[k];
-    if (!(f > 0.0f && f <= 1.0f)) return fail(why, "discrete levels must be fractions in (0, 1]");
+    if (!(f > 0.0f && f <= 1.0f)) return invalid("discrete levels must be fractions in (0, 1]");
     if (k > 0 && !(f < s.discrete_levels[k - 1]))
-      return fail(why, "discrete levels must be strictly decreasing");
+      return invalid("discrete levels must be strictly decreasing");
   }
-  return true;
+  return {};
 }
 
 void lod_area_distance(const View& view, const float sphere[4], double* area, double* distance) {

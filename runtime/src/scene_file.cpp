@@ -35,8 +35,7 @@ Range range(const Json& v, const std::string& path, double lo, bool inclusive) {
 
 void check_view(const Camera& camera, const std::string& path) {
   View view;
-  std::string why;
-  if (!make_view(camera, view, &why)) fail(path, why);
+  if (const Status s = make_view(camera, view); !s) fail(path, s.message());
 }
 
 void parse_camera(const Json& v, RawScene& s) {

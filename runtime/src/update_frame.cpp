@@ -15,9 +15,8 @@ Status invalid(const std::string& what) { return {StatusCode::kInvalidArgument, 
 }  // namespace
 
 Status update_frame(const Scene& scene, float time, FrameState& state) {
-  std::string why;
-  if (!make_view(scene.camera_at_time(time), state.view, &why)) return invalid(why);
-  if (!check_lod_settings(scene.lod, &why)) return invalid("lod: " + why);
+  if (Status s = make_view(scene.camera_at_time(time), state.view); !s) return s;
+  if (const Status s = check_lod_settings(scene.lod); !s) return invalid("lod: " + s.message());
   const InstanceArrays& in = scene.instances;
   if (!in.consistent()) return invalid("instance arrays have inconsistent lengths");
   const size_t n = in.size();

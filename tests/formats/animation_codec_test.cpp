@@ -174,12 +174,14 @@ TEST(AnimationCodec, CheckAcceptsEncodedAndRejectsBroken) {
   for (AnimationEncoding e :
        {AnimationEncoding::kFloat32, AnimationEncoding::kFloat16, AnimationEncoding::kQuantized}) {
     AnimationTexture t = sample_texture(e);
-    std::string why;
-    EXPECT_TRUE(check_animation_texture(t, &why)) << why;
+    const Status good = check_animation_texture(t);
+    EXPECT_TRUE(good) << good.message();
     AnimationTexture short_data = t;
     short_data.data.pop_back();
-    EXPECT_FALSE(check_animation_texture(short_data, &why));
-    EXPECT_NE(why.find("bytes"), std::string::npos) << why;
+    const Status bad = check_animation_texture(short_data);
+    EXPECT_FALSE(bad);
+    EXPECT_EQ(bad.code(), StatusCode::kInvalidArgument);
+    EXPECT_NE(bad.message().find("bytes"), std::string::npos) << bad.message();
     AnimationTexture wrong_texels = t;
     wrong_texels.texels_per_joint = 4;
     EXPECT_FALSE(check_animation_texture(wrong_texels));

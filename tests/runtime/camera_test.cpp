@@ -35,9 +35,9 @@ TEST(Camera, ViewBasisAndFocalLength) {
 TEST(Camera, RejectsUnusableCameras) {
   const auto why = [](Camera c) {
     View v;
-    std::string reason;
-    EXPECT_FALSE(make_view(c, v, &reason));
-    return reason;
+    const Status s = make_view(c, v);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+    return s.message();
   };
   Camera c;
   c.target = c.position;

@@ -319,36 +319,36 @@ TEST(LodSelectJob, ZeroAreaOrNoTrianglesGetsNoWeight) {
 
 TEST(LodSelectJob, SettingsChecks) {
   std::string why;
-  EXPECT_TRUE(check_lod_settings(LodSettings{}, &why));
+  EXPECT_TRUE((why = check_lod_settings(LodSettings{}).message()).empty());
   LodSettings s;
   s.budget = 0;
-  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_FALSE((why = check_lod_settings(s).message()).empty());
   EXPECT_NE(why.find("budget"), std::string::npos);
   s = LodSettings{};
   s.alpha = 1.0f;
-  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_FALSE((why = check_lod_settings(s).message()).empty());
   EXPECT_NE(why.find("alpha"), std::string::npos);
   s.alpha = std::nanf("");
   EXPECT_FALSE(check_lod_settings(s));
   s = LodSettings{};
   s.min_t = 1.5f;
-  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_FALSE((why = check_lod_settings(s).message()).empty());
   EXPECT_NE(why.find("min_t"), std::string::npos);
   for (float bad : {-0.1f, 1.0f, std::nanf("")}) {
     s = LodSettings{};
     s.geomorph = bad;
-    EXPECT_FALSE(check_lod_settings(s, &why)) << bad;
+    EXPECT_FALSE((why = check_lod_settings(s).message()).empty()) << bad;
     EXPECT_NE(why.find("geomorph"), std::string::npos) << why;
   }
   s = LodSettings{};
   s.geomorph = 0.0f;  // off
-  EXPECT_TRUE(check_lod_settings(s, &why));
+  EXPECT_TRUE((why = check_lod_settings(s).message()).empty());
   s = LodSettings{};
   s.discrete_levels[1] = 1.0f;
-  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_FALSE((why = check_lod_settings(s).message()).empty());
   s = LodSettings{};
   s.discrete_level_count = 0;
-  EXPECT_FALSE(check_lod_settings(s, &why));
+  EXPECT_FALSE((why = check_lod_settings(s).message()).empty());
 }
 
 TEST(LodSelectJob, JobValidity) {
@@ -551,7 +551,7 @@ TEST(LodSelectJob, ErrorModeRejectsUnequalErrorTables) {
 TEST(LodSelectJob, ErrorModeRejectsABadPixelError) {
   for (float bad : {0.0f, -1.0f, std::nanf(""), INFINITY}) {
     std::string why;
-    EXPECT_FALSE(check_lod_settings(error_settings(1000, bad), &why)) << bad;
+    EXPECT_FALSE((why = check_lod_settings(error_settings(1000, bad)).message()).empty()) << bad;
     EXPECT_NE(why.find("max_pixel_error"), std::string::npos) << why;
   }
 }

@@ -370,8 +370,8 @@ TEST(AnimationBake, ExtremeInputsNeverWriteNaN) {
       o.encoding = e;
       o.extract_root_motion = extract;
       const AnimationBake bake = bake_animation(a, o);
-      std::string why;
-      EXPECT_TRUE(check_animation_texture(bake.texture, &why)) << why;
+      const Status checked = check_animation_texture(bake.texture);
+      EXPECT_TRUE(checked) << checked.message();
       for (float v : bake.clips[0].root_motion) EXPECT_TRUE(std::isfinite(v));
       for (uint32_t r = 0; r < bake.texture.rows; ++r)
         for (uint32_t j = 0; j < 2; ++j) {

@@ -71,7 +71,7 @@ const char* animation_encoding_name(AnimationEncoding encoding);
 // rows * width() * bytes_per_texel (no overflow), finite decode params and (for the float
 // encodings) every stored value finite. Returns false and says why otherwise.
 // The decoders below assume a texture that passes this check.
-bool check_animation_texture(const AnimationTexture& texture, std::string* why = nullptr);
+Status check_animation_texture(const AnimationTexture& texture);
 
 // ---- Encoding --------------------------------------------------------------------------
 

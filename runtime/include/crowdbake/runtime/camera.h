@@ -8,6 +8,7 @@
 #include <string>
 
 #include "crowdbake/runtime/span.h"
+#include "crowdbake/runtime/status.h"
 
 namespace crowdbake::runtime {
 
@@ -54,10 +55,10 @@ struct View {
 };
 
 // Derives the view of a camera.
-// Returns false (with the reason in *why when why is not null) for an unusable camera:
+// Returns kInvalidArgument, saying why, for an unusable camera:
 // position == target, up parallel to the view direction or zero, fov outside (0, 180),
 // near <= 0, far <= near, a resolution of 0 or above kMaxResolution, or a non-finite value.
-bool make_view(const Camera& camera, View& out, std::string* why = nullptr);
+Status make_view(const Camera& camera, View& out);
 
 // View matrix (world → camera: the camera looks down its −Z, +Y up), 4x4 column-major.
 void view_matrix(const View& view, float out[16]);

@@ -109,8 +109,8 @@ struct LodSettings {
 // Checks settings: budget >= 1, α > 1 and finite, MinT in [0, 1], max_pixel_error > 0 and
 // finite, geomorph in [0, 1), and for the discrete levels a count in 1..8 with fractions
 // strictly decreasing in (0, 1].
-// Returns false with the reason in *why (may be null).
-bool check_lod_settings(const LodSettings& settings, std::string* why = nullptr);
+// Returns kInvalidArgument, saying which rule is broken.
+Status check_lod_settings(const LodSettings& settings);
 
 // What LoD selection needs of a character type (make_lod_type in scene.h fills it from a Pack).
 struct LodType {
