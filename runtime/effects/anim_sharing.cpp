@@ -15,70 +15,66 @@ namespace {
 constexpr uint64_t kNeverEvaluated = ~uint64_t{0};
 constexpr StateId kMaxStateId = 65535;
 
-bool fail(std::string* why, std::string message) {
-  if (why) *why = std::move(message);
-  return false;
-}
+Status invalid(std::string message) { return {StatusCode::kInvalidArgument, std::move(message)}; }
 
 }  // namespace
 
 // ---- Setup ---------------------------------------------------------------------------------
 
-bool AnimSharingSetup::validate(std::string* why) const {
-  std::string reason;
-  if (!skeleton.validate(&reason)) return fail(why, reason);
+Status AnimSharingSetup::validate() const {
+  if (Status s = skeleton.validate(); !s) return s;
   const size_t joints = skeleton.joint_count();
   for (size_t c = 0; c < clips.size(); ++c) {
-    if (!clips[c].validate(&reason)) return fail(why, reason);
+    if (Status s = clips[c].validate(); !s) return s;
     if (clips[c].joint_count != joints) {
-      return fail(why, "clip " + std::to_string(c) + " has " +
-                           std::to_string(clips[c].joint_count) + " joints, the skeleton " +
-                           std::to_string(joints));
+      return invalid("clip " + std::to_string(c) + " has " + std::to_string(clips[c].joint_count) +
+                     " joints, the skeleton " + std::to_string(joints));
     }
   }
-  if (states.empty()) return fail(why, "no animation states");
+  if (states.empty()) return invalid("no animation states");
   std::vector<uint8_t> seen(kMaxStateId + 1, 0);
   bool any_base = false;
   for (const AnimState& state : states) {
     const std::string label = "state " + std::to_string(state.id) + ": ";
-    if (state.id > kMaxStateId) return fail(why, label + "id must be < 65536");
-    if (seen[state.id]) return fail(why, label + "duplicate id");
+    if (state.id > kMaxStateId) return invalid(label + "id must be < 65536");
+    if (seen[state.id]) return invalid(label + "duplicate id");
     seen[state.id] = 1;
-    if (state.clips.empty()) return fail(why, label + "no clips");
+    if (state.clips.empty()) return invalid(label + "no clips");
     for (uint32_t clip : state.clips) {
       if (clip >= clips.size()) {
-        return fail(why, label + "clip index " + std::to_string(clip) + " out of range");
+        return invalid(label + "clip index " + std::to_string(clip) + " out of range");
       }
     }
-    if (state.instance_count == 0) return fail(why, label + "instance_count must be >= 1");
+    if (state.instance_count == 0) return invalid(label + "instance_count must be >= 1");
     if (!state.skeletal_mask.empty()) {
       if (state.skeletal_mask.size() != joints) {
-        return fail(why, label + "skeletal mask has " + std::to_string(state.skeletal_mask.size()) +
-                             " values for " + std::to_string(joints) + " joints");
+        return invalid(label + "skeletal mask has " + std::to_string(state.skeletal_mask.size()) +
+                       " values for " + std::to_string(joints) + " joints");
       }
       for (float m : state.skeletal_mask) {
-        if (!(m >= 0.0f && m <= 1.0f)) return fail(why, label + "mask values must be in [0, 1]");
+        if (!(m >= 0.0f && m <= 1.0f)) return invalid(label + "mask values must be in [0, 1]");
       }
     }
     any_base = any_base || !state.is_additive;
   }
-  if (!any_base) return fail(why, "every state is additive; characters need a base state");
-  if (!processor) return fail(why, "no state processor");
+  if (!any_base) return invalid("every state is additive; characters need a base state");
+  if (!processor) return invalid("no state processor");
   if (!std::isfinite(transition_time) || transition_time < 0.0f) {
-    return fail(why, "transition_time must be finite and >= 0");
+    return invalid("transition_time must be finite and >= 0");
   }
   if (!std::isfinite(transition_join_window) || transition_join_window < 0.0f) {
-    return fail(why, "transition_join_window must be finite and >= 0");
+    return invalid("transition_join_window must be finite and >= 0");
   }
-  return true;
+  return {};
 }
 
 // ---- Construction and registration ---------------------------------------------------------
 
-std::unique_ptr<AnimSharingInstance> AnimSharingInstance::create(AnimSharingSetup setup,
-                                                                 std::string* why) {
-  if (!setup.validate(why)) return nullptr;
-  return std::unique_ptr<AnimSharingInstance>(new AnimSharingInstance(std::move(setup)));
+Status AnimSharingInstance::create(AnimSharingSetup setup,
+                                   std::unique_ptr<AnimSharingInstance>& out) {
+  if (Status s = setup.validate(); !s) return s;
+  out.reset(new AnimSharingInstance(std::move(setup)));
+  return {};
 }
 
 AnimSharingInstance::AnimSharingInstance(AnimSharingSetup setup) : setup_(std::move(setup)) {
@@ -633,13 +629,13 @@ std::pair<uint32_t, uint32_t> AnimSharingInstance::instances_of(StateId id) cons
 
 // ---- Manager -------------------------------------------------------------------------------
 
-uint32_t AnimSharingManager::add_skeleton_type(AnimSharingSetup setup, std::string* why) {
-  std::unique_ptr<AnimSharingInstance> instance =
-      AnimSharingInstance::create(std::move(setup), why);
-  if (!instance) return kNone;
+Status AnimSharingManager::add_skeleton_type(AnimSharingSetup setup, uint32_t* type) {
+  std::unique_ptr<AnimSharingInstance> instance;
+  if (Status s = AnimSharingInstance::create(std::move(setup), instance); !s) return s;
   instance->set_control_listener(listener_);
   instances_.push_back(std::move(instance));
-  return static_cast<uint32_t>(instances_.size() - 1);
+  if (type) *type = static_cast<uint32_t>(instances_.size() - 1);
+  return {};
 }
 
 void AnimSharingManager::set_control_listener(ControlListener listener) {

@@ -264,9 +264,8 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene, uint32_t driven) {
                                         scene.types[type].name +
                                         "' has no animation loaded (SceneLoadOptions::pack_parts)"};
   AnimSharingSetup setup;
-  std::string why;
-  if (!skeleton_from_pack(pack, setup.skeleton, &why))
-    return invalid("effects.animation_sharing: " + why);
+  if (const Status s = skeleton_from_pack(pack, setup.skeleton); !s)
+    return invalid("effects.animation_sharing: " + s.message());
   // One KeyframeClip per distinct (pack clip, hold), decoded from the texture once.
   std::map<std::pair<uint32_t, bool>, uint32_t> clip_index;
   const uint32_t first_clip = scene.types[type].first_clip;
@@ -285,8 +284,8 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene, uint32_t driven) {
       auto it = clip_index.find(key);
       if (it == clip_index.end()) {
         KeyframeClip clip;
-        if (!keyframe_clip_from_pack(pack, key.first, key.second, clip, &why))
-          return invalid("effects.states[" + std::to_string(s) + "]: " + why);
+        if (const Status read = keyframe_clip_from_pack(pack, key.first, key.second, clip); !read)
+          return invalid("effects.states[" + std::to_string(s) + "]: " + read.message());
         it = clip_index.emplace(key, static_cast<uint32_t>(setup.clips.size())).first;
         setup.clips.push_back(std::move(clip));
       }
@@ -319,10 +318,10 @@ Status CrowdEffects::Impl::build_sharing(const Scene& scene, uint32_t driven) {
   setup.transition_join_window = decl.transition_join_window;
   setup.process_policy = ProcessPolicy::kChangedOnly;
   setup.seed = decl.params.seed;
-  const uint32_t skeleton_type = sharing->add_skeleton_type(std::move(setup), &why);
-  if (skeleton_type == kNone)
+  uint32_t skeleton_type = kNone;
+  if (const Status added = sharing->add_skeleton_type(std::move(setup), &skeleton_type); !added)
     return invalid("effects.animation_sharing: character type '" + scene.types[type].name +
-                   "': " + why);
+                   "': " + added.message());
   AnimSharingInstance& inst = sharing->sharing_instance(skeleton_type);
   const std::vector<std::vector<uint32_t>>& clips_of_state = state_scene_clip[driven];
 

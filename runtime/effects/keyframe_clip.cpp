@@ -5,35 +5,32 @@
 namespace crowdbake::effects {
 namespace {
 
-bool fail(std::string* why, std::string message) {
-  if (why) *why = std::move(message);
-  return false;
-}
+Status invalid(std::string message) { return {StatusCode::kInvalidArgument, std::move(message)}; }
 
 }  // namespace
 
-bool KeyframeClip::validate(std::string* why) const {
+Status KeyframeClip::validate() const {
   const std::string label = "clip '" + name + "': ";
-  if (joint_count == 0) return fail(why, label + "no joints");
-  if (frame_count == 0) return fail(why, label + "no frames");
+  if (joint_count == 0) return invalid(label + "no joints");
+  if (frame_count == 0) return invalid(label + "no frames");
   if (keys.size() != static_cast<size_t>(joint_count) * frame_count) {
-    return fail(why, label + std::to_string(keys.size()) + " keys, expected " +
-                         std::to_string(static_cast<size_t>(joint_count) * frame_count));
+    return invalid(label + std::to_string(keys.size()) + " keys, expected " +
+                   std::to_string(static_cast<size_t>(joint_count) * frame_count));
   }
   if (!std::isfinite(duration) || duration < 0.0f) {
-    return fail(why, label + "duration must be finite and >= 0");
+    return invalid(label + "duration must be finite and >= 0");
   }
   if (frame_count > 1 && duration <= 0.0f) {
-    return fail(why, label + "several frames need a duration > 0");
+    return invalid(label + "several frames need a duration > 0");
   }
   for (size_t k = 0; k < keys.size(); ++k) {
     if (!is_valid_transform(keys[k])) {
-      return fail(why, label + "frame " + std::to_string(k / joint_count) + " joint " +
-                           std::to_string(k % joint_count) +
-                           " is not finite or its rotation is not unit");
+      return invalid(label + "frame " + std::to_string(k / joint_count) + " joint " +
+                     std::to_string(k % joint_count) +
+                     " is not finite or its rotation is not unit");
     }
   }
-  return true;
+  return {};
 }
 
 double clip_local_time(const KeyframeClip& clip, double time) {

@@ -45,7 +45,7 @@ void to_rows(const glm::mat4& m, float out[12]) {
     for (int c = 0; c < 4; ++c) out[4 * r + c] = m[c][r];
 }
 
-bool skeleton_from_pack(const runtime::Pack& pack, Skeleton& out, std::string* why) {
+Status skeleton_from_pack(const runtime::Pack& pack, Skeleton& out) {
   const auto& joints = pack.contents().joints;
   Skeleton s;
   for (size_t j = 0; j < joints.size(); ++j) {
@@ -58,27 +58,22 @@ bool skeleton_from_pack(const runtime::Pack& pack, Skeleton& out, std::string* w
                                           pj.rest_rotation[1], pj.rest_rotation[2]));
     t.scale = {pj.rest_scale[0], pj.rest_scale[1], pj.rest_scale[2]};
     s.rest_pose.push_back(t);
-    if (!pack.bind_matrix(static_cast<uint32_t>(j))) {
-      if (why) *why = pack.source_name() + ": joint '" + pj.name + "' has a singular bind matrix";
-      return false;
-    }
+    if (!pack.bind_matrix(static_cast<uint32_t>(j)))
+      return {StatusCode::kInvalidPack,
+              pack.source_name() + ": joint '" + pj.name + "' has a singular bind matrix"};
   }
-  if (!s.validate(why)) return false;
+  if (Status valid = s.validate(); !valid) return valid;
   out = std::move(s);
-  return true;
+  return {};
 }
 
-bool keyframe_clip_from_pack(const runtime::Pack& pack, uint32_t clip, bool hold_last,
-                             KeyframeClip& out, std::string* why) {
+Status keyframe_clip_from_pack(const runtime::Pack& pack, uint32_t clip, bool hold_last,
+                               KeyframeClip& out) {
   const PackContents& c = pack.contents();
-  if (!pack.has(runtime::kPackAnimation)) {
-    if (why) *why = pack.source_name() + ": the animation texture is not loaded";
-    return false;
-  }
-  if (clip >= c.clips.size()) {
-    if (why) *why = pack.source_name() + ": no clip " + std::to_string(clip);
-    return false;
-  }
+  if (!pack.has(runtime::kPackAnimation))
+    return {StatusCode::kNotLoaded, pack.source_name() + ": the animation texture is not loaded"};
+  if (clip >= c.clips.size())
+    return {StatusCode::kInvalidArgument, pack.source_name() + ": no clip " + std::to_string(clip)};
   const PackClip& pc = c.clips[clip];
   const uint32_t joints = static_cast<uint32_t>(c.joints.size());
   const uint32_t first = hold_last ? pc.first_row + pc.frame_count - 1 : pc.first_row;
@@ -102,9 +97,9 @@ bool keyframe_clip_from_pack(const runtime::Pack& pack, uint32_t clip, bool hold
       k.keys[static_cast<size_t>(f) * joints + j] = decompose(local);
     }
   }
-  if (!k.validate(why)) return false;
+  if (Status valid = k.validate(); !valid) return valid;
   out = std::move(k);
-  return true;
+  return {};
 }
 
 std::vector<glm::mat4> inverse_bind_matrices(const runtime::Pack& pack) {

@@ -5,10 +5,7 @@
 namespace crowdbake::effects {
 namespace {
 
-bool fail(std::string* why, std::string message) {
-  if (why) *why = std::move(message);
-  return false;
-}
+Status invalid(std::string message) { return {StatusCode::kInvalidArgument, std::move(message)}; }
 
 bool finite3(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -25,24 +22,24 @@ bool is_valid_transform(const Transform& transform, float tolerance) {
   return std::fabs(glm::length(q) - 1.0f) <= tolerance;
 }
 
-bool Skeleton::validate(std::string* why) const {
-  if (parents.empty()) return fail(why, "skeleton has no joints");
+Status Skeleton::validate() const {
+  if (parents.empty()) return invalid("skeleton has no joints");
   if (joint_names.size() != parents.size() || rest_pose.size() != parents.size()) {
-    return fail(why, "skeleton arrays differ in size: " + std::to_string(joint_names.size()) +
-                         " names, " + std::to_string(parents.size()) + " parents, " +
-                         std::to_string(rest_pose.size()) + " rest transforms");
+    return invalid("skeleton arrays differ in size: " + std::to_string(joint_names.size()) +
+                   " names, " + std::to_string(parents.size()) + " parents, " +
+                   std::to_string(rest_pose.size()) + " rest transforms");
   }
   for (size_t j = 0; j < parents.size(); ++j) {
     if (parents[j] != kNoParent && (parents[j] < 0 || static_cast<size_t>(parents[j]) >= j)) {
-      return fail(why, "joint " + std::to_string(j) + " has parent " + std::to_string(parents[j]) +
-                           " (must be -1 or an earlier joint)");
+      return invalid("joint " + std::to_string(j) + " has parent " + std::to_string(parents[j]) +
+                     " (must be -1 or an earlier joint)");
     }
     if (!is_valid_transform(rest_pose[j])) {
-      return fail(why, "joint " + std::to_string(j) +
-                           " rest transform is not finite or its rotation is not unit");
+      return invalid("joint " + std::to_string(j) +
+                     " rest transform is not finite or its rotation is not unit");
     }
   }
-  return true;
+  return {};
 }
 
 glm::quat nlerp_shortest(const glm::quat& a, const glm::quat& b, float w) {

@@ -76,7 +76,11 @@ struct Schedule {
 void run_shared(benchmark::State& bench, ProcessPolicy policy, uint32_t churn_permille,
                 uint32_t churn_fixed = 0) {
   const uint32_t n = static_cast<uint32_t>(bench.range(0));
-  auto sharing = AnimSharingInstance::create(bench_setup(policy));
+  std::unique_ptr<AnimSharingInstance> sharing;
+  if (!AnimSharingInstance::create(bench_setup(policy), sharing)) {
+    bench.SkipWithError("invalid setup");
+    return;
+  }
   std::vector<CharacterId> ids(n);
   for (uint32_t i = 0; i < n; ++i) {
     ids[i] = sharing->register_character(i, i % kBaseStates);

@@ -25,9 +25,9 @@ using testing::make_setup;
 constexpr float kDt = 1.0f / 30.0f;
 
 std::unique_ptr<AnimSharingInstance> make_sharing(AnimSharingSetup setup) {
-  std::string why;
-  auto sharing = AnimSharingInstance::create(std::move(setup), &why);
-  EXPECT_TRUE(sharing) << why;
+  std::unique_ptr<AnimSharingInstance> sharing;
+  const Status s = AnimSharingInstance::create(std::move(setup), sharing);
+  EXPECT_TRUE(s) << s.message();
   return sharing;
 }
 
@@ -105,13 +105,17 @@ void expect_consistent(const AnimSharingInstance& sharing, const std::vector<Cha
 
 TEST(AnimSharingSetup, ValidateNamesEveryRule) {
   std::string why;
-  EXPECT_TRUE(make_setup().validate(&why)) << why;
+  EXPECT_TRUE((why = make_setup().validate().message()).empty()) << why;
   auto broken = [&](auto&& edit, const char* needle) {
     AnimSharingSetup setup = make_setup();
     edit(setup);
-    EXPECT_FALSE(setup.validate(&why)) << needle;
+    EXPECT_FALSE((why = setup.validate().message()).empty()) << needle;
     EXPECT_NE(why.find(needle), std::string::npos) << why;
-    EXPECT_FALSE(AnimSharingInstance::create(setup));
+    std::unique_ptr<AnimSharingInstance> none;
+    const Status refused = AnimSharingInstance::create(setup, none);
+    EXPECT_EQ(refused.code(), StatusCode::kInvalidArgument);
+    EXPECT_EQ(refused.message(), why);
+    EXPECT_FALSE(none);
   };
   broken([](AnimSharingSetup& s) { s.skeleton.parents[2] = 5; }, "parent");
   broken([](AnimSharingSetup& s) { s.clips[1].keys.pop_back(); }, "keys");
@@ -232,7 +236,8 @@ TEST(AnimSharing, DestroyingTheSystemGivesControlBackToEveryone) {
   {
     AnimSharingManager manager;
     manager.set_control_listener(managed.listener());
-    const uint32_t type = manager.add_skeleton_type(make_setup());
+    uint32_t type = kNone;
+    ASSERT_TRUE(manager.add_skeleton_type(make_setup(), &type));
     manager.register_character(type, 10, kIdle);
     manager.register_character(type, 11, kWalk);
   }
@@ -807,14 +812,16 @@ TEST(AnimSharing, RandomisedPosesKeepUnitQuaternionsAndFiniteMatrices) {
 
 TEST(AnimSharingManager, SeveralSkeletonTypesAtOnce) {
   AnimSharingManager manager;
-  std::string why;
-  const uint32_t humans = manager.add_skeleton_type(make_setup(8, 4, 4), &why);
-  const uint32_t horses = manager.add_skeleton_type(make_setup(20, 2, 3), &why);
-  ASSERT_EQ(humans, 0u) << why;
-  ASSERT_EQ(horses, 1u) << why;
+  uint32_t humans = kNone, horses = kNone;
+  ASSERT_TRUE(manager.add_skeleton_type(make_setup(8, 4, 4), &humans));
+  ASSERT_TRUE(manager.add_skeleton_type(make_setup(20, 2, 3), &horses));
+  ASSERT_EQ(humans, 0u);
+  ASSERT_EQ(horses, 1u);
   AnimSharingSetup bad = make_setup();
   bad.processor = nullptr;
-  EXPECT_EQ(manager.add_skeleton_type(std::move(bad), &why), kNone);
+  uint32_t refused = kNone;
+  EXPECT_FALSE(manager.add_skeleton_type(std::move(bad), &refused));
+  EXPECT_EQ(refused, kNone);
   EXPECT_EQ(manager.skeleton_type_count(), 2u);
   EXPECT_EQ(manager.register_character(5, 1, kIdle).skeleton_type, kNone);
 
@@ -855,8 +862,8 @@ TEST(AnimSharingOnDemand, InstancesStartTheirClipWhenTaken) {
   for (AnimState& s : setup.states)
     if (s.id == kHit) s.on_demand = true;
   const KeyframeClip hit_clip = setup.clips[4];
-  auto sharing = AnimSharingInstance::create(std::move(setup));
-  ASSERT_TRUE(sharing);
+  std::unique_ptr<AnimSharingInstance> sharing;
+  ASSERT_TRUE(AnimSharingInstance::create(std::move(setup), sharing));
   std::vector<CharacterId> ids;
   for (uint64_t k = 0; k < 4; ++k) ids.push_back(sharing->register_character(k, kIdle));
   for (int f = 0; f < 30; ++f) sharing->update(kDt);

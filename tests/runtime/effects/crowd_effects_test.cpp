@@ -396,8 +396,8 @@ TEST_F(CrowdEffectsTest, SharedPosesReproduceTheAnimationTextureRows) {
   load("");
   const runtime::Pack& pack = scene_.types[0].pack;
   Skeleton skeleton;
-  std::string why;
-  ASSERT_TRUE(skeleton_from_pack(pack, skeleton, &why)) << why;
+  const Status read = skeleton_from_pack(pack, skeleton);
+  ASSERT_TRUE(read) << read.message();
   const std::vector<glm::mat4> inverse_bind = inverse_bind_matrices(pack);
   const size_t joints = skeleton.joint_count();
   std::vector<Transform> local(joints);
@@ -406,7 +406,8 @@ TEST_F(CrowdEffectsTest, SharedPosesReproduceTheAnimationTextureRows) {
   double worst = 0.0;
   for (uint32_t c = 0; c < pack.contents().clips.size(); ++c) {
     KeyframeClip clip;
-    ASSERT_TRUE(keyframe_clip_from_pack(pack, c, false, clip, &why)) << why;
+    const Status decoded = keyframe_clip_from_pack(pack, c, false, clip);
+    ASSERT_TRUE(decoded) << decoded.message();
     const PackClip& pc = pack.contents().clips[c];
     for (uint32_t f = 0; f < pc.frame_count; f += 7) {
       SamplingJob sample{&clip, f / static_cast<double>(pc.fps), local};

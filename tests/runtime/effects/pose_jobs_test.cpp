@@ -26,32 +26,32 @@ void expect_transform_near(const Transform& a, const Transform& b, float toleran
 TEST(KeyframeClip, ValidateNamesEveryRule) {
   std::string why;
   KeyframeClip clip = make_clip("c", 3, 5, 1.0f, 1);
-  EXPECT_TRUE(clip.validate(&why)) << why;
+  EXPECT_TRUE((why = clip.validate().message()).empty()) << why;
 
   KeyframeClip bad = clip;
   bad.joint_count = 0;
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   EXPECT_NE(why.find("no joints"), std::string::npos);
   bad = clip;
   bad.frame_count = 0;
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   EXPECT_NE(why.find("no frames"), std::string::npos);
   bad = clip;
   bad.keys.pop_back();
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   EXPECT_NE(why.find("keys"), std::string::npos);
   bad = clip;
   bad.duration = -1.0f;
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   bad.duration = INFINITY;
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   bad = clip;
   bad.duration = 0.0f;
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   EXPECT_NE(why.find("duration > 0"), std::string::npos);
   bad = clip;
   bad.keys[4].rotation = glm::quat(0.5f, 0.0f, 0.0f, 0.0f);
-  EXPECT_FALSE(bad.validate(&why));
+  EXPECT_FALSE((why = bad.validate().message()).empty());
   EXPECT_NE(why.find("frame 1 joint 1"), std::string::npos);
 }
 

@@ -78,28 +78,28 @@ TEST(Pose, ToMatrixIsTranslateRotateScale) {
 
 TEST(Pose, SkeletonValidateNamesEveryRule) {
   std::string why;
-  EXPECT_TRUE(testing::make_skeleton(5).validate(&why)) << why;
-  EXPECT_FALSE(Skeleton{}.validate(&why));
+  EXPECT_TRUE((why = testing::make_skeleton(5).validate().message()).empty()) << why;
+  EXPECT_FALSE((why = Skeleton{}.validate().message()).empty());
   EXPECT_NE(why.find("no joints"), std::string::npos);
 
   Skeleton s = testing::make_skeleton(3);
   s.joint_names.pop_back();
-  EXPECT_FALSE(s.validate(&why));
+  EXPECT_FALSE((why = s.validate().message()).empty());
   EXPECT_NE(why.find("differ in size"), std::string::npos);
 
   s = testing::make_skeleton(3);
   s.parents[1] = 2;  // a later joint
-  EXPECT_FALSE(s.validate(&why));
+  EXPECT_FALSE((why = s.validate().message()).empty());
   EXPECT_NE(why.find("parent"), std::string::npos);
 
   s = testing::make_skeleton(3);
   s.rest_pose[2].rotation = glm::quat(2.0f, 0.0f, 0.0f, 0.0f);
-  EXPECT_FALSE(s.validate(&why));
+  EXPECT_FALSE((why = s.validate().message()).empty());
   EXPECT_NE(why.find("rotation"), std::string::npos);
 
   s = testing::make_skeleton(3);
   s.rest_pose[0].translation.x = NAN;
-  EXPECT_FALSE(s.validate(&why));
+  EXPECT_FALSE((why = s.validate().message()).empty());
 }
 
 }  // namespace

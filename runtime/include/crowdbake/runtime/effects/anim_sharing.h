@@ -127,7 +127,8 @@ struct AnimSharingSetup {
   ProcessPolicy process_policy = ProcessPolicy::kChangedOnly;
   uint64_t seed = 1;  // draws the instances' time offsets
 
-  bool validate(std::string* why = nullptr) const;
+  // kInvalidArgument, saying which rule is broken.
+  Status validate() const;
 };
 
 struct AnimStateInstance {
@@ -201,9 +202,8 @@ struct SharingFrameStats {
 class AnimSharingInstance {
  public:
   // Builds the instances and transition slots (all memory for poses is allocated here).
-  // Returns null and says why when setup.validate() fails.
-  static std::unique_ptr<AnimSharingInstance> create(AnimSharingSetup setup,
-                                                     std::string* why = nullptr);
+  // Returns setup.validate()'s status when it fails (out is left as it was).
+  static Status create(AnimSharingSetup setup, std::unique_ptr<AnimSharingInstance>& out);
   // Unregisters every character (calling give_back for each).
   ~AnimSharingInstance();
   AnimSharingInstance(const AnimSharingInstance&) = delete;
@@ -342,8 +342,9 @@ struct CharacterHandle {
 // character, giving control back.
 class AnimSharingManager {
  public:
-  // Adds a skeleton type; returns its index, or kNone (and why) when the setup is invalid.
-  uint32_t add_skeleton_type(AnimSharingSetup setup, std::string* why = nullptr);
+  // Adds a skeleton type; its index goes to *type (may be null). Returns
+  // setup.validate()'s status when the setup is invalid (nothing is added).
+  Status add_skeleton_type(AnimSharingSetup setup, uint32_t* type = nullptr);
   size_t skeleton_type_count() const { return instances_.size(); }
   AnimSharingInstance& sharing_instance(uint32_t skeleton_type) {
     return *instances_[skeleton_type];

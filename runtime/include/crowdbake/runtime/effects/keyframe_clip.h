@@ -28,7 +28,8 @@ struct KeyframeClip {
   Span<const Transform> frame(uint32_t f) const {
     return {keys.data() + static_cast<size_t>(f) * joint_count, joint_count};
   }
-  bool validate(std::string* why = nullptr) const;
+  // kInvalidArgument, saying which rule is broken.
+  Status validate() const;
 };
 
 // Maps any time (seconds, may be negative or past the end) into [0, duration]: a looping clip

@@ -18,15 +18,15 @@
 
 namespace crowdbake::effects {
 
-// Names, parents and rest pose of the pack's joints. False (and why) when a bind matrix is
-// singular or a rest transform is invalid.
-bool skeleton_from_pack(const runtime::Pack& pack, Skeleton& out, std::string* why = nullptr);
+// Names, parents and rest pose of the pack's joints. kInvalidPack when a bind matrix is
+// singular, kInvalidArgument when a rest transform is invalid.
+Status skeleton_from_pack(const runtime::Pack& pack, Skeleton& out);
 
 // The pack's clip `clip` as local transforms, one key per texture row (nearest rows: frame i
 // at i / fps). hold_last: a one-frame clip of the clip's last row (a held pose). Needs the
-// animation loaded; false (and why) otherwise or for a bad clip index.
-bool keyframe_clip_from_pack(const runtime::Pack& pack, uint32_t clip, bool hold_last,
-                             KeyframeClip& out, std::string* why = nullptr);
+// animation loaded (kNotLoaded otherwise); kInvalidArgument for a bad clip index.
+Status keyframe_clip_from_pack(const runtime::Pack& pack, uint32_t clip, bool hold_last,
+                               KeyframeClip& out);
 
 // A 3x4 row-major matrix (the texture rows' layout) as a glm matrix, and back.
 glm::mat4 from_rows(const float m[12]);

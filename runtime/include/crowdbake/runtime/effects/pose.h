@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/status.h"
 #include "crowdbake/runtime/effects/span.h"
 
 namespace crowdbake::effects {
@@ -43,7 +44,8 @@ struct Skeleton {
   std::vector<Transform> rest_pose;
 
   size_t joint_count() const { return parents.size(); }
-  bool validate(std::string* why = nullptr) const;
+  // kInvalidArgument, saying which rule is broken.
+  Status validate() const;
 };
 
 // True when every component is finite and |1 − |rotation|| ≤ tolerance.
