@@ -7,6 +7,7 @@
 
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
+#include "crowdbake/formats/progressive.h"
 
 namespace crowdbake::pack_io {
 namespace {
@@ -145,50 +146,15 @@ std::string check_level_errors(const PackLevelErrors& e) {
 }
 
 std::string check_progressive(const PackProgressive& p) {
-  const size_t v = p.collapse_to.size();
-  std::ostringstream out;
-  if (v == 0) {
-    if (!p.group_start.empty() || !p.triangle_count.empty() || p.min_vertices != 0)
-      out << "collapse_to is empty but group_start/triangle_count/min_vertices are not";
-    return out.str();
-  }
-  if (v > kMaxVertices) return too_many("progressive vertices", v, kMaxVertices);
-  if (p.group_start.size() != v || p.triangle_count.size() != v + 1) {
-    out << "collapse_to/group_start/triangle_count have " << v << "/" << p.group_start.size() << "/"
-        << p.triangle_count.size() << " entries, expected n/n/n+1";
-    return out.str();
-  }
-  if (p.min_vertices > v) {
-    out << "min_vertices " << p.min_vertices << " exceeds the vertex count " << v;
-    return out.str();
-  }
-  for (uint32_t i = 0; i < v; ++i) {
-    const uint32_t to = p.collapse_to[i], start = p.group_start[i];
-    if (i < p.min_vertices) {
-      if (to != i)
-        out << "kept vertex " << i << " has collapse_to " << to;
-      else if (start != i)
-        out << "kept vertex " << i << " has group_start " << start;
-    } else {
-      if (to >= i)
-        out << "removed vertex " << i << " has collapse_to " << to << " (must be below " << i
-            << ")";
-      else if (start < p.min_vertices || start > i || (start != i && p.group_start[i - 1] != start))
-        out << "vertex " << i << " has inconsistent group_start " << start;
-    }
-    if (!out.str().empty()) return out.str();
-  }
-  for (size_t n = 0; n < v; ++n) {
-    if (p.triangle_count[n] > p.triangle_count[n + 1]) {
-      out << "triangle_count is not monotone at n=" << n;
-      return out.str();
-    }
-    if (n < p.min_vertices && p.triangle_count[n] != p.triangle_count[p.min_vertices]) {
-      out << "triangle_count[" << n << "] differs from triangle_count[min_vertices]";
-      return out.str();
-    }
-  }
-  return "";
+  if (p.collapse_to.size() > kMaxVertices)
+    return too_many("progressive vertices", p.collapse_to.size(), kMaxVertices);
+  ProgressiveView view;
+  view.collapse_to = p.collapse_to;
+  view.triangle_count = p.triangle_count;
+  view.group_start = p.group_start;
+  view.min_vertices = p.min_vertices;
+  view.vertex_count = static_cast<uint32_t>(p.collapse_to.size());
+  return check_progressive(view).message();
 }
 
 std::string check_geometry(const PackGeometry& g) {

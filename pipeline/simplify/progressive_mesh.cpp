@@ -198,24 +198,16 @@ ProgressiveMesh build_progressive_mesh(uint32_t vertex_count,
   return pm;
 }
 
-uint32_t ProgressiveMesh::usable_vertices(uint32_t n) const {
-  const uint32_t count = vertex_count();
-  if (n < min_vertices) n = min_vertices;
-  if (n >= count) return count;
-  // note: index n is the first vertex left out; if it shares a group with n-1, the
-  // whole group must go, so the budget drops to that group's start.
-  return group_start[n];
-}
-
-std::vector<uint32_t> ProgressiveMesh::reconstruct(uint32_t n) const {
-  const uint32_t floor = usable_vertices(n);
-  if (floor >= triangle_count.size()) return {};  // note: a default-constructed mesh
-  std::vector<uint32_t> out(triangles.begin(),
-                            triangles.begin() + 3 * size_t{triangle_count[floor]});
-  for (uint32_t& k : out) {
-    while (k >= floor) k = collapse_to[k];
-  }
-  return out;
+ProgressiveView ProgressiveMesh::view() const {
+  ProgressiveView v;
+  v.triangles = triangles;
+  v.collapse_to = collapse_to;
+  // note: an empty mesh keeps triangle_count = {0}; formats' levels have no arrays then.
+  if (!collapse_to.empty()) v.triangle_count = triangle_count;
+  v.group_start = group_start;
+  v.min_vertices = min_vertices;
+  v.vertex_count = vertex_count();
+  return v;
 }
 
 namespace {
@@ -224,24 +216,18 @@ namespace {
 // corrupt mesh gives a message instead of an endless collapse chain.
 std::string check_structure(const ProgressiveMesh& pm) {
   const uint32_t v_count = pm.vertex_count();
-  const uint32_t t_count = pm.max_triangles();
   std::ostringstream out;
-  if (pm.triangles.size() % 3 != 0) {
-    out << "triangles has " << pm.triangles.size() << " indices, not a multiple of 3";
-  } else if (pm.triangle_primitive.size() != t_count) {
-    out << "triangle_primitive has " << pm.triangle_primitive.size() << " entries for " << t_count
-        << " triangles";
-  } else if (pm.collapse_to.size() != v_count || pm.group_start.size() != v_count) {
-    out << "collapse_to/group_start have " << pm.collapse_to.size() << "/" << pm.group_start.size()
-        << " entries for " << v_count << " vertices";
-  } else if (pm.triangle_count.size() != size_t{v_count} + 1) {
-    out << "triangle_count has " << pm.triangle_count.size() << " entries, expected "
-        << v_count + 1;
-  } else if (pm.min_vertices > v_count) {
-    out << "min_vertices " << pm.min_vertices << " > vertex count " << v_count;
+  if (pm.triangle_primitive.size() != pm.max_triangles() && pm.triangles.size() % 3 == 0) {
+    out << "triangle_primitive has " << pm.triangle_primitive.size() << " entries for "
+        << pm.max_triangles() << " triangles";
+    return out.str();
   }
-  if (!out.str().empty()) return out.str();
-
+  // note: a progressive mesh always has its arrays, even with nothing to collapse.
+  if (pm.collapse_to.size() != v_count) {
+    out << "collapse_to has " << pm.collapse_to.size() << " entries for " << v_count << " vertices";
+    return out.str();
+  }
+  if (const Status levels = check_progressive(pm.view()); !levels) return levels.message();
   std::vector<bool> seen(v_count, false);
   for (uint32_t i = 0; i < v_count; ++i) {
     const uint32_t src = pm.vertex_source[i];
@@ -251,54 +237,15 @@ std::string check_structure(const ProgressiveMesh& pm) {
     }
     seen[src] = true;
   }
-  for (uint32_t i = 0; i < v_count; ++i) {
-    const uint32_t to = pm.collapse_to[i], start = pm.group_start[i];
-    if (i < pm.min_vertices) {
-      if (to != i) out << "kept vertex " << i << " has collapse_to " << to;
-      if (start != i) out << "kept vertex " << i << " has group_start " << start;
-    } else {
-      if (to >= i) out << "removed vertex " << i << " has collapse_to " << to << " >= " << i;
-      if (start < pm.min_vertices || start > i || (start != i && pm.group_start[i - 1] != start)) {
-        out << "vertex " << i << " has inconsistent group_start " << start;
-      }
-    }
-    if (!out.str().empty()) return out.str();
-  }
-  for (size_t c = 0; c < pm.triangles.size(); ++c) {
-    if (pm.triangles[c] >= v_count) {
-      out << "triangle " << c / 3 << " has vertex " << pm.triangles[c] << " out of range";
-      return out.str();
-    }
-  }
-  if (pm.triangle_count[v_count] != t_count) {
-    out << "triangle_count[" << v_count << "] = " << pm.triangle_count[v_count] << ", expected "
-        << t_count;
-    return out.str();
-  }
-  for (uint32_t n = 0; n < v_count; ++n) {
-    if (pm.triangle_count[n] > pm.triangle_count[n + 1]) {
-      out << "n=" << n << ": triangle_count " << pm.triangle_count[n] << " > "
-          << pm.triangle_count[n + 1] << " at n=" << n + 1 << " (Map not monotone)";
-      return out.str();
-    }
-  }
   return "";
 }
 
-}  // namespace
-
-std::string check_progressive_mesh(const ProgressiveMesh& pm) {
+// The first rule the mesh breaks, or "".
+std::string first_problem(const ProgressiveMesh& pm) {
   std::string structure = check_structure(pm);
   if (!structure.empty()) return structure;
   const uint32_t v_count = pm.vertex_count();
   std::ostringstream out;
-  for (uint32_t n = 0; n < pm.min_vertices; ++n) {
-    if (pm.triangle_count[n] != pm.triangle_count[pm.min_vertices]) {
-      out << "n=" << n << ": triangle_count " << pm.triangle_count[n]
-          << " differs from the value at min_vertices " << pm.triangle_count[pm.min_vertices];
-      return out.str();
-    }
-  }
   uint32_t last_floor = kNone;
   for (uint32_t n = pm.min_vertices; n <= v_count; ++n) {
     const uint32_t floor = pm.usable_vertices(n);
@@ -336,6 +283,14 @@ std::string check_progressive_mesh(const ProgressiveMesh& pm) {
     }
   }
   return "";
+}
+
+}  // namespace
+
+Status check_progressive_mesh(const ProgressiveMesh& pm) {
+  const std::string problem = first_problem(pm);
+  if (problem.empty()) return {};
+  return {StatusCode::kInvalidArgument, problem};
 }
 
 }  // namespace crowdbake

@@ -21,6 +21,8 @@
 #include <utility>
 #include <vector>
 
+#include "crowdbake/formats/progressive.h"
+
 namespace crowdbake {
 
 struct ProgressiveMesh {
@@ -46,13 +48,17 @@ struct ProgressiveMesh {
   uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_source.size()); }
   uint32_t max_triangles() const { return static_cast<uint32_t>(triangles.size() / 3); }
 
+  // The arrays as formats' levels see them (crowdbake/formats/progressive.h: the rules and
+  // the reconstruction every library shares).
+  ProgressiveView view() const;
+
   // The vertex count actually used for a budget of n (clamped to [min, max], then
   // rounded down to a collapse-group start).
-  uint32_t usable_vertices(uint32_t n) const;
+  uint32_t usable_vertices(uint32_t n) const { return crowdbake::usable_vertices(view(), n); }
 
   // CPU reference of the GPU reconstruction: triangle list (permuted vertex indices) of
   // the LoD with usable_vertices(n) vertices.
-  std::vector<uint32_t> reconstruct(uint32_t n) const;
+  std::vector<uint32_t> reconstruct(uint32_t n) const { return reconstruct_level(view(), n); }
 };
 
 // One step of the simplifier: all wedges of a position move onto wedges of another
@@ -74,8 +80,10 @@ ProgressiveMesh build_progressive_mesh(uint32_t vertex_count,
                                        const std::vector<uint16_t>& triangle_primitive,
                                        const std::vector<CollapseRecord>& collapses);
 
-// Checks every invariant for every n in [min, max]; returns an empty string when all hold,
-// otherwise a description of the first violation. Used by tests and `--verify` runs.
-std::string check_progressive_mesh(const ProgressiveMesh& pm);
+// Checks every invariant for every n in [min, max]: formats' rules of the levels
+// (check_progressive), vertex_source a permutation, one primitive per triangle, and every
+// level rebuilt with in-range, non-degenerate triangles. kInvalidArgument names the first
+// violation. Used by tests and `--verify` runs.
+Status check_progressive_mesh(const ProgressiveMesh& pm);
 
 }  // namespace crowdbake

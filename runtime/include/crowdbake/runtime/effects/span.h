@@ -1,11 +1,10 @@
-// Span<T> for the effects jobs: the runtime's header-only span (no link dependency on
-// crowdbake_runtime), named in this namespace so effects code reads as before.
+// Span<T> (base/span.h) in the effects' namespace, for the effects jobs.
 #pragma once
 
-#include "crowdbake/runtime/span.h"
+#include "crowdbake/base/span.h"
 
 namespace crowdbake::effects {
 
-using runtime::Span;
+using crowdbake::Span;
 
 }  // namespace crowdbake::effects
