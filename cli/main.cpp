@@ -44,16 +44,29 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
                    "ends crowdbake): for debugging importers");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"crowdbake: bake skinned characters into crowd packs and render crowds",
-               "crowdbake"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "crowdbake " CROWDBAKE_VERSION);
-
+// Every command's settings, as the flags fill them, and what says which command ran.
+struct Commands {
   crowdbake::cli::InspectSettings inspect;
-  CLI::App* inspect_cmd =
+  crowdbake::cli::LodSettings lod;
+  crowdbake::cli::BenchSettings bench;
+  crowdbake::cli::BenchScaleSettings bench_scale;
+  crowdbake::cli::BenchRenderSettings bench_render;
+  crowdbake::cli::BakeCommandSettings bake;
+  std::string bake_preview;
+  crowdbake::cli::DiffSettings diff;
+  crowdbake::cli::RenderSettings render;
+  crowdbake::cli::PreviewSettings preview;
+  std::string preview_cell;
+  CLI::App *inspect_cmd = nullptr, *lod_cmd = nullptr, *bench_cmd = nullptr,
+           *bench_simplify_cmd = nullptr, *bench_scale_cmd = nullptr, *bench_render_cmd = nullptr,
+           *bake_cmd = nullptr, *diff_cmd = nullptr, *render_cmd = nullptr, *preview_cmd = nullptr;
+  CLI::Option *frames_opt = nullptr, *fps_opt = nullptr, *budget_opt = nullptr,
+              *geomorph_opt = nullptr;
+};
+
+void add_inspect(CLI::App& app, Commands& c) {
+  crowdbake::cli::InspectSettings& inspect = c.inspect;
+  CLI::App* inspect_cmd = c.inspect_cmd =
       app.add_subcommand("inspect", "Describe a character file: skeleton, meshes, clips, warnings");
   inspect_cmd
       ->add_option("FILE", inspect.input,
@@ -61,11 +74,14 @@ int main(int argc, char** argv) {
       ->required();
   inspect_cmd->add_flag("--json", inspect.json, "Print one JSON object to stdout");
   add_import_options(*inspect_cmd, inspect.import);
+}
 
-  crowdbake::cli::LodSettings lod;
-  CLI::App* lod_cmd = app.add_subcommand("lod",
-                                         "Simplify a character with the pose-aware metric and "
-                                         "write one level of detail as a skinned .glb");
+void add_lod(CLI::App& app, Commands& c) {
+  crowdbake::cli::LodSettings& lod = c.lod;
+  CLI::App* lod_cmd = c.lod_cmd =
+      app.add_subcommand("lod",
+                         "Simplify a character with the pose-aware metric and "
+                         "write one level of detail as a skinned .glb");
   lod_cmd->add_option("INPUT", lod.input, "Character file")->required();
   lod_cmd->add_option("-o,--output", lod.output, "Output .glb")->required();
   auto* ratio = lod_cmd->add_option("--ratio", lod.ratio, "Kept fraction of vertices, in (0, 1]");
@@ -87,39 +103,13 @@ int main(int argc, char** argv) {
                       "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
   lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");
   add_import_options(*lod_cmd, lod.import);
+}
 
-  crowdbake::cli::BenchSettings bench;
-  CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks (see docs/accuracy.md)");
-  bench_cmd->require_subcommand(1);
-  CLI::App* bench_simplify_cmd = bench_cmd->add_subcommand(
-      "simplify", "Animated error vs. simplification time: DQEM settings and two peers");
-  bench_simplify_cmd->add_option("--assets", bench.assets,
-                                 "Folder with MANIFEST.json (default ../shared/assets)");
-  bench_simplify_cmd->add_option("--out", bench.out,
-                                 "Folder for accuracy.csv and accuracy.json (default docs/data)");
-  bench_simplify_cmd->add_option(
-      "--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
-  bench_simplify_cmd->add_option("--plot-script", bench.plot_script,
-                                 "gnuplot script (default scripts/plot-accuracy.gp)");
-  bench_simplify_cmd->add_flag("--quick", bench.quick,
-                               "Fewer configurations and frames (CI smoke test)");
-  bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only,
-                               "Only the generated spectator");
-  bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
-  bench_simplify_cmd
-      ->add_option("--frame-stride", bench.frame_stride,
-                   "Measure every k-th frame of 30 fps (default 1; 6 with --quick)")
-      ->check(CLI::Range(1, 1000));
-
-  crowdbake::cli::BenchScaleSettings bench_scale;
-  CLI::App* bench_scale_cmd = bench_cmd->add_subcommand(
-      "scale", "Simplify time and peak memory of big characters, against meshoptimizer");
-  bench_scale_cmd->add_option("files", bench_scale.files, "Characters (make_limb_chain)")
-      ->required();
-  bench_scale_cmd->add_option("--threads", bench_scale.threads, "Threads (0 = all cores)");
-
-  crowdbake::cli::BenchRenderSettings bench_render;
-  CLI::App* bench_render_cmd = bench_cmd->add_subcommand(
+// "bench render" (a subcommand of "bench").
+void add_bench_render(Commands& c) {
+  CLI::App* bench_cmd = c.bench_cmd;
+  crowdbake::cli::BenchRenderSettings& bench_render = c.bench_render;
+  CLI::App* bench_render_cmd = c.bench_render_cmd = bench_cmd->add_subcommand(
       "render",
       "Frame time, triangles and image error of continuous/discrete LoD vs. full resolution on "
       "lavapipe; popping over a camera dolly (docs/performance.md)");
@@ -168,9 +158,45 @@ int main(int argc, char** argv) {
                                "(default 0.25)");
   bench_render_cmd->add_flag("--quick", bench_render.quick,
                              "Tiny sizes, resolution and dolly (CI smoke test)");
+}
 
-  crowdbake::cli::BakeCommandSettings bake;
-  CLI::App* bake_cmd =
+void add_bench(CLI::App& app, Commands& c) {
+  crowdbake::cli::BenchSettings& bench = c.bench;
+  CLI::App* bench_cmd = c.bench_cmd =
+      app.add_subcommand("bench", "Benchmarks (see docs/accuracy.md)");
+  bench_cmd->require_subcommand(1);
+  CLI::App* bench_simplify_cmd = c.bench_simplify_cmd = bench_cmd->add_subcommand(
+      "simplify", "Animated error vs. simplification time: DQEM settings and two peers");
+  bench_simplify_cmd->add_option("--assets", bench.assets,
+                                 "Folder with MANIFEST.json (default ../shared/assets)");
+  bench_simplify_cmd->add_option("--out", bench.out,
+                                 "Folder for accuracy.csv and accuracy.json (default docs/data)");
+  bench_simplify_cmd->add_option(
+      "--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
+  bench_simplify_cmd->add_option("--plot-script", bench.plot_script,
+                                 "gnuplot script (default scripts/plot-accuracy.gp)");
+  bench_simplify_cmd->add_flag("--quick", bench.quick,
+                               "Fewer configurations and frames (CI smoke test)");
+  bench_simplify_cmd->add_flag("--spectator-only", bench.spectator_only,
+                               "Only the generated spectator");
+  bench_simplify_cmd->add_option("--threads", bench.threads, "Threads (0 = all cores)");
+  bench_simplify_cmd
+      ->add_option("--frame-stride", bench.frame_stride,
+                   "Measure every k-th frame of 30 fps (default 1; 6 with --quick)")
+      ->check(CLI::Range(1, 1000));
+
+  crowdbake::cli::BenchScaleSettings& bench_scale = c.bench_scale;
+  CLI::App* bench_scale_cmd = c.bench_scale_cmd = bench_cmd->add_subcommand(
+      "scale", "Simplify time and peak memory of big characters, against meshoptimizer");
+  bench_scale_cmd->add_option("files", bench_scale.files, "Characters (make_limb_chain)")
+      ->required();
+  bench_scale_cmd->add_option("--threads", bench_scale.threads, "Threads (0 = all cores)");
+  add_bench_render(c);
+}
+
+void add_bake(CLI::App& app, Commands& c) {
+  crowdbake::cli::BakeCommandSettings& bake = c.bake;
+  CLI::App* bake_cmd = c.bake_cmd =
       app.add_subcommand("bake",
                          "Bake a character into a .crowdpack (progressive mesh, animation "
                          "texture, partition mask, Draco geometry)");
@@ -184,16 +210,19 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("--report", bake.report,
                        "Write a JSON report (stats, timings, settings, chunk sizes)");
   bake_cmd->add_flag("--quiet", bake.quiet, "No progress and no summary");
-  std::string bake_preview;
+  std::string& bake_preview = c.bake_preview;
   bake_cmd->add_option("--preview", bake_preview,
                        "Also write the pack's contact sheet (crowdbake preview) to this .png");
   add_import_options(*bake_cmd, bake.import);
+}
 
-  crowdbake::cli::DiffSettings diff;
-  CLI::App* diff_cmd = app.add_subcommand("diff",
-                                          "Compare two packs semantically (docs/pack-diff.md). "
-                                          "Exit 0: equal within tolerance, 1: different, "
-                                          "2: error (a missing or corrupt pack is 2, not 1)");
+void add_diff(CLI::App& app, Commands& c) {
+  crowdbake::cli::DiffSettings& diff = c.diff;
+  CLI::App* diff_cmd = c.diff_cmd =
+      app.add_subcommand("diff",
+                         "Compare two packs semantically (docs/pack-diff.md). "
+                         "Exit 0: equal within tolerance, 1: different, "
+                         "2: error (a missing or corrupt pack is 2, not 1)");
   diff_cmd->add_option("A", diff.a, "First .crowdpack")->required();
   diff_cmd->add_option("B", diff.b, "Second .crowdpack")->required();
   diff_cmd->add_flag("--json", diff.json, "Print one JSON object to stdout");
@@ -220,9 +249,11 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"header", "settings", "skeleton", "clips", "materials", "bounds",
                              "geometry", "progressive", "animation", "partition"}));
+}
 
-  crowdbake::cli::RenderSettings render;
-  CLI::App* render_cmd = app.add_subcommand(
+void add_render(CLI::App& app, Commands& c) {
+  crowdbake::cli::RenderSettings& render = c.render;
+  CLI::App* render_cmd = c.render_cmd = app.add_subcommand(
       "render",
       "Render a scene.json (docs/scene-format.md) offscreen with Vulkan and write PNGs; "
       "without a GPU it runs on lavapipe (mesa-vulkan-drivers)");
@@ -232,15 +263,15 @@ int main(int argc, char** argv) {
                    "Output .png, or with --frames a folder for frame_0000.png ...")
       ->required();
   render_cmd->add_option("--time", render.time, "Scene time in seconds (default 0)");
-  auto* frames_opt = render_cmd->add_option(
+  c.frames_opt = render_cmd->add_option(
       "--frames", render.frames, "Render a sequence of N frames from --time into the -o folder");
-  auto* fps_opt = render_cmd->add_option("--fps", render.fps, "Sequence frame rate (default 30)");
-  auto* budget_opt = render_cmd->add_option(
-      "--budget", render.budget, "LoD budget N: vertices for all visible instances (>= 1)");
+  c.fps_opt = render_cmd->add_option("--fps", render.fps, "Sequence frame rate (default 30)");
+  c.budget_opt = render_cmd->add_option("--budget", render.budget,
+                                        "LoD budget N: vertices for all visible instances (>= 1)");
   render_cmd->add_option(
       "--lod", render.lod,
       "LoD mode: error, budget (= continuous), discrete or full (default: the scene's)");
-  auto* geomorph_opt = render_cmd->add_option(
+  c.geomorph_opt = render_cmd->add_option(
       "--geomorph", render.geomorph,
       "Geomorph window as a fraction of each instance's vertex count, in [0, 1); 0 = off "
       "(default: the scene's lod.geomorph, off)");
@@ -262,9 +293,11 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--validate", render.validation,
                        "Enable the Vulkan validation layer; any validation error fails the run");
   render_cmd->add_flag("--quiet", render.quiet, "Print nothing on success");
+}
 
-  crowdbake::cli::PreviewSettings preview;
-  CLI::App* preview_cmd = app.add_subcommand(
+void add_preview(CLI::App& app, Commands& c) {
+  crowdbake::cli::PreviewSettings& preview = c.preview;
+  CLI::App* preview_cmd = c.preview_cmd = app.add_subcommand(
       "preview",
       "Contact sheet of a baked character: one row per LoD level, one column per sampled frame "
       "of its clips, each cell labelled with vertices, triangles and the level's error");
@@ -275,10 +308,63 @@ int main(int argc, char** argv) {
                           "Levels as fractions of the vertices in (0, 1] or 'min' (default "
                           "1 0.5 0.25 0.1 min)");
   preview_cmd->add_option("--frames", preview.frames, "Frames per clip (default 3)");
-  std::string preview_cell;
+  std::string& preview_cell = c.preview_cell;
   preview_cmd->add_option("--cell", preview_cell, "Cell size WIDTHxHEIGHT (default 160x240)");
   preview_cmd->add_option("--msaa", preview.msaa, "Samples per pixel (default 4)");
   preview_cmd->add_flag("--quiet", preview.quiet, "Print nothing on success");
+}
+
+// Runs the command the flags chose.
+int run_command(Commands& c) {
+  if (*c.inspect_cmd) return crowdbake::cli::run_inspect(c.inspect);
+  if (*c.lod_cmd) return crowdbake::cli::run_lod(c.lod);
+  if (*c.bake_cmd) {
+    if (!c.bake_preview.empty() && !crowdbake::cli::is_png_path(c.bake_preview))
+      throw crowdbake::Error(crowdbake::Error::Kind::kUsage, "--preview",
+                             "must name a .png file, got '" + c.bake_preview + "'");
+    const int baked = crowdbake::cli::run_bake(c.bake);
+    if (baked != 0 || c.bake_preview.empty()) return baked;
+    crowdbake::cli::PreviewSettings sheet;
+    sheet.pack = c.bake.output;
+    sheet.output = c.bake_preview;
+    sheet.quiet = c.bake.quiet;
+    return crowdbake::cli::run_preview(sheet);
+  }
+  if (*c.preview_cmd) {
+    if (!c.preview_cell.empty())
+      crowdbake::cli::parse_size("--cell", c.preview_cell, c.preview.cell_width,
+                                 c.preview.cell_height);
+    return crowdbake::cli::run_preview(c.preview);
+  }
+  if (*c.diff_cmd) return crowdbake::cli::run_diff(c.diff);
+  if (*c.bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(c.bench);
+  if (*c.bench_scale_cmd) return crowdbake::cli::run_bench_scale(c.bench_scale);
+  if (*c.bench_render_cmd) return crowdbake::cli::run_bench_render(c.bench_render);
+  if (*c.render_cmd) {
+    c.render.frames_given = c.frames_opt->count() > 0;
+    c.render.fps_given = c.fps_opt->count() > 0;
+    c.render.budget_given = c.budget_opt->count() > 0;
+    c.render.geomorph_given = c.geomorph_opt->count() > 0;
+    return crowdbake::cli::run_render(c.render);
+  }
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"crowdbake: bake skinned characters into crowd packs and render crowds",
+               "crowdbake"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "crowdbake " CROWDBAKE_VERSION);
+  Commands c;
+  add_inspect(app, c);
+  add_lod(app, c);
+  add_bench(app, c);
+  add_bake(app, c);
+  add_diff(app, c);
+  add_render(app, c);
+  add_preview(app, c);
 
   try {
     app.parse(argc, argv);
@@ -292,36 +378,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*inspect_cmd) return crowdbake::cli::run_inspect(inspect);
-    if (*lod_cmd) return crowdbake::cli::run_lod(lod);
-    if (*bake_cmd) {
-      if (!bake_preview.empty() && !crowdbake::cli::is_png_path(bake_preview))
-        throw crowdbake::Error(crowdbake::Error::Kind::kUsage, "--preview",
-                               "must name a .png file, got '" + bake_preview + "'");
-      const int baked = crowdbake::cli::run_bake(bake);
-      if (baked != 0 || bake_preview.empty()) return baked;
-      crowdbake::cli::PreviewSettings sheet;
-      sheet.pack = bake.output;
-      sheet.output = bake_preview;
-      sheet.quiet = bake.quiet;
-      return crowdbake::cli::run_preview(sheet);
-    }
-    if (*preview_cmd) {
-      if (!preview_cell.empty())
-        crowdbake::cli::parse_size("--cell", preview_cell, preview.cell_width, preview.cell_height);
-      return crowdbake::cli::run_preview(preview);
-    }
-    if (*diff_cmd) return crowdbake::cli::run_diff(diff);
-    if (*bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(bench);
-    if (*bench_scale_cmd) return crowdbake::cli::run_bench_scale(bench_scale);
-    if (*bench_render_cmd) return crowdbake::cli::run_bench_render(bench_render);
-    if (*render_cmd) {
-      render.frames_given = frames_opt->count() > 0;
-      render.fps_given = fps_opt->count() > 0;
-      render.budget_given = budget_opt->count() > 0;
-      render.geomorph_given = geomorph_opt->count() > 0;
-      return crowdbake::cli::run_render(render);
-    }
+    return run_command(c);
   } catch (const crowdbake::Error& e) {
     std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
     return e.exit_code();
@@ -333,5 +390,4 @@ int main(int argc, char** argv) {
               << " (please report this with the input file)\n";
     return 1;
   }
-  return 2;
 }

@@ -216,87 +216,11 @@ class Collapser {
   // candidate with a penalty still to pay goes back into the queue at its full cost.
   Outcome try_collapse(uint32_t from, const Candidate& candidate, CollapseRecord& record) {
     const uint32_t to = candidate.to;
-    compact(from);
-    compact(to);
-    std::vector<uint32_t>&shared = shared_, &moved = moved_;
-    shared.clear(), moved.clear();
-    for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
-    const Kind k = kind(from);
-    if (k == Kind::kLocked) return reject_topology();
-    if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return reject_topology();
-
-    // Link condition: the only positions next to both ends are the faces' third corners,
-    // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
-    // faces with one third corner are the two sides of a flattened closed part: the
-    // collapse removes both.)
-    std::vector<uint32_t>& third = third_;
-    third.clear();
-    for (uint32_t t : shared)
-      for (int c = 0; c < 3; ++c)
-        if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
-    std::sort(third.begin(), third.end());
-    third.erase(std::unique(third.begin(), third.end()), third.end());
-    std::vector<uint32_t>& common = common_;
-    common.clear();
-    const std::vector<uint32_t>&nf = neighbours(from, from_ring_), &nt = neighbours(to, to_ring_);
-    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
-    if (common != third) return reject_topology();
-
-    // note: a closed part that has come down to a tetrahedron (an eye, a lock of hair, a
-    // bone of a skeleton) can only go on by flattening into two faces back to back, which
-    // the next collapse removes; otherwise every closed part would keep 4 faces at the
-    // lowest levels, however many parts there are, and the budget would go to them.
-    const bool closing = small_part_[from] && k == Kind::kInterior && incident_[from].size() == 3 &&
-                         incident_[to].size() == 3 && nf.size() == 3 && nt.size() == 3;
-
-    // No face may end up duplicating one that already exists around `to`.
-    for (uint32_t t : moved) {
-      if (closing) break;
-      uint32_t x = 0, y = 0;
-      for (int c = 0, n = 0; c < 3; ++c)
-        if (position(t, c) != from) (n++ == 0 ? x : y) = position(t, c);
-      for (uint32_t u : incident_[to])
-        if (contains(u, x) && contains(u, y)) return reject_topology();
-    }
-
-    // Wedge map, on attribute classes: each class of `from` goes to the class of `to` it
-    // shares a removed face with. A class with two such partners, or a used class with none
-    // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
-    // or material border: allowed, at a price. A class with no class at `to` in its own
-    // primitive cannot move (its faces would leave their primitive).
-    std::vector<std::pair<uint32_t, uint32_t>>& map = map_;
-    map.clear();
+    bool closing = false;
+    if (!topology_allows(from, to, closing)) return reject_topology();
     double crossed_area = 0.0;  // bind-pose area of faces whose corner crosses a seam
-    for (uint32_t t : shared) {
-      const uint32_t v = klass(t, from), w = klass(t, to);
-      auto it = std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == v; });
-      if (it == map.end())
-        map.push_back({v, w});
-      else if (it->second != w)
-        crossed_area += bind_area(t);
-    }
-    for (uint32_t t : moved) {
-      const uint32_t v = klass(t, from);
-      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; }))
-        continue;
-      const int64_t w = nearest_class(to, v);
-      if (w < 0) return reject_topology();
-      map.push_back({v, static_cast<uint32_t>(w)});
-    }
-    auto target = [&](uint32_t v) -> int64_t {
-      for (const auto& m : map)
-        if (m.first == mesh_.class_of[v]) return m.second;
-      return -1;
-    };
-    for (uint32_t t : moved) {
-      const uint32_t v = klass(t, from);
-      // note: a substituted class is one no removed face pairs v with.
-      bool paired = false;
-      for (uint32_t u : shared)
-        paired = paired || (klass(u, from) == v && klass(u, to) == target(v));
-      if (!paired) crossed_area += bind_area(t);
-    }
-
+    if (!map_wedges(from, to, crossed_area)) return reject_topology();
+    const std::vector<uint32_t>& moved = moved_;
     const uint16_t limb = limb_[from];
     if (limb != kNoLimb && limb_[to] != limb && limb_positions_[limb] == 1) {
       ++stats_.rejected_limbs;
@@ -325,21 +249,122 @@ class Collapser {
       stats_.collapses_before_crossing = collapses_;
     ++collapses_;
 
+    perform(from, to, record);
+    return Outcome::kDone;
+  }
+
+  // The collapse keeps the surface a manifold: fills shared_ (faces it removes), moved_ (faces
+  // it moves), from_ring_ and to_ring_; closing: a tetrahedron flattening into two faces.
+  bool topology_allows(uint32_t from, uint32_t to, bool& closing) {
+    compact(from);
+    compact(to);
+    std::vector<uint32_t>&shared = shared_, &moved = moved_;
+    shared.clear(), moved.clear();
+    for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
+    const Kind k = kind(from);
+    if (k == Kind::kLocked) return false;
+    if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return false;
+
+    // Link condition: the only positions next to both ends are the faces' third corners,
+    // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
+    // faces with one third corner are the two sides of a flattened closed part: the
+    // collapse removes both.)
+    std::vector<uint32_t>& third = third_;
+    third.clear();
+    for (uint32_t t : shared)
+      for (int c = 0; c < 3; ++c)
+        if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
+    std::sort(third.begin(), third.end());
+    third.erase(std::unique(third.begin(), third.end()), third.end());
+    std::vector<uint32_t>& common = common_;
+    common.clear();
+    const std::vector<uint32_t>&nf = neighbours(from, from_ring_), &nt = neighbours(to, to_ring_);
+    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
+    if (common != third) return false;
+
+    // note: a closed part that has come down to a tetrahedron (an eye, a lock of hair, a
+    // bone of a skeleton) can only go on by flattening into two faces back to back, which
+    // the next collapse removes; otherwise every closed part would keep 4 faces at the
+    // lowest levels, however many parts there are, and the budget would go to them.
+    closing = small_part_[from] && k == Kind::kInterior && incident_[from].size() == 3 &&
+              incident_[to].size() == 3 && nf.size() == 3 && nt.size() == 3;
+
+    // No face may end up duplicating one that already exists around `to`.
+    for (uint32_t t : moved) {
+      if (closing) break;
+      uint32_t x = 0, y = 0;
+      for (int c = 0, n = 0; c < 3; ++c)
+        if (position(t, c) != from) (n++ == 0 ? x : y) = position(t, c);
+      for (uint32_t u : incident_[to])
+        if (contains(u, x) && contains(u, y)) return false;
+    }
+
+    return true;
+  }
+
+  // Wedge map, on attribute classes (map_), and the area of faces whose corners cross a seam.
+  // False when a class cannot move.
+  bool map_wedges(uint32_t from, uint32_t to, double& crossed_area) {
+    const std::vector<uint32_t>&shared = shared_, &moved = moved_;
+    // each class of `from` goes to the class of `to` it
+    // shares a removed face with. A class with two such partners, or a used class with none
+    // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
+    // or material border: allowed, at a price. A class with no class at `to` in its own
+    // primitive cannot move (its faces would leave their primitive).
+    std::vector<std::pair<uint32_t, uint32_t>>& map = map_;
+    map.clear();
+    crossed_area = 0.0;
+    for (uint32_t t : shared) {
+      const uint32_t v = klass(t, from), w = klass(t, to);
+      auto it = std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == v; });
+      if (it == map.end())
+        map.push_back({v, w});
+      else if (it->second != w)
+        crossed_area += bind_area(t);
+    }
+    for (uint32_t t : moved) {
+      const uint32_t v = klass(t, from);
+      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; }))
+        continue;
+      const int64_t w = nearest_class(to, v);
+      if (w < 0) return false;
+      map.push_back({v, static_cast<uint32_t>(w)});
+    }
+    for (uint32_t t : moved) {
+      const uint32_t v = klass(t, from);
+      // note: a substituted class is one no removed face pairs v with.
+      bool paired = false;
+      for (uint32_t u : shared)
+        paired = paired || (klass(u, from) == v && klass(u, to) == target_class(v));
+      if (!paired) crossed_area += bind_area(t);
+    }
+
+    return true;
+  }
+
+  // The class a wedge of `from` moves to (map_), or -1 when its class is not mapped.
+  int64_t target_class(uint32_t v) const {
+    for (const auto& m : map_)
+      if (m.first == mesh_.class_of[v]) return m.second;
+    return -1;
+  }
+
+  void perform(uint32_t from, uint32_t to, CollapseRecord& record) {
     // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
     for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
       const uint32_t v = mesh_.wedges[i];
-      const int64_t w = target(v);
-      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : map.front().second});
+      const int64_t w = target_class(v);
+      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : map_.front().second});
     }
-    record.removed_triangles = shared;
-    for (uint32_t t : shared) triangle_alive_[t] = 0;
-    for (uint32_t t : moved) {
+    record.removed_triangles = shared_;
+    for (uint32_t t : shared_) triangle_alive_[t] = 0;
+    for (uint32_t t : moved_) {
       uint32_t& corner = corner_[3 * t + corner_of(t, from)];
-      corner = static_cast<uint32_t>(target(corner));
+      corner = static_cast<uint32_t>(target_class(corner));
       incident_[to].push_back(t);
     }
     position_alive_[from] = 0;
-    if (limb != kNoLimb) --limb_positions_[limb];
+    if (limb_[from] != kNoLimb) --limb_positions_[limb_[from]];
     incident_[from].clear();
     leaving_[from].clear();
     queue_.remove(from);
@@ -360,14 +385,13 @@ class Collapser {
       update(x);
     }
     // Former neighbours no longer next to `to` (a border face's corner) lose their edges.
-    for (const std::vector<uint32_t>* before : {&nf, &nt})
+    for (const std::vector<uint32_t>* before : {&from_ring_, &to_ring_})
       for (uint32_t x : *before)
         if (x != from && x != to && !std::binary_search(ring.begin(), ring.end(), x)) {
           forget(x, from, to);
           update(x);
         }
     retry_refused(to, ring);
-    return Outcome::kDone;
   }
 
   // Offers again the refused collapses waiting at `to` and its ring, once each (a pair waits

@@ -75,194 +75,229 @@ uint16_t BehaviourFsm::pick_idle_next(uint16_t state, double u) const {
   return idle_to_[first + pick_cumulative(idle_cumulative_.data() + first, count, u)];
 }
 
-Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
-  const size_t n = def.states.size();
-  if (n == 0) return fsm_error("the FSM has no states");
-  if (n > kMaxStates)
-    return fsm_error("the FSM has " + std::to_string(n) + " states; at most " +
-                     std::to_string(kMaxStates) + " are supported");
+// build_behaviour_fsm in steps, each checking what it compiles; the first broken rule ends it.
+class FsmCompiler {
+ public:
+  explicit FsmCompiler(const BehaviourFsmDef& definition)
+      : def(definition), n(definition.states.size()), adjacency(n), idle(n) {}
 
-  BehaviourFsm fsm;
-  std::map<std::string, uint16_t> state_index;
-  std::map<std::string, uint16_t> pose_index;
-  auto intern_pose = [&](const std::string& pose) {
+  Status compile(BehaviourFsm& out) {
+    if (n == 0) return fsm_error("the FSM has no states");
+    if (n > kMaxStates)
+      return fsm_error("the FSM has " + std::to_string(n) + " states; at most " +
+                       std::to_string(kMaxStates) + " are supported");
+    if (Status s = add_states(); !s.ok()) return s;
+    if (Status s = add_transitions(); !s.ok()) return s;
+    if (Status s = check_exits(); !s.ok()) return s;
+    build_routes();
+    add_idle_edges();
+    if (Status s = add_reactions(); !s.ok()) return s;
+    out = std::move(fsm);
+    return Status();
+  }
+
+ private:
+  uint16_t intern_pose(const std::string& pose) {
     auto it = pose_index.find(pose);
     if (it != pose_index.end()) return it->second;
     const auto id = static_cast<uint16_t>(pose_index.size());
     pose_index.emplace(pose, id);
     return id;
-  };
-
-  // States and their clips.
-  fsm.clip_first_.push_back(0);
-  for (size_t s = 0; s < n; ++s) {
-    const StateDef& st = def.states[s];
-    const std::string where = "state " + std::to_string(s);
-    if (st.name.empty()) return fsm_error(where + ": the name is empty");
-    const std::string name = "state " + Quote(st.name);
-    if (!state_index.emplace(st.name, static_cast<uint16_t>(s)).second)
-      return fsm_error(name + " is defined twice");
-    if (st.pose_in.empty() || st.pose_out.empty())
-      return fsm_error(name + ": pose_in and pose_out must name default poses");
-    if (st.clips.empty()) return fsm_error(name + " has no clips");
-    std::vector<double> weights;
-    double total = 0.0;
-    for (size_t c = 0; c < st.clips.size(); ++c) {
-      const ClipVariant& clip = st.clips[c];
-      if (clip.clip.empty())
-        return fsm_error(name + " clip " + std::to_string(c) + ": the clip name is empty");
-      const std::string cname = name + " clip " + Quote(clip.clip);
-      if (!std::isfinite(clip.duration_s) || clip.duration_s <= 0.0f)
-        return fsm_error(cname + ": duration " + format_seconds(clip.duration_s) + " must be > 0");
-      if (!std::isfinite(clip.weight) || clip.weight < 0.0f)
-        return fsm_error(cname + ": weight " + std::to_string(clip.weight) +
-                         " must be finite and >= 0");
-      weights.push_back(clip.weight);
-      total += clip.weight;
-      fsm.clip_names_.push_back(clip.clip);
-      fsm.clip_durations_.push_back(clip.duration_s);
-      fsm.clip_states_.push_back(static_cast<uint16_t>(s));
-    }
-    if (!(total > 0.0)) return fsm_error(name + ": every clip weight is 0");
-    if (fsm.clip_names_.size() > kMaxClips)
-      return fsm_error("the FSM has more than " + std::to_string(kMaxClips) + " clips");
-    const std::vector<double> cumulative = Cumulative(weights);
-    fsm.clip_cumulative_.insert(fsm.clip_cumulative_.end(), cumulative.begin(), cumulative.end());
-    fsm.clip_first_.push_back(static_cast<uint32_t>(fsm.clip_names_.size()));
-    fsm.state_names_.push_back(st.name);
-    fsm.pose_in_.push_back(intern_pose(st.pose_in));
-    fsm.pose_out_.push_back(intern_pose(st.pose_out));
-    fsm.flags_.push_back(
-        static_cast<uint8_t>((st.rest ? BehaviourFsm::kRest : 0) |
-                             (st.interruptible ? BehaviourFsm::kInterruptible : 0) |
-                             (st.contagious ? BehaviourFsm::kContagious : 0)));
-    if (st.rest && st.pose_in != st.pose_out)
-      return fsm_error(name + " is a rest state, so it loops, but it starts in pose " +
-                       Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
   }
 
-  // Transitions.
-  std::vector<std::vector<uint16_t>> adjacency(n);  // in definition order
-  std::vector<std::vector<std::pair<uint16_t, double>>> idle(n);
-  for (size_t t = 0; t < def.transitions.size(); ++t) {
-    const TransitionDef& tr = def.transitions[t];
-    const std::string where =
-        "transition " + std::to_string(t) + " (" + tr.from + " -> " + tr.to + ")";
-    auto from = state_index.find(tr.from);
-    if (from == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.from));
-    auto to = state_index.find(tr.to);
-    if (to == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.to));
-    const uint16_t a = from->second, b = to->second;
-    if (std::find(adjacency[a].begin(), adjacency[a].end(), b) != adjacency[a].end())
-      return fsm_error(where + " is defined twice");
-    if (def.states[a].pose_out != def.states[b].pose_in)
-      return fsm_error(where + ": " + Quote(tr.from) + " ends in pose " +
-                       Quote(def.states[a].pose_out) + " but " + Quote(tr.to) + " starts in pose " +
-                       Quote(def.states[b].pose_in) + "; go through a state that changes the pose");
-    if (!std::isfinite(tr.idle_weight) || tr.idle_weight < 0.0f)
-      return fsm_error(where + ": idle_weight " + std::to_string(tr.idle_weight) +
-                       " must be finite and >= 0");
-    adjacency[a].push_back(b);
-    if (tr.idle_weight > 0.0f) idle[a].emplace_back(b, tr.idle_weight);
+  // States and their clips.
+  Status add_states() {
+    fsm.clip_first_.push_back(0);
+    for (size_t s = 0; s < n; ++s) {
+      const StateDef& st = def.states[s];
+      const std::string where = "state " + std::to_string(s);
+      if (st.name.empty()) return fsm_error(where + ": the name is empty");
+      const std::string name = "state " + Quote(st.name);
+      if (!state_index.emplace(st.name, static_cast<uint16_t>(s)).second)
+        return fsm_error(name + " is defined twice");
+      if (st.pose_in.empty() || st.pose_out.empty())
+        return fsm_error(name + ": pose_in and pose_out must name default poses");
+      if (st.clips.empty()) return fsm_error(name + " has no clips");
+      std::vector<double> weights;
+      double total = 0.0;
+      for (size_t c = 0; c < st.clips.size(); ++c) {
+        const ClipVariant& clip = st.clips[c];
+        if (clip.clip.empty())
+          return fsm_error(name + " clip " + std::to_string(c) + ": the clip name is empty");
+        const std::string cname = name + " clip " + Quote(clip.clip);
+        if (!std::isfinite(clip.duration_s) || clip.duration_s <= 0.0f)
+          return fsm_error(cname + ": duration " + format_seconds(clip.duration_s) +
+                           " must be > 0");
+        if (!std::isfinite(clip.weight) || clip.weight < 0.0f)
+          return fsm_error(cname + ": weight " + std::to_string(clip.weight) +
+                           " must be finite and >= 0");
+        weights.push_back(clip.weight);
+        total += clip.weight;
+        fsm.clip_names_.push_back(clip.clip);
+        fsm.clip_durations_.push_back(clip.duration_s);
+        fsm.clip_states_.push_back(static_cast<uint16_t>(s));
+      }
+      if (!(total > 0.0)) return fsm_error(name + ": every clip weight is 0");
+      if (fsm.clip_names_.size() > kMaxClips)
+        return fsm_error("the FSM has more than " + std::to_string(kMaxClips) + " clips");
+      const std::vector<double> cumulative = Cumulative(weights);
+      fsm.clip_cumulative_.insert(fsm.clip_cumulative_.end(), cumulative.begin(), cumulative.end());
+      fsm.clip_first_.push_back(static_cast<uint32_t>(fsm.clip_names_.size()));
+      fsm.state_names_.push_back(st.name);
+      fsm.pose_in_.push_back(intern_pose(st.pose_in));
+      fsm.pose_out_.push_back(intern_pose(st.pose_out));
+      fsm.flags_.push_back(
+          static_cast<uint8_t>((st.rest ? BehaviourFsm::kRest : 0) |
+                               (st.interruptible ? BehaviourFsm::kInterruptible : 0) |
+                               (st.contagious ? BehaviourFsm::kContagious : 0)));
+      if (st.rest && st.pose_in != st.pose_out)
+        return fsm_error(name + " is a rest state, so it loops, but it starts in pose " +
+                         Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+    }
+    return Status();
+  }
+
+  Status add_transitions() {
+    for (size_t t = 0; t < def.transitions.size(); ++t) {
+      const TransitionDef& tr = def.transitions[t];
+      const std::string where =
+          "transition " + std::to_string(t) + " (" + tr.from + " -> " + tr.to + ")";
+      auto from = state_index.find(tr.from);
+      if (from == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.from));
+      auto to = state_index.find(tr.to);
+      if (to == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.to));
+      const uint16_t a = from->second, b = to->second;
+      if (std::find(adjacency[a].begin(), adjacency[a].end(), b) != adjacency[a].end())
+        return fsm_error(where + " is defined twice");
+      if (def.states[a].pose_out != def.states[b].pose_in)
+        return fsm_error(where + ": " + Quote(tr.from) + " ends in pose " +
+                         Quote(def.states[a].pose_out) + " but " + Quote(tr.to) +
+                         " starts in pose " + Quote(def.states[b].pose_in) +
+                         "; go through a state that changes the pose");
+      if (!std::isfinite(tr.idle_weight) || tr.idle_weight < 0.0f)
+        return fsm_error(where + ": idle_weight " + std::to_string(tr.idle_weight) +
+                         " must be finite and >= 0");
+      adjacency[a].push_back(b);
+      if (tr.idle_weight > 0.0f) idle[a].emplace_back(b, tr.idle_weight);
+    }
+    return Status();
   }
 
   // Exits: every state must reach a rest state (reverse breadth-first search from them).
-  std::vector<std::string> rest_names;
-  std::vector<uint8_t> reaches_rest(n, 0);
-  std::deque<uint16_t> queue;
-  for (size_t s = 0; s < n; ++s)
-    if (def.states[s].rest) {
-      rest_names.push_back(def.states[s].name);
-      reaches_rest[s] = 1;
-      queue.push_back(static_cast<uint16_t>(s));
+  Status check_exits() const {
+    std::vector<std::string> rest_names;
+    std::vector<uint8_t> reaches_rest(n, 0);
+    std::deque<uint16_t> queue;
+    for (size_t s = 0; s < n; ++s)
+      if (def.states[s].rest) {
+        rest_names.push_back(def.states[s].name);
+        reaches_rest[s] = 1;
+        queue.push_back(static_cast<uint16_t>(s));
+      }
+    if (rest_names.empty())
+      return fsm_error("the FSM has no rest state (mark the idle states, e.g. sit or stand, rest)");
+    std::vector<std::vector<uint16_t>> reverse(n);
+    for (size_t a = 0; a < n; ++a)
+      for (uint16_t b : adjacency[a]) reverse[b].push_back(static_cast<uint16_t>(a));
+    while (!queue.empty()) {
+      const uint16_t s = queue.front();
+      queue.pop_front();
+      for (uint16_t p : reverse[s])
+        if (!reaches_rest[p]) reaches_rest[p] = 1, queue.push_back(p);
     }
-  if (rest_names.empty())
-    return fsm_error("the FSM has no rest state (mark the idle states, e.g. sit or stand, rest)");
-  std::vector<std::vector<uint16_t>> reverse(n);
-  for (size_t a = 0; a < n; ++a)
-    for (uint16_t b : adjacency[a]) reverse[b].push_back(static_cast<uint16_t>(a));
-  while (!queue.empty()) {
-    const uint16_t s = queue.front();
-    queue.pop_front();
-    for (uint16_t p : reverse[s])
-      if (!reaches_rest[p]) reaches_rest[p] = 1, queue.push_back(p);
+    std::vector<std::string> trapped;
+    for (size_t s = 0; s < n; ++s)
+      if (!reaches_rest[s]) trapped.push_back(def.states[s].name);
+    if (!trapped.empty())
+      return fsm_error("cyclic FSM without exit: state" +
+                       std::string(trapped.size() > 1 ? "s " : " ") + join_names(trapped) +
+                       (trapped.size() > 1 ? " have" : " has") +
+                       " no path to a rest state (rest states: " + join_names(rest_names) + ")");
+    return Status();
   }
-  std::vector<std::string> trapped;
-  for (size_t s = 0; s < n; ++s)
-    if (!reaches_rest[s]) trapped.push_back(def.states[s].name);
-  if (!trapped.empty())
-    return fsm_error("cyclic FSM without exit: state" +
-                     std::string(trapped.size() > 1 ? "s " : " ") + join_names(trapped) +
-                     (trapped.size() > 1 ? " have" : " has") +
-                     " no path to a rest state (rest states: " + join_names(rest_names) + ")");
 
   // Routing table: breadth-first search from every state; the first hop is remembered.
-  fsm.next_hop_.assign(n * n, BehaviourFsm::kNone);
-  for (size_t from = 0; from < n; ++from) {
-    uint16_t* row = &fsm.next_hop_[from * n];
-    row[from] = static_cast<uint16_t>(from);
-    std::deque<uint16_t> frontier;
-    for (uint16_t b : adjacency[from])
-      if (row[b] == BehaviourFsm::kNone) row[b] = b, frontier.push_back(b);
-    while (!frontier.empty()) {
-      const uint16_t s = frontier.front();
-      frontier.pop_front();
-      for (uint16_t b : adjacency[s])
-        if (row[b] == BehaviourFsm::kNone) row[b] = row[s], frontier.push_back(b);
+  void build_routes() {
+    fsm.next_hop_.assign(n * n, BehaviourFsm::kNone);
+    for (size_t from = 0; from < n; ++from) {
+      uint16_t* row = &fsm.next_hop_[from * n];
+      row[from] = static_cast<uint16_t>(from);
+      std::deque<uint16_t> frontier;
+      for (uint16_t b : adjacency[from])
+        if (row[b] == BehaviourFsm::kNone) row[b] = b, frontier.push_back(b);
+      while (!frontier.empty()) {
+        const uint16_t s = frontier.front();
+        frontier.pop_front();
+        for (uint16_t b : adjacency[s])
+          if (row[b] == BehaviourFsm::kNone) row[b] = row[s], frontier.push_back(b);
+      }
     }
   }
 
-  // Idle-walk edges.
-  fsm.idle_first_.push_back(0);
-  for (size_t s = 0; s < n; ++s) {
-    std::vector<double> weights;
-    for (const auto& edge : idle[s]) {
-      fsm.idle_to_.push_back(edge.first);
-      weights.push_back(edge.second);
+  void add_idle_edges() {
+    fsm.idle_first_.push_back(0);
+    for (size_t s = 0; s < n; ++s) {
+      std::vector<double> weights;
+      for (const auto& edge : idle[s]) {
+        fsm.idle_to_.push_back(edge.first);
+        weights.push_back(edge.second);
+      }
+      const std::vector<double> cumulative = Cumulative(weights);
+      fsm.idle_cumulative_.insert(fsm.idle_cumulative_.end(), cumulative.begin(), cumulative.end());
+      fsm.idle_first_.push_back(static_cast<uint32_t>(fsm.idle_to_.size()));
     }
-    const std::vector<double> cumulative = Cumulative(weights);
-    fsm.idle_cumulative_.insert(fsm.idle_cumulative_.end(), cumulative.begin(), cumulative.end());
-    fsm.idle_first_.push_back(static_cast<uint32_t>(fsm.idle_to_.size()));
   }
 
-  // Reactions.
-  for (size_t r = 0; r < def.reactions.size(); ++r) {
-    const ReactionDef& re = def.reactions[r];
-    if (re.event.empty())
-      return fsm_error("reaction " + std::to_string(r) + ": the event is empty");
-    const std::string where = "reaction " + Quote(re.event);
-    if (fsm.find_reaction(re.event) != BehaviourFsm::kNone)
-      return fsm_error(where + " is defined twice");
-    if (!std::isfinite(re.decay_s) || re.decay_s <= 0.0f)
-      return fsm_error(where + ": decay " + format_seconds(re.decay_s) + " must be > 0");
-    uint16_t states[2] = {BehaviourFsm::kNone, BehaviourFsm::kNone};
-    const std::string* names[2] = {&re.supporters_state, &re.opponents_state};
-    const char* roles[2] = {"supporters' state", "opponents' state"};
-    for (int k = 0; k < 2; ++k) {
-      if (k == 1 && names[k]->empty()) break;
-      auto it = state_index.find(*names[k]);
-      if (it == state_index.end())
-        return fsm_error(where + ": " + roles[k] + " " + Quote(*names[k]) + " is an unknown state");
-      states[k] = it->second;
-      const StateDef& st = def.states[states[k]];
-      if (st.pose_in != st.pose_out)
-        return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
-                         " loops while the reaction lasts, but it starts in pose " +
-                         Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
-      for (size_t s = 0; s < n; ++s)
-        if (def.states[s].rest &&
-            fsm.next_hop(static_cast<uint16_t>(s), states[k]) == BehaviourFsm::kNone)
+  Status add_reactions() {
+    for (size_t r = 0; r < def.reactions.size(); ++r) {
+      const ReactionDef& re = def.reactions[r];
+      if (re.event.empty())
+        return fsm_error("reaction " + std::to_string(r) + ": the event is empty");
+      const std::string where = "reaction " + Quote(re.event);
+      if (fsm.find_reaction(re.event) != BehaviourFsm::kNone)
+        return fsm_error(where + " is defined twice");
+      if (!std::isfinite(re.decay_s) || re.decay_s <= 0.0f)
+        return fsm_error(where + ": decay " + format_seconds(re.decay_s) + " must be > 0");
+      uint16_t states[2] = {BehaviourFsm::kNone, BehaviourFsm::kNone};
+      const std::string* names[2] = {&re.supporters_state, &re.opponents_state};
+      const char* roles[2] = {"supporters' state", "opponents' state"};
+      for (int k = 0; k < 2; ++k) {
+        if (k == 1 && names[k]->empty()) break;
+        auto it = state_index.find(*names[k]);
+        if (it == state_index.end())
+          return fsm_error(where + ": " + roles[k] + " " + Quote(*names[k]) +
+                           " is an unknown state");
+        states[k] = it->second;
+        const StateDef& st = def.states[states[k]];
+        if (st.pose_in != st.pose_out)
           return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
-                           " cannot be reached from rest state " + Quote(def.states[s].name));
+                           " loops while the reaction lasts, but it starts in pose " +
+                           Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+        for (size_t s = 0; s < n; ++s)
+          if (def.states[s].rest &&
+              fsm.next_hop(static_cast<uint16_t>(s), states[k]) == BehaviourFsm::kNone)
+            return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
+                             " cannot be reached from rest state " + Quote(def.states[s].name));
+      }
+      fsm.reaction_events_.push_back(re.event);
+      fsm.reaction_supporters_.push_back(states[0]);
+      fsm.reaction_opponents_.push_back(states[1]);
+      fsm.reaction_decay_.push_back(re.decay_s);
     }
-    fsm.reaction_events_.push_back(re.event);
-    fsm.reaction_supporters_.push_back(states[0]);
-    fsm.reaction_opponents_.push_back(states[1]);
-    fsm.reaction_decay_.push_back(re.decay_s);
+    return Status();
   }
 
-  out = std::move(fsm);
-  return Status();
+  const BehaviourFsmDef& def;
+  const size_t n;
+  BehaviourFsm fsm;
+  std::map<std::string, uint16_t> state_index;
+  std::map<std::string, uint16_t> pose_index;
+  std::vector<std::vector<uint16_t>> adjacency;  // per state, in definition order
+  std::vector<std::vector<std::pair<uint16_t, double>>> idle;
+};
+
+Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
+  return FsmCompiler(def).compile(out);
 }
 
 BehaviourFsmDef default_stadium_fsm() {

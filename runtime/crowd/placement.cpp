@@ -81,10 +81,7 @@ double closest_pair_distance(const std::vector<dvec2>& points, double cell,
   return best;
 }
 
-}  // namespace
-
-Status place_crowd(const PlacementOptions& o, Placement& result) {
-  // Options.
+Status check_options(const PlacementOptions& o) {
   if (o.people < 0 || o.people > kMaxPeople)
     return bad_option("people = " + std::to_string(o.people) + " must be in [0, " +
                       std::to_string(kMaxPeople) + "]");
@@ -102,66 +99,60 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
     return bad_option("move_tolerance = " + Num(o.move_tolerance) + " must be > 0");
   if (const std::string why = detail::check_simple_polygon(o.region); !why.empty())
     return bad_option("region " + why);
+  return Status();
+}
 
-  std::vector<dvec2> region = o.region;
-  if (detail::signed_area(region) < 0.0) std::reverse(region.begin(), region.end());
-  const double area = detail::signed_area(region);
-  const double d = o.min_distance_m;
-  const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
-  if (area < packing)
-    return Status(StatusCode::kInfeasible,
-                  "placement: the region's " + Num(area) + " m² cannot hold " +
-                      std::to_string(o.people) + " people " + Num(d) +
-                      " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
+// note: the diagram is solved in a frame centred on the region with unit area; far-from-origin
+// and tiny or huge regions then behave the same.
+struct UnitFrame {
+  dvec2 centre{0.0};
+  double scale = 1.0;         // metres per local unit
+  std::vector<dvec2> region;  // the region in local units
+  dvec2 lo{0.0}, hi{0.0};     // its bounding box
+};
 
-  Placement out;
-  out.backend = detail::power_backend_name();
-  if (o.people == 0) {
-    result = std::move(out);
-    return Status();
-  }
-
-  // Groups and their capacities (paper eq. 7: patch area ∝ people in it).
-  out.group_size = draw_group_sizes(o.groups, o.people, o.seed);
-  const size_t groups = out.group_size.size();
-  std::vector<double> capacity(groups);  // local units: the region has area 1
-  for (size_t g = 0; g < groups; ++g)
-    capacity[g] = static_cast<double>(out.group_size[g]) / static_cast<double>(o.people);
-
-  // note: work in a frame centred on the region with unit area; far-from-origin and tiny or
-  // huge regions then behave the same.
+UnitFrame unit_frame(const std::vector<dvec2>& region, double area) {
   dvec2 lo = region[0], hi = region[0];
   for (const dvec2& p : region) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const dvec2 centre = 0.5 * (lo + hi);
-  const double scale = std::sqrt(area);
-  std::vector<dvec2> local(region.size());
-  for (size_t k = 0; k < region.size(); ++k) local[k] = (region[k] - centre) / scale;
-  const dvec2 llo = (lo - centre) / scale, lhi = (hi - centre) / scale;
+  UnitFrame f;
+  f.centre = 0.5 * (lo + hi);
+  f.scale = std::sqrt(area);
+  f.region.resize(region.size());
+  for (size_t k = 0; k < region.size(); ++k) f.region[k] = (region[k] - f.centre) / f.scale;
+  f.lo = (lo - f.centre) / f.scale;
+  f.hi = (hi - f.centre) / f.scale;
+  return f;
+}
 
-  detail::Rng rng(o.seed, detail::kStreamPlacement);
-  std::vector<dvec2> sites;
+// One starting site per group, drawn uniformly inside the region.
+Status sample_sites(const UnitFrame& f, size_t groups, uint64_t seed, std::vector<dvec2>& sites) {
+  detail::Rng rng(seed, detail::kStreamPlacement);
   sites.reserve(groups);
   const uint64_t max_attempts = 1000 * static_cast<uint64_t>(groups) + 100000;
   for (uint64_t attempt = 0; sites.size() < groups; ++attempt) {
     if (attempt >= max_attempts)
       return Status(StatusCode::kInfeasible,
                     "placement: could not sample starting points inside the region");
-    const dvec2 p(rng.Range(llo.x, lhi.x), rng.Range(llo.y, lhi.y));
-    if (detail::Inside(local, p)) sites.push_back(p);
+    const dvec2 p(rng.Range(f.lo.x, f.hi.x), rng.Range(f.lo.y, f.hi.y));
+    if (detail::Inside(f.region, p)) sites.push_back(p);
   }
+  return Status();
+}
 
-  // Lloyd iterations on the capacity-constrained power diagram.
-  std::vector<double> weights(groups, 0.0);
-  detail::Cells cells;
+// Lloyd iterations on the capacity-constrained power diagram, then the final cells.
+Status relax(const PlacementOptions& o, const UnitFrame& f, const std::vector<double>& capacity,
+             std::vector<dvec2>& sites, std::vector<double>& weights, detail::Cells& cells,
+             Placement& out) {
+  const size_t groups = sites.size();
   std::string error;
   const double spacing = std::sqrt(1.0 / static_cast<double>(groups));
   double bound = 0.0;  // Σ v²/(2π): no patch of area v has a smaller second moment (a disc)
   for (double v : capacity) bound += v * v / (2.0 * kPi);
-  const double to_m4 = scale * scale * scale * scale;
+  const double to_m4 = f.scale * f.scale * f.scale * f.scale;
   double capacity_norm = 0.0;
   for (double v : capacity) capacity_norm += v * v;
   for (int it = 0; it < o.max_iterations; ++it) {
-    if (!detail::solve_weights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+    if (!detail::solve_weights(f.region, sites, capacity, o.weight_iterations, o.capacity_tolerance,
                                &weights, &cells, &error))
       return Status(StatusCode::kInternal, "placement: " + error);
     double energy = 0.0, cap_error = 0.0, max_move = 0.0;
@@ -169,7 +160,7 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       energy += cells.moment[g];
       cap_error += (cells.area[g] - capacity[g]) * (cells.area[g] - capacity[g]);
       if (cells.area[g] <= 0.0) continue;
-      const dvec2 target = into_region(local, cells.centroid[g], sites[g], 1e-6 * spacing);
+      const dvec2 target = into_region(f.region, cells.centroid[g], sites[g], 1e-6 * spacing);
       max_move = std::max(max_move, glm::length(target - sites[g]));
       sites[g] = target;
     }
@@ -182,31 +173,20 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       break;
     }
   }
-  if (!detail::solve_weights(local, sites, capacity, o.weight_iterations, o.capacity_tolerance,
+  if (!detail::solve_weights(f.region, sites, capacity, o.weight_iterations, o.capacity_tolerance,
                              &weights, &cells, &error) ||
-      !detail::compute_cells(local, sites, weights, true, &cells, &error))
+      !detail::compute_cells(f.region, sites, weights, true, &cells, &error))
     return Status(StatusCode::kInternal, "placement: " + error);
   out.energy_bound = bound * to_m4;
+  return Status();
+}
 
-  // Back to metres.
-  out.sites.resize(groups);
-  out.weights.resize(groups);
-  out.capacity.resize(groups);
-  out.area.resize(groups);
-  out.patches.resize(groups);
-  for (size_t g = 0; g < groups; ++g) {
-    out.sites[g] = centre + sites[g] * scale;
-    out.weights[g] = weights[g] * scale * scale;
-    out.capacity[g] = capacity[g] * area;
-    out.area[g] = cells.area[g] * area;
-    for (const dvec2& p : cells.polygons[g]) out.patches[g].push_back(centre + p * scale);
-  }
-
-  // Formations: a regular polygon of side group_spacing_m around the site, members facing
-  // its centre, turned so the member nearest the patch border is as far inside as possible.
+// Formations: a regular polygon of side group_spacing_m around the site, members facing
+// its centre, turned so the member nearest the patch border is as far inside as possible.
+void place_formations(const PlacementOptions& o, const std::vector<dvec2>& region, Placement& out) {
   detail::Rng turn_rng(o.seed, detail::kStreamFormation);
   const double s = o.group_spacing_m;
-  for (size_t g = 0; g < groups; ++g) {
+  for (size_t g = 0; g < out.group_size.size(); ++g) {
     const int n = out.group_size[g];
     const dvec2 c = out.sites[g];
     const std::vector<dvec2>& patch = out.patches[g].empty() ? region : out.patches[g];
@@ -241,8 +221,12 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
       if (detail::signed_distance(patch, p) < 0.0) ++out.members_outside_patch;
     }
   }
+}
 
-  // Keep everyone inside the region, then push apart any pair closer than the minimum.
+// Keeps everyone inside the region, then pushes apart any pair closer than the minimum.
+Status separate(const PlacementOptions& o, const std::vector<dvec2>& region, double area,
+                Placement& out) {
+  const double d = o.min_distance_m;
   const dvec2 region_centroid = detail::Centroid(region);
   for (size_t i = 0; i < out.positions.size(); ++i)
     out.positions[i] = into_region(region, out.positions[i], out.sites[out.group_of[i]], 1e-6 * d);
@@ -250,7 +234,7 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
   for (int round = 0;; ++round) {
     std::vector<std::pair<uint32_t, uint32_t>> close;
     closest_pair_distance(out.positions, 2.0 * d, &close, goal);
-    if (close.empty()) break;
+    if (close.empty()) return Status();
     if (round == kRepairRounds) {
       const auto [a, b] = close.front();
       return Status(StatusCode::kInfeasible,
@@ -276,10 +260,64 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
     }
     for (dvec2& p : out.positions) p = into_region(region, p, region_centroid, 1e-6 * d);
   }
+}
+
+}  // namespace
+
+Status place_crowd(const PlacementOptions& o, Placement& result) {
+  if (Status s = check_options(o); !s.ok()) return s;
+  std::vector<dvec2> region = o.region;
+  if (detail::signed_area(region) < 0.0) std::reverse(region.begin(), region.end());
+  const double area = detail::signed_area(region);
+  const double d = o.min_distance_m;
+  const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
+  if (area < packing)
+    return Status(StatusCode::kInfeasible,
+                  "placement: the region's " + Num(area) + " m² cannot hold " +
+                      std::to_string(o.people) + " people " + Num(d) +
+                      " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
+
+  Placement out;
+  out.backend = detail::power_backend_name();
+  if (o.people == 0) {
+    result = std::move(out);
+    return Status();
+  }
+
+  // Groups and their capacities (paper eq. 7: patch area ∝ people in it).
+  out.group_size = draw_group_sizes(o.groups, o.people, o.seed);
+  const size_t groups = out.group_size.size();
+  std::vector<double> capacity(groups);  // local units: the region has area 1
+  for (size_t g = 0; g < groups; ++g)
+    capacity[g] = static_cast<double>(out.group_size[g]) / static_cast<double>(o.people);
+
+  const UnitFrame f = unit_frame(region, area);
+  std::vector<dvec2> sites;
+  if (Status s = sample_sites(f, groups, o.seed, sites); !s.ok()) return s;
+  std::vector<double> weights(groups, 0.0);
+  detail::Cells cells;
+  if (Status s = relax(o, f, capacity, sites, weights, cells, out); !s.ok()) return s;
+
+  // Back to metres.
+  out.sites.resize(groups);
+  out.weights.resize(groups);
+  out.capacity.resize(groups);
+  out.area.resize(groups);
+  out.patches.resize(groups);
+  for (size_t g = 0; g < groups; ++g) {
+    out.sites[g] = f.centre + sites[g] * f.scale;
+    out.weights[g] = weights[g] * f.scale * f.scale;
+    out.capacity[g] = capacity[g] * area;
+    out.area[g] = cells.area[g] * area;
+    for (const dvec2& p : cells.polygons[g]) out.patches[g].push_back(f.centre + p * f.scale);
+  }
+  place_formations(o, region, out);
+  if (Status s = separate(o, region, area, out); !s.ok()) return s;
+  const double spacing = std::sqrt(1.0 / static_cast<double>(groups));
   out.min_pair_distance =
       out.positions.size() < 2
           ? 0.0
-          : closest_pair_distance(out.positions, std::max(2.0 * d, scale * spacing));
+          : closest_pair_distance(out.positions, std::max(2.0 * d, f.scale * spacing));
   result = std::move(out);
   return Status();
 }

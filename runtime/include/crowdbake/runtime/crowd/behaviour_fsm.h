@@ -64,6 +64,8 @@ struct BehaviourFsmDef {
 };
 
 // The compiled FSM: move-only data built by build_behaviour_fsm(), read-only afterwards.
+class FsmCompiler;
+
 class BehaviourFsm {
  public:
   static constexpr uint16_t kNone = 0xffff;
@@ -109,7 +111,7 @@ class BehaviourFsm {
   float reaction_decay(uint16_t r) const { return reaction_decay_[r]; }
 
  private:
-  friend Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out);
+  friend class FsmCompiler;  // build_behaviour_fsm's steps (behaviour_fsm.cpp)
   enum : uint8_t { kRest = 1, kInterruptible = 2, kContagious = 4 };
 
   std::vector<std::string> state_names_;
