@@ -302,6 +302,139 @@ void check_settings(const BenchRenderSettings& s) {
     throw usage("--pop-frames", "must be in 2..1000");
 }
 
+// One stand of n instances: full resolution (the reference), continuous and discrete LoD at
+// each budget, and error-driven selection at each pixel error.
+void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_t n,
+                   const BenchRenderSettings& s, uint32_t width, uint32_t height,
+                   RenderBenchResult& result) {
+  runtime::Scene scene = load_stand_scene(pack, n, width, height);
+  const runtime::Pack& p = scene.types[0].pack;
+  result.pack_vertices = p.max_vertices();
+  result.pack_triangles = p.counts().triangles;
+  auto renderer = make_renderer(context, scene, s.shadows, s.msaa, "bench stand");
+  std::vector<RenderBenchRow> rows;
+
+  // Full resolution: the reference. Huge frames are timed once (the warm-up of the
+  // shaders happened on the LoD frames of a smaller size, or does not matter next to it).
+  const uint64_t full_tris = uint64_t{n} * result.pack_triangles;
+  const bool single = full_tris > s.full_single_frame_triangles;
+  RenderBenchRow full;
+  const RgbaImage reference = measure(context, *renderer, scene, runtime::LodMode::kFull, 0,
+                                      single ? 0 : 1, single ? 1 : s.frames, full);
+  if (single)
+    full.note = "timed on 1 frame, no warm-up (about " + std::to_string(full_tris / 1000000) +
+                " M triangles)";
+  const RgbaImage reference_4x = shrink4(reference);
+  full.psnr = std::numeric_limits<double>::infinity();
+  full.psnr_4x = full.psnr;
+  full.mean_abs_diff = 0;
+  full.speedup = 1;
+  rows.push_back(full);
+  print_render_rows({full}, n == s.sizes.front());
+
+  for (runtime::LodMode mode : {runtime::LodMode::kContinuous, runtime::LodMode::kDiscrete})
+    for (uint32_t budget : s.budgets) {
+      if (uint64_t{budget} >= uint64_t{n} * result.pack_vertices) continue;  // = full
+      RenderBenchRow row;
+      const RgbaImage image = measure(context, *renderer, scene, mode, budget, 1, s.frames, row);
+      score(row, image, reference, reference_4x, full);
+      rows.push_back(row);
+      print_render_rows({row}, false);
+    }
+  // Error-driven selection (the default mode) at a few pixel errors, the default cap N.
+  for (float pixels : s.pixel_errors) {
+    RenderBenchRow row;
+    scene.lod.max_pixel_error = pixels;
+    const RgbaImage image = measure(context, *renderer, scene, runtime::LodMode::kError,
+                                    kDefaultErrorCap, 1, s.frames, row);
+    char note[64];
+    std::snprintf(note, sizeof note, "max_pixel_error %g px, step %u", pixels, row.error_step);
+    row.note = note + (row.note.empty() ? "" : "; " + row.note);
+    score(row, image, reference, reference_4x, full);
+    rows.push_back(row);
+    print_render_rows({row}, false);
+  }
+  result.rows.insert(result.rows.end(), rows.begin(), rows.end());
+}
+
+// The popping dolly: the same camera path at full resolution, continuous LoD, discrete LoD at
+// equal triangles and at the same budget, and continuous LoD with geomorphs.
+void measure_popping(gpu::VulkanContext& context, const std::string& pack,
+                     const BenchRenderSettings& s, uint32_t width, uint32_t height,
+                     RenderBenchResult& result) {
+  runtime::Scene scene = load_stand_scene(pack, s.pop_size, width, height);
+  Dolly dolly;
+  dolly.cameras = dolly_cameras(scene, s.pop_size, s.pop_frames);
+  const uint32_t budget =
+      s.pop_budget
+          ? s.pop_budget
+          : std::max<uint32_t>(
+                1, static_cast<uint32_t>(0.25 * s.pop_size * scene.types[0].pack.max_vertices()));
+  scene.lod.mode = runtime::LodMode::kContinuous;
+  scene.lod.budget = budget;
+  const double target = mean_selected_triangles(scene, dolly);
+  double achieved = 0;
+  const uint32_t equal = discrete_budget_for(scene, dolly, target, budget, achieved);
+  std::printf(
+      "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
+      "reference); discrete N = %u selects %.0f\n",
+      budget, target, equal, achieved);
+  auto renderer = make_renderer(context, scene, s.shadows, s.msaa, "bench dolly");
+  result.pop_instances = s.pop_size;
+  result.pop_frames = s.pop_frames;
+  const PopSequence full =
+      render_sequence(context, *renderer, scene, runtime::LodMode::kFull, 0, dolly, s.frames_dir);
+  const PopSequence cont = render_sequence(context, *renderer, scene, runtime::LodMode::kContinuous,
+                                           budget, dolly, s.frames_dir);
+  const PopSequence disc_eq = render_sequence(
+      context, *renderer, scene, runtime::LodMode::kDiscrete, equal, dolly, s.frames_dir);
+  const PopSequence disc_same =
+      render_sequence(context, *renderer, scene, runtime::LodMode::kDiscrete, budget, dolly, "");
+  // note: the same continuous selection with geomorphs (off by default): what they change.
+  const float geomorph = scene.lod.geomorph;
+  scene.lod.geomorph = s.geomorph;
+  const PopSequence cont_morph =
+      render_sequence(context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, "");
+  scene.lod.geomorph = geomorph;
+  result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
+  result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
+  result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
+  result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
+  char morph_why[32];
+  std::snprintf(morph_why, sizeof morph_why, "geomorphs %g", s.geomorph);
+  result.pops.push_back(pop_row(cont_morph, full, "continuous", budget, morph_why));
+  print_pop_rows(result);
+}
+
+// The output folders exist (and the plot can be written) before any measurement.
+void prepare_outputs(const BenchRenderSettings& s) {
+  std::error_code ec;
+  fs::create_directories(s.out, ec);
+  if (ec)
+    throw Error(Error::Kind::kOutput, s.out, "cannot create the output folder: " + ec.message());
+  if (!s.plot.empty()) check_output_file(s.plot);
+  if (!s.frames_dir.empty()) {
+    fs::create_directories(s.frames_dir, ec);
+    if (ec)
+      throw Error(Error::Kind::kOutput, s.frames_dir, "cannot create the folder: " + ec.message());
+  }
+}
+
+// note: each part writes its own files, so a --pop-only run keeps the table's and the plot
+// combines whatever is there.
+void write_results(const BenchRenderSettings& s, const RenderBenchResult& result) {
+  const fs::path out(s.out);
+  if (!s.pop_only) {
+    write_render_csv(result, (out / "render-bench.csv").string());
+    write_render_plot_data(result, (out / "render-bench.dat").string());
+  }
+  if (s.pop_size > 0) {
+    write_pop_csv(result, (out / "render-popping.csv").string());
+    write_pop_plot_data(result, (out / "render-popping.dat").string());
+  }
+  draw_plot(s, (out / "render-bench.dat").string(), (out / "render-popping.dat").string(), result);
+}
+
 }  // namespace
 
 int run_bench_render(const BenchRenderSettings& settings) {
@@ -320,17 +453,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
   uint32_t width = 0, height = 0;
   parse_resolution(s.resolution, width, height);
   const auto start = std::chrono::steady_clock::now();
-
-  std::error_code ec;
-  fs::create_directories(s.out, ec);
-  if (ec)
-    throw Error(Error::Kind::kOutput, s.out, "cannot create the output folder: " + ec.message());
-  if (!s.plot.empty()) check_output_file(s.plot);
-  if (!s.frames_dir.empty()) {
-    fs::create_directories(s.frames_dir, ec);
-    if (ec)
-      throw Error(Error::Kind::kOutput, s.frames_dir, "cannot create the folder: " + ec.message());
-  }
+  prepare_outputs(s);
   const fs::path work =
       fs::temp_directory_path() / ("crowdbake-bench-render-" + std::to_string(getpid()));
   fs::create_directories(work);
@@ -360,116 +483,12 @@ int run_bench_render(const BenchRenderSettings& settings) {
       "warm-up, PSNR and mean |d| (8-bit RGB) against full resolution\n",
       width, height, result.device.c_str(), s.shadows ? "on" : "off", s.frames);
 
-  for (uint32_t n : s.pop_only ? std::vector<uint32_t>{} : s.sizes) {
-    runtime::Scene scene = load_stand_scene(pack, n, width, height);
-    const runtime::Pack& p = scene.types[0].pack;
-    result.pack_vertices = p.max_vertices();
-    result.pack_triangles = p.counts().triangles;
-    auto renderer = make_renderer(*context, scene, s.shadows, s.msaa, "bench stand");
-    std::vector<RenderBenchRow> rows;
-
-    // Full resolution: the reference. Huge frames are timed once (the warm-up of the
-    // shaders happened on the LoD frames of a smaller size, or does not matter next to it).
-    const uint64_t full_tris = uint64_t{n} * result.pack_triangles;
-    const bool single = full_tris > s.full_single_frame_triangles;
-    RenderBenchRow full;
-    const RgbaImage reference = measure(*context, *renderer, scene, runtime::LodMode::kFull, 0,
-                                        single ? 0 : 1, single ? 1 : s.frames, full);
-    if (single)
-      full.note = "timed on 1 frame, no warm-up (about " + std::to_string(full_tris / 1000000) +
-                  " M triangles)";
-    const RgbaImage reference_4x = shrink4(reference);
-    full.psnr = std::numeric_limits<double>::infinity();
-    full.psnr_4x = full.psnr;
-    full.mean_abs_diff = 0;
-    full.speedup = 1;
-    rows.push_back(full);
-    print_render_rows({full}, n == s.sizes.front());
-
-    for (runtime::LodMode mode : {runtime::LodMode::kContinuous, runtime::LodMode::kDiscrete})
-      for (uint32_t budget : s.budgets) {
-        if (uint64_t{budget} >= uint64_t{n} * result.pack_vertices) continue;  // = full
-        RenderBenchRow row;
-        const RgbaImage image = measure(*context, *renderer, scene, mode, budget, 1, s.frames, row);
-        score(row, image, reference, reference_4x, full);
-        rows.push_back(row);
-        print_render_rows({row}, false);
-      }
-    // Error-driven selection (the default mode) at a few pixel errors, the default cap N.
-    for (float pixels : s.pixel_errors) {
-      RenderBenchRow row;
-      scene.lod.max_pixel_error = pixels;
-      const RgbaImage image = measure(*context, *renderer, scene, runtime::LodMode::kError,
-                                      kDefaultErrorCap, 1, s.frames, row);
-      char note[64];
-      std::snprintf(note, sizeof note, "max_pixel_error %g px, step %u", pixels, row.error_step);
-      row.note = note + (row.note.empty() ? "" : "; " + row.note);
-      score(row, image, reference, reference_4x, full);
-      rows.push_back(row);
-      print_render_rows({row}, false);
-    }
-    result.rows.insert(result.rows.end(), rows.begin(), rows.end());
-  }
-
-  if (s.pop_size > 0) {
-    runtime::Scene scene = load_stand_scene(pack, s.pop_size, width, height);
-    Dolly dolly;
-    dolly.cameras = dolly_cameras(scene, s.pop_size, s.pop_frames);
-    const uint32_t budget =
-        s.pop_budget
-            ? s.pop_budget
-            : std::max<uint32_t>(
-                  1, static_cast<uint32_t>(0.25 * s.pop_size * scene.types[0].pack.max_vertices()));
-    scene.lod.mode = runtime::LodMode::kContinuous;
-    scene.lod.budget = budget;
-    const double target = mean_selected_triangles(scene, dolly);
-    double achieved = 0;
-    const uint32_t equal = discrete_budget_for(scene, dolly, target, budget, achieved);
-    std::printf(
-        "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
-        "reference); discrete N = %u selects %.0f\n",
-        budget, target, equal, achieved);
-    auto renderer = make_renderer(*context, scene, s.shadows, s.msaa, "bench dolly");
-    result.pop_instances = s.pop_size;
-    result.pop_frames = s.pop_frames;
-    const PopSequence full = render_sequence(*context, *renderer, scene, runtime::LodMode::kFull, 0,
-                                             dolly, s.frames_dir);
-    const PopSequence cont = render_sequence(
-        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, s.frames_dir);
-    const PopSequence disc_eq = render_sequence(
-        *context, *renderer, scene, runtime::LodMode::kDiscrete, equal, dolly, s.frames_dir);
-    const PopSequence disc_same =
-        render_sequence(*context, *renderer, scene, runtime::LodMode::kDiscrete, budget, dolly, "");
-    // note: the same continuous selection with geomorphs (off by default): what they change.
-    const float geomorph = scene.lod.geomorph;
-    scene.lod.geomorph = s.geomorph;
-    const PopSequence cont_morph = render_sequence(
-        *context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, "");
-    scene.lod.geomorph = geomorph;
-    result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
-    result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
-    result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
-    result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
-    char morph_why[32];
-    std::snprintf(morph_why, sizeof morph_why, "geomorphs %g", s.geomorph);
-    result.pops.push_back(pop_row(cont_morph, full, "continuous", budget, morph_why));
-    print_pop_rows(result);
-  }
-
+  for (uint32_t n : s.pop_only ? std::vector<uint32_t>{} : s.sizes)
+    measure_stand(*context, pack, n, s, width, height, result);
+  if (s.pop_size > 0) measure_popping(*context, pack, s, width, height, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("\ntotal %.1f s\n", result.seconds);
-  // note: each part writes its own files, so a --pop-only run keeps the table's and the plot
-  // combines whatever is there.
-  const fs::path out(s.out);
-  if (!s.pop_only) {
-    write_render_csv(result, (out / "render-bench.csv").string());
-    write_render_plot_data(result, (out / "render-bench.dat").string());
-  }
-  if (s.pop_size > 0) {
-    write_pop_csv(result, (out / "render-popping.csv").string());
-    write_pop_plot_data(result, (out / "render-popping.dat").string());
-  }
-  draw_plot(s, (out / "render-bench.dat").string(), (out / "render-popping.dat").string(), result);
+  write_results(s, result);
   return 0;
 }
 
