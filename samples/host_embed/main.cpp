@@ -242,24 +242,12 @@ bool create_target(Host& host) {
          vkCreateFence(host.device, &fence, nullptr, &host.fence) == VK_SUCCESS;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The crowd: 3 rows of 5 instances of the pack, cycling through its clips.
+crowdbake::runtime::Status make_crowd(const char* pack_path, crowdbake::runtime::Scene& scene) {
   namespace rt = crowdbake::runtime;
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: host_embed PACK.crowdpack [OUT.ppm]\n");
-    return 2;
-  }
-  Host host;
-  if (int code = create_device(host); code != 0) return code;
-  if (!create_target(host)) return fail("could not create the render target");
-
-  // The crowd: 3 rows of 5 instances of the pack, cycling through its clips.
-  rt::Scene scene;
   rt::Pack pack;
-  if (rt::Status s = rt::Pack::open_file(argv[1], pack, rt::kPackAll); !s) return fail(s.message());
-  if (rt::Status s = rt::add_character_type(scene, "character", std::move(pack)); !s)
-    return fail(s.message());
+  if (rt::Status s = rt::Pack::open_file(pack_path, pack, rt::kPackAll); !s) return s;
+  if (rt::Status s = rt::add_character_type(scene, "character", std::move(pack)); !s) return s;
   const uint32_t clips = static_cast<uint32_t>(scene.types[0].pack.contents().clips.size());
   const auto& partition = scene.types[0].pack.contents().partition;
   for (uint32_t i = 0; i < 15; ++i) {
@@ -277,6 +265,94 @@ int main(int argc, char** argv) {
   scene.camera.target = {0.0f, 0.9f, -1.2f};
   scene.camera.width = kWidth;
   scene.camera.height = kHeight;
+  return {};
+}
+
+const VkClearColorValue kBackground{{0.08f, 0.09f, 0.12f, 1.0f}};
+
+// The host's own picture: a background and a depth buffer at the far plane, left ready for
+// the crowd's passes.
+void record_host_picture(const Host& host, VkCommandBuffer cmd) {
+  // The host's own picture first (here just a background and a depth buffer at the far plane).
+  const VkImageAspectFlags aspects[2] = {VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
+  const VkImageLayout ready[2] = {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  for (int i = 0; i < 2; ++i) {
+    VkImageMemoryBarrier barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    barrier.srcAccessMask = 0;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = host.images[i];
+    barrier.subresourceRange = {aspects[i], 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &barrier);
+  }
+  const VkClearDepthStencilValue far{1.0f, 0};
+  const VkImageSubresourceRange color_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  const VkImageSubresourceRange depth_range{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd, host.images[0], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &kBackground, 1,
+                       &color_range);
+  vkCmdClearDepthStencilImage(cmd, host.images[1], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
+                              &depth_range);
+  for (int i = 0; i < 2; ++i) {
+    VkImageMemoryBarrier barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = i == 0 ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT
+                                   : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    barrier.newLayout = ready[i];
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = host.images[i];
+    barrier.subresourceRange = {aspects[i], 0, 1, 0, 1};
+    vkCmdPipelineBarrier(
+        cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+        0, 0, nullptr, 0, nullptr, 1, &barrier);
+  }
+}
+
+// Pixels that differ from the background, and the picture as a PPM file when `path` is set.
+size_t count_drawn_pixels(const Host& host, const char* path) {
+  // Something was drawn over the host's background, and the background is still there.
+  void* mapped = nullptr;
+  vkMapMemory(host.device, host.memories[2], 0, VK_WHOLE_SIZE, 0, &mapped);
+  const uint8_t* rgba = static_cast<const uint8_t*>(mapped);
+  size_t drawn = 0;
+  for (size_t p = 0; p < size_t{kWidth} * kHeight; ++p)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(rgba[4 * p + c]) - int(std::lround(kBackground.float32[c] * 255.0f))) > 2) {
+        ++drawn;
+        break;
+      }
+  if (path) {
+    std::ofstream out(path, std::ios::binary);
+    out << "P6\n" << kWidth << " " << kHeight << "\n255\n";
+    for (size_t p = 0; p < size_t{kWidth} * kHeight; ++p)
+      out.write(reinterpret_cast<const char*>(rgba + 4 * p), 3);
+  }
+  vkUnmapMemory(host.device, host.memories[2]);
+  return drawn;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace rt = crowdbake::runtime;
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: host_embed PACK.crowdpack [OUT.ppm]\n");
+    return 2;
+  }
+  Host host;
+  if (int code = create_device(host); code != 0) return code;
+  if (!create_target(host)) return fail("could not create the render target");
+
+  rt::Scene scene;
+  if (rt::Status s = make_crowd(argv[1], scene); !s) return fail(s.message());
 
   // crowdbake on the host's device.
   rt::gpu::HostDevice device;
@@ -306,48 +382,7 @@ int main(int argc, char** argv) {
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd, &begin);
-  // The host's own picture first (here just a background and a depth buffer at the far plane).
-  const VkImageAspectFlags aspects[2] = {VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
-  const VkImageLayout ready[2] = {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  for (int i = 0; i < 2; ++i) {
-    VkImageMemoryBarrier barrier{};
-    barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-    barrier.srcAccessMask = 0;
-    barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = host.images[i];
-    barrier.subresourceRange = {aspects[i], 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                         0, nullptr, 0, nullptr, 1, &barrier);
-  }
-  const VkClearColorValue background{{0.08f, 0.09f, 0.12f, 1.0f}};
-  const VkClearDepthStencilValue far{1.0f, 0};
-  const VkImageSubresourceRange color_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  const VkImageSubresourceRange depth_range{VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, host.images[0], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &background, 1,
-                       &color_range);
-  vkCmdClearDepthStencilImage(cmd, host.images[1], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &far, 1,
-                              &depth_range);
-  for (int i = 0; i < 2; ++i) {
-    VkImageMemoryBarrier barrier{};
-    barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = i == 0 ? VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT
-                                   : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    barrier.newLayout = ready[i];
-    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = host.images[i];
-    barrier.subresourceRange = {aspects[i], 0, 1, 0, 1};
-    vkCmdPipelineBarrier(
-        cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
-        0, 0, nullptr, 0, nullptr, 1, &barrier);
-  }
+  record_host_picture(host, cmd);
   // Then the crowd: compute and skinning passes, shadow and colour passes over the picture.
   if (rt::Status s = renderer->prepare(scene, 1.0f, cmd); !s) return fail(s.message());
   rt::gpu::HostTarget target;
@@ -372,24 +407,7 @@ int main(int argc, char** argv) {
       vkWaitForFences(host.device, 1, &host.fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS)
     return fail("submit failed");
 
-  // Something was drawn over the host's background, and the background is still there.
-  void* mapped = nullptr;
-  vkMapMemory(host.device, host.memories[2], 0, VK_WHOLE_SIZE, 0, &mapped);
-  const uint8_t* rgba = static_cast<const uint8_t*>(mapped);
-  size_t drawn = 0;
-  for (size_t p = 0; p < size_t{kWidth} * kHeight; ++p)
-    for (int c = 0; c < 3; ++c)
-      if (std::abs(int(rgba[4 * p + c]) - int(std::lround(background.float32[c] * 255.0f))) > 2) {
-        ++drawn;
-        break;
-      }
-  if (argc > 2) {
-    std::ofstream out(argv[2], std::ios::binary);
-    out << "P6\n" << kWidth << " " << kHeight << "\n255\n";
-    for (size_t p = 0; p < size_t{kWidth} * kHeight; ++p)
-      out.write(reinterpret_cast<const char*>(rgba + 4 * p), 3);
-  }
-  vkUnmapMemory(host.device, host.memories[2]);
+  const size_t drawn = count_drawn_pixels(host, argc > 2 ? argv[2] : nullptr);
   renderer.reset();
   context.reset();
   std::printf("host_embed: %zu of %u pixels drawn, %u validation errors\n", drawn, kWidth * kHeight,
