@@ -125,38 +125,7 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   // Per-type static data, concatenated: triangles, collapse_to, triangle_count, group_start.
   std::vector<uint32_t> mesh;
   uint64_t full_corners = 0;
-  for (uint32_t t = 0; t < c->type_count_; ++t) {
-    const Pack& pack = scene.types[t].pack;
-    if (!pack.has(kPackGeometry))
-      return {StatusCode::kNotLoaded,
-              "CrowdCompute: " + pack.source_name() + ": geometry is not loaded"};
-    const ProgressiveView v = progressive_view(pack.contents());
-    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
-    mesh.insert(mesh.end(), v.triangles.begin(), v.triangles.end());
-    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
-    mesh.insert(mesh.end(), v.collapse_to.begin(), v.collapse_to.end());
-    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
-    mesh.insert(mesh.end(), v.triangle_count.begin(), v.triangle_count.end());
-    c->type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
-    mesh.insert(mesh.end(), v.group_start.begin(), v.group_start.end());
-    // note: then the level errors: vertex counts, then max errors as float bits.
-    const PackLevelErrors& errors = pack.contents().level_errors;
-    c->error_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
-    c->error_counts_.push_back(static_cast<uint32_t>(errors.vertices.size()));
-    mesh.insert(mesh.end(), errors.vertices.begin(), errors.vertices.end());
-    for (float e : errors.max_error) {
-      uint32_t bits;
-      std::memcpy(&bits, &e, 4);
-      mesh.push_back(bits);
-    }
-    c->progressive_.push_back(v.collapse_to.empty() ? 0 : 1);
-    c->vertex_counts_.push_back(v.vertex_count);
-    c->triangle_counts_.push_back(static_cast<uint32_t>(v.triangles.size() / 3));
-    c->full_triangles_.push_back(v.collapse_to.empty() || v.triangle_count.empty()
-                                     ? static_cast<uint32_t>(v.triangles.size() / 3)
-                                     : v.triangle_count[v.vertex_count]);
-    full_corners = std::max<uint64_t>(full_corners, v.triangles.size());
-  }
+  if (Status st = c->gather_types(scene, mesh, full_corners); !st.ok()) return st;
   full_corners *= c->max_instances_;
   const uint64_t limit =
       std::min<uint64_t>(context.limits().maxStorageBufferRange / 8, uint64_t{kMaxGroups} * 256);
@@ -166,15 +135,61 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
   if (options.instanced_static_levels) capacity = 0;
   c->corner_capacity_ = static_cast<uint32_t>(capacity);
 
-  const uint32_t n = std::max(c->max_instances_, 1u);
-  const uint32_t types = std::max(c->type_count_, 1u);
   c->instanced_levels_ = options.instanced_static_levels;
   c->scan_keys_per_group_option_ = options.scan_keys_per_group;
   if (Status st = c->layout_level_cache(context, options); !st.ok()) return st;
+  if (Status st = c->create_buffers(context, mesh); !st.ok()) return st;
+  if (Status st = c->clear_level_cache(context); !st.ok()) return st;
+  if (Status st = TimestampQueries::create(context, kTimestampCount, c->queries_); !st.ok())
+    return st;
+  out = std::move(c);
+  return {};
+}
+
+Status CrowdCompute::gather_types(const Scene& scene, std::vector<uint32_t>& mesh,
+                                  uint64_t& full_corners) {
+  for (uint32_t t = 0; t < type_count_; ++t) {
+    const Pack& pack = scene.types[t].pack;
+    if (!pack.has(kPackGeometry))
+      return {StatusCode::kNotLoaded,
+              "CrowdCompute: " + pack.source_name() + ": geometry is not loaded"};
+    const ProgressiveView v = progressive_view(pack.contents());
+    type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.triangles.begin(), v.triangles.end());
+    type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.collapse_to.begin(), v.collapse_to.end());
+    type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.triangle_count.begin(), v.triangle_count.end());
+    type_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    mesh.insert(mesh.end(), v.group_start.begin(), v.group_start.end());
+    // note: then the level errors: vertex counts, then max errors as float bits.
+    const PackLevelErrors& errors = pack.contents().level_errors;
+    error_offsets_.push_back(static_cast<uint32_t>(mesh.size()));
+    error_counts_.push_back(static_cast<uint32_t>(errors.vertices.size()));
+    mesh.insert(mesh.end(), errors.vertices.begin(), errors.vertices.end());
+    for (float e : errors.max_error) {
+      uint32_t bits;
+      std::memcpy(&bits, &e, 4);
+      mesh.push_back(bits);
+    }
+    progressive_.push_back(v.collapse_to.empty() ? 0 : 1);
+    vertex_counts_.push_back(v.vertex_count);
+    triangle_counts_.push_back(static_cast<uint32_t>(v.triangles.size() / 3));
+    full_triangles_.push_back(v.collapse_to.empty() || v.triangle_count.empty()
+                                  ? static_cast<uint32_t>(v.triangles.size() / 3)
+                                  : v.triangle_count[v.vertex_count]);
+    full_corners = std::max<uint64_t>(full_corners, v.triangles.size());
+  }
+  return {};
+}
+
+Status CrowdCompute::create_buffers(VulkanContext& context, const std::vector<uint32_t>& mesh) {
+  const uint32_t n = std::max(max_instances_, 1u);
+  const uint32_t types = std::max(type_count_, 1u);
   // note: scan keys are types, or (type, level) slots when static levels are drawn instanced.
-  const uint32_t slots = c->instanced_levels_ ? types * kMaxDiscreteLevels : 1;
-  const uint32_t keys = c->instanced_levels_ ? slots : types;
-  const uint32_t groups = std::max(groups_for(c->max_instances_), 1u);
+  const uint32_t slots = instanced_levels_ ? types * kMaxDiscreteLevels : 1;
+  const uint32_t keys = instanced_levels_ ? slots : types;
+  const uint32_t groups = std::max(groups_for(max_instances_), 1u);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   struct Spec {
@@ -184,42 +199,42 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     MemoryKind memory;
   };
   const Spec specs[] = {
-      {&c->params_, sizeof(Params), storage, MemoryKind::kHostVisible},
-      {&c->instances_, VkDeviceSize{n} * sizeof(GpuInstance),
+      {&params_, sizeof(Params), storage, MemoryKind::kHostVisible},
+      {&instances_, VkDeviceSize{n} * sizeof(GpuInstance),
        storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kHostVisible},
-      {&c->types_, VkDeviceSize{types} * sizeof(TypeData), storage, MemoryKind::kHostVisible},
-      {&c->mesh_, VkDeviceSize{std::max<size_t>(mesh.size(), 1)} * 4, storage,
+      {&types_, VkDeviceSize{types} * sizeof(TypeData), storage, MemoryKind::kHostVisible},
+      {&mesh_, VkDeviceSize{std::max<size_t>(mesh.size(), 1)} * 4, storage,
        MemoryKind::kDeviceLocal},
-      {&c->weights_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
-      {&c->partials_, VkDeviceSize{groups} * 8, storage, MemoryKind::kDeviceLocal},
-      {&c->lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
-      {&c->group_sums_, VkDeviceSize{groups} * keys * 16, storage, MemoryKind::kDeviceLocal},
-      {&c->ranges_, VkDeviceSize{keys} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
-      {&c->draw_list_, VkDeviceSize{n} * 32, storage, MemoryKind::kDeviceLocal},
-      {&c->corners_, VkDeviceSize{std::max(c->corner_capacity_, 1u)} * 8,
+      {&weights_, VkDeviceSize{n} * 8, storage, MemoryKind::kDeviceLocal},
+      {&partials_, VkDeviceSize{groups} * 8, storage, MemoryKind::kDeviceLocal},
+      {&lods_, VkDeviceSize{n} * sizeof(InstanceLod), storage, MemoryKind::kDeviceLocal},
+      {&group_sums_, VkDeviceSize{groups} * keys * 16, storage, MemoryKind::kDeviceLocal},
+      {&ranges_, VkDeviceSize{keys} * sizeof(TypeRange), storage, MemoryKind::kDeviceLocal},
+      {&draw_list_, VkDeviceSize{n} * 32, storage, MemoryKind::kDeviceLocal},
+      {&corners_, VkDeviceSize{std::max(corner_capacity_, 1u)} * 8,
        storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
-      {&c->draw_args_, VkDeviceSize{types} * sizeof(VkDrawIndirectCommand), indirect,
+      {&draw_args_, VkDeviceSize{types} * sizeof(VkDrawIndirectCommand), indirect,
        MemoryKind::kDeviceLocal},
-      {&c->dispatch_args_, 16, indirect, MemoryKind::kDeviceLocal},
-      {&c->stats_, kStatsBytes, storage, MemoryKind::kDeviceLocal},
+      {&dispatch_args_, 16, indirect, MemoryKind::kDeviceLocal},
+      {&stats_, kStatsBytes, storage, MemoryKind::kDeviceLocal},
       // note: fitting instances hold at most capacity / kChunk + one partial chunk each.
-      {&c->chunk_table_, (VkDeviceSize{c->corner_capacity_} / kChunk + n) * 4, storage,
+      {&chunk_table_, (VkDeviceSize{corner_capacity_} / kChunk + n) * 4, storage,
        MemoryKind::kDeviceLocal},
-      {&c->level_ranges_, VkDeviceSize{slots} * 8, storage, MemoryKind::kHostVisible},
-      {&c->indexed_args_,
-       VkDeviceSize{std::max(slots, c->slot_total_)} * sizeof(VkDrawIndexedIndirectCommand),
-       indirect, MemoryKind::kDeviceLocal},
-      {&c->instance_list_, VkDeviceSize{n} * 4, storage, MemoryKind::kDeviceLocal},
-      {&c->key_counts_, VkDeviceSize{c->key_total_} * 4, storage, MemoryKind::kDeviceLocal},
-      {&c->key_states_, VkDeviceSize{c->key_total_} * 16, storage, MemoryKind::kDeviceLocal},
-      {&c->slot_states_, VkDeviceSize{c->slot_total_} * 8, storage, MemoryKind::kDeviceLocal},
-      {&c->build_list_, VkDeviceSize{c->slot_total_} * 16, storage, MemoryKind::kDeviceLocal},
-      {&c->level_cache_, VkDeviceSize{std::max<uint64_t>(c->cache_indices_, 1)} * 4,
+      {&level_ranges_, VkDeviceSize{slots} * 8, storage, MemoryKind::kHostVisible},
+      {&indexed_args_,
+       VkDeviceSize{std::max(slots, slot_total_)} * sizeof(VkDrawIndexedIndirectCommand), indirect,
+       MemoryKind::kDeviceLocal},
+      {&instance_list_, VkDeviceSize{n} * 4, storage, MemoryKind::kDeviceLocal},
+      {&key_counts_, VkDeviceSize{key_total_} * 4, storage, MemoryKind::kDeviceLocal},
+      {&key_states_, VkDeviceSize{key_total_} * 16, storage, MemoryKind::kDeviceLocal},
+      {&slot_states_, VkDeviceSize{slot_total_} * 8, storage, MemoryKind::kDeviceLocal},
+      {&build_list_, VkDeviceSize{slot_total_} * 16, storage, MemoryKind::kDeviceLocal},
+      {&level_cache_, VkDeviceSize{std::max<uint64_t>(cache_indices_, 1)} * 4,
        storage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryKind::kDeviceLocal},
-      {&c->cache_hands_, VkDeviceSize{types} * 4, storage, MemoryKind::kDeviceLocal},
-      {&c->ladder_sums_, VkDeviceSize{kErrorLadderSteps} * 8, storage, MemoryKind::kDeviceLocal},
-      {&c->type_marks_, VkDeviceSize{types} * 8, storage, MemoryKind::kDeviceLocal},
-      {&c->miss_keys_, VkDeviceSize{c->key_total_} * 4, storage, MemoryKind::kDeviceLocal},
+      {&cache_hands_, VkDeviceSize{types} * 4, storage, MemoryKind::kDeviceLocal},
+      {&ladder_sums_, VkDeviceSize{kErrorLadderSteps} * 8, storage, MemoryKind::kDeviceLocal},
+      {&type_marks_, VkDeviceSize{types} * 8, storage, MemoryKind::kDeviceLocal},
+      {&miss_keys_, VkDeviceSize{key_total_} * 4, storage, MemoryKind::kDeviceLocal},
   };
   static_assert(sizeof(specs) / sizeof(specs[0]) == kBindings, "one buffer per binding");
   std::vector<const GpuBuffer*> bindings;
@@ -229,33 +244,32 @@ Status CrowdCompute::create(VulkanContext& context, const Scene& scene,
     bindings.push_back(s.buffer);
   }
   if (!mesh.empty()) {
-    Status st = c->mesh_.upload(mesh.data(), mesh.size() * 4);
+    Status st = mesh_.upload(mesh.data(), mesh.size() * 4);
     if (!st.ok()) return st;
   }
   for (uint32_t k = 0; k < kKernelCount; ++k) {
-    Status st = ComputeKernel::create(context, kKernels[k].shader, kBindings, 0, c->kernels_[k]);
+    Status st = ComputeKernel::create(context, kKernels[k].shader, kBindings, 0, kernels_[k]);
     if (!st.ok()) return st;
-    c->kernels_[k].bind_buffers(0, bindings);
+    kernels_[k].bind_buffers(0, bindings);
   }
-  for (const Spec& spec : specs) c->gpu_bytes_ += spec.bytes;
-  // note: an empty cache: no key holds a slot, no slot a key, every hand at 0; each key
-  // knows its type.
-  std::vector<uint32_t> key_states(size_t{c->key_total_} * 4, kNotDrawn);
-  for (uint32_t t = 0; t < c->type_count_ && c->instanced_levels_; ++t) {
-    const LevelCacheLayout& l = c->cache_layout_[t];
-    for (uint32_t k = 0; k <= c->vertex_counts_[t]; ++k) key_states[4 * (l.key_base + k) + 3] = t;
-  }
-  Status st = c->key_states_.upload(key_states.data(), key_states.size() * 4);
-  if (!st.ok()) return st;
-  st = context.submit_and_wait([&](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, c->slot_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
-    vkCmdFillBuffer(cmd, c->cache_hands_.buffer(), 0, VK_WHOLE_SIZE, 0);
-  });
-  if (!st.ok()) return st;
-  st = TimestampQueries::create(context, kTimestampCount, c->queries_);
-  if (!st.ok()) return st;
-  out = std::move(c);
+  for (const Spec& spec : specs) gpu_bytes_ += spec.bytes;
   return {};
+}
+
+// note: an empty cache: no key holds a slot, no slot a key, every hand at 0; each key knows
+// its type.
+Status CrowdCompute::clear_level_cache(VulkanContext& context) {
+  std::vector<uint32_t> key_states(size_t{key_total_} * 4, kNotDrawn);
+  for (uint32_t t = 0; t < type_count_ && instanced_levels_; ++t) {
+    const LevelCacheLayout& l = cache_layout_[t];
+    for (uint32_t k = 0; k <= vertex_counts_[t]; ++k) key_states[4 * (l.key_base + k) + 3] = t;
+  }
+  Status st = key_states_.upload(key_states.data(), key_states.size() * 4);
+  if (!st.ok()) return st;
+  return context.submit_and_wait([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, slot_states_.buffer(), 0, VK_WHOLE_SIZE, kNotDrawn);
+    vkCmdFillBuffer(cmd, cache_hands_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  });
 }
 
 Status CrowdCompute::upload(const Scene& scene, const FrameState& state,

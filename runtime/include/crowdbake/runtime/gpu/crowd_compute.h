@@ -240,6 +240,11 @@ class CrowdCompute {
   CrowdCompute() = default;
   Status update_levels(const Scene& scene, const FrameState& state);
   Status layout_level_cache(const VulkanContext& context, const CrowdComputeOptions& options);
+  // create()'s steps: every type's static arrays concatenated (mesh) and the corners of the
+  // largest full mesh; the buffers and kernels; an empty level cache.
+  Status gather_types(const Scene& scene, std::vector<uint32_t>& mesh, uint64_t& full_corners);
+  Status create_buffers(VulkanContext& context, const std::vector<uint32_t>& mesh);
+  Status clear_level_cache(VulkanContext& context);
 
   struct LevelCacheLayout {
     uint32_t key_base = 0, slot_base = 0, slot_count = 0, slot_stride = 0, cache_base = 0;
