@@ -250,29 +250,13 @@ PartitionHeights partition_heights(const SkinnedAsset& asset, const PartitionOpt
   return out;
 }
 
-PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& options) {
-  if (options.size < 1 || options.size > kMaxSize)
-    throw usage(asset, "mask size " + std::to_string(options.size) + " is outside 1.." +
-                           std::to_string(kMaxSize));
-  if (options.dilate > kMaxDilate)
-    throw usage(asset, "dilation " + std::to_string(options.dilate) + " is above " +
-                           std::to_string(kMaxDilate));
-  const glm::dvec3 up = unit_up(asset, options.up_axis);
-  PartitionHeights heights = partition_heights(asset, options);
+namespace {
 
-  PartitionBake bake;
+// Every vertex's region, and every triangle of every primitive with UVs into the coverage.
+void rasterize_regions(const SkinnedAsset& asset, const glm::dvec3& up, UvCoverage& coverage,
+                       PartitionBake& bake) {
   PartitionStats& stats = bake.stats;
-  bake.height_source = heights.source;
-  bake.warnings = std::move(heights.warnings);
-  PartitionMask& mask = bake.mask;
-  const uint32_t size = options.size;
-  mask.width = mask.height = size;
-  mask.neck_height = heights.neck;
-  mask.waist_height = heights.waist;
-  mask.up_axis = {float(up.x), float(up.y), float(up.z)};
-
-  // Vertex regions, then every triangle of every primitive with UVs into the coverage.
-  UvCoverage coverage(size);
+  const PartitionMask& mask = bake.mask;
   std::vector<double> h;
   bake.vertex_regions.resize(asset.primitives.size());
   for (size_t pi = 0; pi < asset.primitives.size(); ++pi) {
@@ -324,12 +308,19 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
       }
     }
   }
+}
 
+// Texels: the region of the highest height that reached them. level: that height, filled: 1
+// where a surface reached the texel.
+void fill_texels(const UvCoverage& coverage, PartitionBake& bake, std::vector<double>& level,
+                 std::vector<uint8_t>& filled) {
+  PartitionStats& stats = bake.stats;
+  PartitionMask& mask = bake.mask;
   // Texels: the region of the highest height that reached them.
-  const size_t texel_count = size_t(size) * size;
+  const size_t texel_count = size_t(mask.width) * mask.height;
   mask.texels.assign(texel_count, static_cast<uint8_t>(Region::kUnused));
-  std::vector<double> level(texel_count, -std::numeric_limits<double>::infinity());
-  std::vector<uint8_t> filled(texel_count, 0);
+  level.assign(texel_count, -std::numeric_limits<double>::infinity());
+  filled.assign(texel_count, 0);
   for (size_t i = 0; i < texel_count; ++i) {
     if (!coverage.covered(i)) continue;
     const Region top = partition_region(coverage.highest(i), mask.neck_height, mask.waist_height);
@@ -341,12 +332,17 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
     ++stats.region_texels[static_cast<size_t>(top)];
     if (top != bottom) ++stats.conflict_texels;
   }
+}
 
-  // Dilation: Jacobi passes (each reads the previous pass only), so the result does not
-  // depend on the scan order.
+// Dilation: Jacobi passes (each reads the previous pass only), so the result does not depend
+// on the scan order.
+void dilate(uint32_t passes, std::vector<double>& level, std::vector<uint8_t>& filled,
+            PartitionBake& bake) {
+  PartitionMask& mask = bake.mask;
+  const uint32_t size = mask.width;
   std::vector<uint8_t> next_texels, next_filled;
   std::vector<double> next_level;
-  for (uint32_t pass = 0; pass < options.dilate; ++pass) {
+  for (uint32_t pass = 0; pass < passes; ++pass) {
     next_texels = mask.texels, next_filled = filled, next_level = level;
     uint64_t grown = 0;
     for (uint32_t y = 0; y < size; ++y)
@@ -370,11 +366,15 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
         ++grown;
       }
     mask.texels.swap(next_texels), filled.swap(next_filled), level.swap(next_level);
-    stats.dilated_texels += grown;
+    bake.stats.dilated_texels += grown;
     if (grown == 0) break;
   }
-  stats.unused_texels = texel_count - stats.covered_texels - stats.dilated_texels;
+}
 
+// What the user should know about the mask.
+void warn_about(PartitionBake& bake) {
+  const PartitionStats& stats = bake.stats;
+  const PartitionMask& mask = bake.mask;
   if (stats.conflict_texels > 0)
     bake.warnings.push_back("partition: " + std::to_string(stats.conflict_texels) +
                             " texels are shared by surfaces of different regions (overlapping "
@@ -395,6 +395,41 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
       bake.warnings.push_back(std::string("partition: no vertex in the ") + kNames[r] +
                               " region (neck " + num(mask.neck_height) + ", waist " +
                               num(mask.waist_height) + ", " + bake.height_source + ")");
+}
+
+}  // namespace
+
+PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& options) {
+  if (options.size < 1 || options.size > kMaxSize)
+    throw usage(asset, "mask size " + std::to_string(options.size) + " is outside 1.." +
+                           std::to_string(kMaxSize));
+  if (options.dilate > kMaxDilate)
+    throw usage(asset, "dilation " + std::to_string(options.dilate) + " is above " +
+                           std::to_string(kMaxDilate));
+  const glm::dvec3 up = unit_up(asset, options.up_axis);
+  PartitionHeights heights = partition_heights(asset, options);
+
+  PartitionBake bake;
+  PartitionStats& stats = bake.stats;
+  bake.height_source = heights.source;
+  bake.warnings = std::move(heights.warnings);
+  PartitionMask& mask = bake.mask;
+  const uint32_t size = options.size;
+  mask.width = mask.height = size;
+  mask.neck_height = heights.neck;
+  mask.waist_height = heights.waist;
+  mask.up_axis = {float(up.x), float(up.y), float(up.z)};
+
+  // Vertex regions, then every triangle of every primitive with UVs into the coverage.
+  UvCoverage coverage(size);
+  rasterize_regions(asset, up, coverage, bake);
+  std::vector<double> level;
+  std::vector<uint8_t> filled;
+  fill_texels(coverage, bake, level, filled);
+  dilate(options.dilate, level, filled, bake);
+  const size_t texel_count = size_t(size) * size;
+  stats.unused_texels = texel_count - stats.covered_texels - stats.dilated_texels;
+  warn_about(bake);
   return bake;
 }
 
