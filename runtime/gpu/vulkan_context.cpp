@@ -166,7 +166,12 @@ Status VulkanContext::init_headless(const ContextOptions& options) {
     return Status(StatusCode::kNotLoaded,
                   "Vulkan validation was asked for but VK_LAYER_KHRONOS_validation is not "
                   "installed (Debian/Ubuntu: apt-get install vulkan-validationlayers)");
+  if (Status s = create_instance(options, validation); !s.ok()) return s;
+  if (Status s = pick_physical_device(); !s.ok()) return s;
+  return create_device();
+}
 
+Status VulkanContext::create_instance(const ContextOptions& options, bool validation) {
   VkApplicationInfo app{};
 
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
@@ -216,9 +221,12 @@ Status VulkanContext::init_headless(const ContextOptions& options) {
     r = create_messenger(instance_, &messenger_info, nullptr, &messenger_);
     if (r != VK_SUCCESS) return vulkan_error("vkCreateDebugUtilsMessengerEXT", r);
   }
+  return Status();
+}
 
+Status VulkanContext::pick_physical_device() {
   uint32_t count = 0;
-  r = vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+  const VkResult r = vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   if (r != VK_SUCCESS && r != VK_INCOMPLETE) return vulkan_error("vkEnumeratePhysicalDevices", r);
   std::vector<VkPhysicalDevice> devices(count);
   if (count > 0) vkEnumeratePhysicalDevices(instance_, &count, devices.data());
@@ -241,7 +249,10 @@ Status VulkanContext::init_headless(const ContextOptions& options) {
                       " device(s) enumerated, none with Vulkan 1.2 and a graphics+compute queue)");
   vkGetPhysicalDeviceProperties(physical_device_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_);
+  return Status();
+}
 
+Status VulkanContext::create_device() {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_device_, &supported);
   VkPhysicalDeviceFeatures enabled{};
@@ -293,7 +304,7 @@ Status VulkanContext::init_headless(const ContextOptions& options) {
   device_info.pNext = &enabled2;
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
-  r = vkCreateDevice(physical_device_, &device_info, nullptr, &device_);
+  const VkResult r = vkCreateDevice(physical_device_, &device_info, nullptr, &device_);
   if (r != VK_SUCCESS) {
     device_ = VK_NULL_HANDLE;
     return vulkan_error("vkCreateDevice", r);

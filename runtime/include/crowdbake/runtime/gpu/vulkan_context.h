@@ -105,6 +105,12 @@ class VulkanContext {
  private:
   VulkanContext() = default;
   Status init_headless(const ContextOptions& options);
+  // init_headless' steps: the instance (with the validation messenger when asked), the
+  // physical device (the best-ranked with Vulkan 1.2 and a graphics+compute queue), the
+  // logical device with the features crowdbake uses where supported.
+  Status create_instance(const ContextOptions& options, bool validation);
+  Status pick_physical_device();
+  Status create_device();
   Status init_device();
 
   VkInstance instance_ = VK_NULL_HANDLE;
