@@ -79,31 +79,14 @@ Error pack_error(const std::string& path, const std::string& message) {
   return input_error(path, message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message);
 }
 
-}  // namespace
-
-int run_preview(const PreviewSettings& s) {
-  if (!is_png_path(s.output)) throw usage("-o", "must name a .png file, got '" + s.output + "'");
-  if (s.frames < 1 || s.frames > 64) throw usage("--frames", "must be in 1..64");
-  if (s.cell_width < 32 || s.cell_height < 32 || s.cell_width > 2048 || s.cell_height > 2048)
-    throw usage("--cell", "cells must be 32..2048 pixels on each side");
-
-  runtime::Scene scene;
-  {
-    runtime::Pack pack;
-    if (runtime::Status st = runtime::Pack::open_file(s.pack, pack, runtime::kPackAll); !st)
-      throw pack_error(s.pack, st.message());
-    if (runtime::Status st = runtime::add_character_type(scene, "character", std::move(pack)); !st)
-      throw pack_error(s.pack, st.message());
-  }
-  const runtime::Pack& p = scene.types[0].pack;
+// Levels, as discrete mode draws them (make_lod_type: the fraction's usable count).
+std::vector<Level> preview_levels(const runtime::Pack& p, const std::vector<std::string>& wanted) {
   const PackContents& c = p.contents();
-
-  // Levels, as discrete mode draws them (make_lod_type: the fraction's usable count).
   const float min_fraction =
       static_cast<float>(double(p.min_vertices()) / double(std::max(p.max_vertices(), 1u)));
   std::vector<Level> levels;
   const runtime::ProgressiveView view = runtime::progressive_view(c);
-  for (float f : parse_levels(s.levels, min_fraction)) {
+  for (float f : parse_levels(wanted, min_fraction)) {
     runtime::LodSettings one;
     one.discrete_levels[0] = f;
     one.discrete_level_count = 1;
@@ -114,8 +97,13 @@ int run_preview(const PreviewSettings& s) {
     l.error = level_error(c.level_errors, l.vertices);
     levels.push_back(l);
   }
+  return levels;
+}
 
-  // Columns: the chosen clips (all by default), `frames` times each, evenly over the clip.
+// Columns: the chosen clips (all by default), `frames` times each, evenly over the clip.
+std::vector<Column> preview_columns(const runtime::Scene& scene, const PreviewSettings& s,
+                                    size_t& clip_count) {
+  const PackContents& c = scene.types[0].pack.contents();
   std::vector<uint32_t> clips;
   if (s.clips.empty()) {
     for (uint32_t k = 0; k < c.clips.size(); ++k) clips.push_back(k);
@@ -137,9 +125,14 @@ int run_preview(const PreviewSettings& s) {
       columns.push_back(
           {scene.types[0].first_clip + clip,
            c.clips[clip].duration * static_cast<float>(k) / static_cast<float>(s.frames)});
+  clip_count = clips.size();
+  return columns;
+}
 
-  // One instance at the origin, in place, seen in three-quarter view from the front (+z) and
-  // the right, a little from above (quadrupeds and fish show their length, people their face).
+// One instance at the origin, in place, seen in three-quarter view from the front (+z) and
+// the right, a little from above (quadrupeds and fish show their length, people their face).
+void frame_one_instance(const PreviewSettings& s, runtime::Scene& scene) {
+  const PackContents& c = scene.types[0].pack.contents();
   runtime::Instance one;
   one.neck_height = c.partition.neck_height;
   one.waist_height = c.partition.waist_height;
@@ -169,7 +162,54 @@ int run_preview(const PreviewSettings& s) {
                            centre[2] + distance * cy};
   scene.camera.near_plane = std::max(distance * 0.01f, 1e-4f);
   scene.camera.far_plane = 4.0f * distance + 10.0f * b.radius;
+}
 
+// A cell's labels: the clip and time on the top row, the level's counts and error below.
+void label_cell(RgbaImage& cell, const TextStyle& style, const runtime::Scene& scene,
+                const Column& column, const Level& level, bool top_row, double diagonal) {
+  const int32_t line = static_cast<int32_t>(text_height(style));
+  if (top_row) {
+    char head[96];
+    std::snprintf(head, sizeof head, "%s %.2fS",
+                  scene.clips[column.clip].clip->name.substr(0, 24).c_str(),
+                  static_cast<double>(column.time));
+    draw_text(cell, 0, 0, head, style);
+  }
+  char counts[64], error[64];
+  std::snprintf(counts, sizeof counts, "%uV %uT", level.vertices, level.triangles);
+  if (level.error < 0.0f || !(diagonal > 0.0))
+    std::snprintf(error, sizeof error, "ERR N/A");
+  else
+    std::snprintf(error, sizeof error, "ERR %.2f%%",
+                  100.0 * static_cast<double>(level.error) / diagonal);
+  const int32_t bottom = static_cast<int32_t>(cell.height);
+  draw_text(cell, 0, bottom - 2 * line, counts, style);
+  draw_text(cell, 0, bottom - line, error, style);
+}
+
+}  // namespace
+
+int run_preview(const PreviewSettings& s) {
+  if (!is_png_path(s.output)) throw usage("-o", "must name a .png file, got '" + s.output + "'");
+  if (s.frames < 1 || s.frames > 64) throw usage("--frames", "must be in 1..64");
+  if (s.cell_width < 32 || s.cell_height < 32 || s.cell_width > 2048 || s.cell_height > 2048)
+    throw usage("--cell", "cells must be 32..2048 pixels on each side");
+
+  runtime::Scene scene;
+  {
+    runtime::Pack pack;
+    if (runtime::Status st = runtime::Pack::open_file(s.pack, pack, runtime::kPackAll); !st)
+      throw pack_error(s.pack, st.message());
+    if (runtime::Status st = runtime::add_character_type(scene, "character", std::move(pack)); !st)
+      throw pack_error(s.pack, st.message());
+  }
+  const runtime::Pack& p = scene.types[0].pack;
+  const PackContents& c = p.contents();
+
+  const std::vector<Level> levels = preview_levels(p, s.levels);
+  size_t clip_count = 0;
+  const std::vector<Column> columns = preview_columns(scene, s, clip_count);
+  frame_one_instance(s, scene);
   auto context = open_vulkan(false);
   auto renderer = make_renderer(*context, scene, true, s.msaa, s.pack);
   const double diagonal = bbox_diagonal(c);
@@ -188,24 +228,7 @@ int run_preview(const PreviewSettings& s) {
       if (runtime::Status st = renderer->render(scene, columns[k].time, image); !st)
         throw input_error(s.pack, st.message());
       RgbaImage cell = to_rgba(std::move(image));
-      const int32_t line = static_cast<int32_t>(text_height(style));
-      if (r == 0) {
-        char head[96];
-        std::snprintf(head, sizeof head, "%s %.2fS",
-                      scene.clips[columns[k].clip].clip->name.substr(0, 24).c_str(),
-                      static_cast<double>(columns[k].time));
-        draw_text(cell, 0, 0, head, style);
-      }
-      char counts[64], error[64];
-      std::snprintf(counts, sizeof counts, "%uV %uT", levels[r].vertices, levels[r].triangles);
-      if (levels[r].error < 0.0f || !(diagonal > 0.0))
-        std::snprintf(error, sizeof error, "ERR N/A");
-      else
-        std::snprintf(error, sizeof error, "ERR %.2f%%",
-                      100.0 * static_cast<double>(levels[r].error) / diagonal);
-      const int32_t bottom = static_cast<int32_t>(cell.height);
-      draw_text(cell, 0, bottom - 2 * line, counts, style);
-      draw_text(cell, 0, bottom - line, error, style);
+      label_cell(cell, style, scene, columns[k], levels[r], r == 0, diagonal);
       cells.push_back(std::move(cell));
     }
   }
@@ -217,7 +240,7 @@ int run_preview(const PreviewSettings& s) {
   write_png(s.output, contact_sheet(cells, sheet));
   if (!s.quiet)
     std::printf("wrote %s (%zu levels x %zu frames of %zu clips, %ux%u cells)\n", s.output.c_str(),
-                levels.size(), columns.size(), clips.size(), s.cell_width, s.cell_height);
+                levels.size(), columns.size(), clip_count, s.cell_width, s.cell_height);
   return 0;
 }
 
