@@ -85,6 +85,10 @@ struct CrowdEffects::Impl {
   Status build_sharing(const Scene& scene, uint32_t driven);
   void switch_clip(uint32_t individual, uint32_t driven, uint32_t state, uint32_t variant,
                    double clip_start, double time);
+  // update()'s steps, each timing itself into counters.
+  Status run_behaviour(const Scene& scene, float time, bool poses);
+  void run_sharing(const Scene& scene, float dt, EffectFrame& frame);
+  void run_clips(const Scene& scene, float time, bool fading, EffectFrame& frame);
 };
 
 CrowdEffects::CrowdEffects(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -368,6 +372,107 @@ void CrowdEffects::Impl::switch_clip(uint32_t individual, uint32_t driven, uint3
   shown_clip[individual] = clip;
 }
 
+Status CrowdEffects::Impl::run_behaviour(const Scene& scene, float time, bool poses) {
+  const Clock::time_point start = Clock::now();
+  crowd::SpectatorUpdateJob job;
+  job.fsm = fsm.get();
+  job.scene = crowd.get();
+  job.state = &fsm_state;
+  job.time_s = std::max<double>(time, fsm_state.time_s);
+  job.out_state = out_state.data();
+  job.out_clip = out_clip.data();
+  job.out_clip_time = out_clip_time.data();
+  job.out_count = out_state.size();
+  if (!job.Run()) return {StatusCode::kInvalidArgument, "effects: the spectator update failed"};
+  const runtime::InstanceArrays& in = scene.instances;
+  for (size_t k = 0; k < out_state.size(); ++k) {
+    const uint32_t decl_state = decl_of_fsm_state[out_state[k]];
+    const uint32_t variant = fsm_clip_variant[out_clip[k]];
+    const bool state_changed = out_state[k] != shown_state[k];
+    if (state_changed && shown_state[k] != crowd::BehaviourFsm::kNone) ++counters.fsm_state_changes;
+    shown_state[k] = out_state[k];
+    const uint32_t i = individual_instance[k];
+    const uint32_t driven = driven_of[in.type[i]];
+    if (poses) {
+      const CharacterHandle h = character[i];
+      if (state_changed && h.id.slot != kNone)
+        sharing->sharing_instance(h.skeleton_type)
+            .set_parameter(h.id, 0, static_cast<float>(decl_state));
+    } else if (state_changed || state_scene_clip[driven][decl_state][variant] != shown_clip[k]) {
+      switch_clip(static_cast<uint32_t>(k), driven, decl_state, variant, fsm_state.clip_start_s[k],
+                  time);
+    }
+  }
+  counters.frame_ms_behaviour = ms_since(start);
+  return {};
+}
+
+void CrowdEffects::Impl::run_sharing(const Scene& scene, float dt, EffectFrame& frame) {
+  const size_t n = instance_count;
+  Clock::time_point start = Clock::now();
+  sharing->update(dt);
+  for (uint32_t d = 0; d < types.size(); ++d) {
+    const AnimSharingInstance& inst = sharing->sharing_instance(d);
+    const SharingFrameStats& stats = inst.frame_stats();
+    counters.frame_poses_evaluated += stats.pose_evaluations;
+    counters.poses_evaluated += stats.pose_evaluations;
+    counters.transitions_started += stats.transitions_started + stats.transitions_joined;
+    counters.frame_alive_transitions += inst.alive_transition_count();
+  }
+  counters.frame_ms_sharing = ms_since(start);
+
+  start = Clock::now();
+  frame.pose_buffers.resize(scene.types.size());
+  for (size_t t = 0; t < frame.pose_buffers.size(); ++t)
+    if (driven_of[t] == kNotDriven) frame.pose_buffers[t].clear();
+  for (uint32_t d = 0; d < types.size(); ++d) {
+    const AnimSharingInstance& inst = sharing->sharing_instance(d);
+    const size_t joints = inst.joint_count();
+    std::vector<float>& buffer = frame.pose_buffers[types[d]];
+    buffer.resize(inst.pose_slot_count() * joints * 12);
+    for (uint32_t slot = 0; slot < inst.pose_slot_count(); ++slot)
+      skinning_matrices(inst.model_pose(slot), inverse_bind[d],
+                        buffer.data() + static_cast<size_t>(slot) * joints * 12);
+    counters.frame_pose_bytes += buffer.size() * sizeof(float);
+  }
+  frame.pose.assign(n, runtime::kNoPose);
+  for (size_t i = 0; i < n; ++i) {
+    const CharacterHandle h = character[i];
+    if (h.id.slot != kNone)
+      frame.pose[i] = sharing->sharing_instance(h.skeleton_type).pose_slots()[h.id.slot];
+  }
+  counters.pose_bytes += counters.frame_pose_bytes;
+  counters.frame_ms_pose_buffer = ms_since(start);
+}
+
+void CrowdEffects::Impl::run_clips(const Scene& scene, float time, bool fading,
+                                   EffectFrame& frame) {
+  const size_t n = instance_count;
+  const Clock::time_point start = Clock::now();
+  const runtime::InstanceArrays& in = scene.instances;
+  frame.clip.assign(in.clip.begin(), in.clip.end());
+  frame.time_offset.assign(in.time_offset.begin(), in.time_offset.end());
+  if (fading) {
+    frame.fade_clip.assign(in.clip.begin(), in.clip.end());
+    frame.fade_time_offset.assign(in.time_offset.begin(), in.time_offset.end());
+    frame.fade_weight.assign(n, 0.0f);
+  }
+  for (size_t k = 0; k < fades.size(); ++k) {
+    Crossfade& f = fades[k];
+    const float w = crossfade_weight(f, time);
+    if (w >= 1.0f) f.from_clip = f.to_clip, f.from_offset = f.to_offset;  // fade done
+    const size_t i = individual_instance[k];
+    frame.clip[i] = f.from_clip;
+    frame.time_offset[i] = f.from_offset;
+    if (fading) {
+      frame.fade_clip[i] = f.to_clip;
+      frame.fade_time_offset[i] = f.to_offset;
+      frame.fade_weight[i] = w >= 1.0f ? 0.0f : w;
+    }
+  }
+  counters.frame_ms_crossfade = ms_since(start);
+}
+
 Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFrame& frame) {
   Impl& m = *impl_;
   if (!std::isfinite(time) || (m.started && time < m.last_time))
@@ -378,7 +483,6 @@ Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFram
   m.started = true;
   m.last_time = time;
   EffectCounters& c = m.counters;
-  const size_t n = m.instance_count;
   const bool poses = m.sharing != nullptr;
   const bool clips = m.fsm && !poses;
   const bool fades = clips && m.decl.crossfade;
@@ -394,105 +498,12 @@ Status CrowdEffects::update(const Scene& scene, float time, float dt, EffectFram
   ++c.updates;
 
   // 1. Behaviour: advance the FSM, hand changes to sharing (or to the clip switches).
-  if (m.fsm) {
-    const Clock::time_point start = Clock::now();
-    crowd::SpectatorUpdateJob job;
-    job.fsm = m.fsm.get();
-    job.scene = m.crowd.get();
-    job.state = &m.fsm_state;
-    job.time_s = std::max<double>(time, m.fsm_state.time_s);
-    job.out_state = m.out_state.data();
-    job.out_clip = m.out_clip.data();
-    job.out_clip_time = m.out_clip_time.data();
-    job.out_count = m.out_state.size();
-    if (!job.Run()) return {StatusCode::kInvalidArgument, "effects: the spectator update failed"};
-    const runtime::InstanceArrays& in = scene.instances;
-    for (size_t k = 0; k < m.out_state.size(); ++k) {
-      const uint32_t decl_state = m.decl_of_fsm_state[m.out_state[k]];
-      const uint32_t variant = m.fsm_clip_variant[m.out_clip[k]];
-      const bool state_changed = m.out_state[k] != m.shown_state[k];
-      if (state_changed && m.shown_state[k] != crowd::BehaviourFsm::kNone) ++c.fsm_state_changes;
-      m.shown_state[k] = m.out_state[k];
-      const uint32_t i = m.individual_instance[k];
-      const uint32_t driven = m.driven_of[in.type[i]];
-      if (poses) {
-        const CharacterHandle h = m.character[i];
-        if (state_changed && h.id.slot != kNone)
-          m.sharing->sharing_instance(h.skeleton_type)
-              .set_parameter(h.id, 0, static_cast<float>(decl_state));
-      } else if (state_changed ||
-                 m.state_scene_clip[driven][decl_state][variant] != m.shown_clip[k]) {
-        m.switch_clip(static_cast<uint32_t>(k), driven, decl_state, variant,
-                      m.fsm_state.clip_start_s[k], time);
-      }
-    }
-    c.frame_ms_behaviour = ms_since(start);
-  }
-
+  if (m.fsm)
+    if (Status s = m.run_behaviour(scene, time, poses); !s) return s;
   // 2. Shared poses: the four stages, then the pose buffer.
-  if (poses) {
-    Clock::time_point start = Clock::now();
-    m.sharing->update(dt);
-    for (uint32_t d = 0; d < m.types.size(); ++d) {
-      const AnimSharingInstance& inst = m.sharing->sharing_instance(d);
-      const SharingFrameStats& stats = inst.frame_stats();
-      c.frame_poses_evaluated += stats.pose_evaluations;
-      c.poses_evaluated += stats.pose_evaluations;
-      c.transitions_started += stats.transitions_started + stats.transitions_joined;
-      c.frame_alive_transitions += inst.alive_transition_count();
-    }
-    c.frame_ms_sharing = ms_since(start);
-
-    start = Clock::now();
-    frame.pose_buffers.resize(scene.types.size());
-    for (size_t t = 0; t < frame.pose_buffers.size(); ++t)
-      if (m.driven_of[t] == kNotDriven) frame.pose_buffers[t].clear();
-    for (uint32_t d = 0; d < m.types.size(); ++d) {
-      const AnimSharingInstance& inst = m.sharing->sharing_instance(d);
-      const size_t joints = inst.joint_count();
-      std::vector<float>& buffer = frame.pose_buffers[m.types[d]];
-      buffer.resize(inst.pose_slot_count() * joints * 12);
-      for (uint32_t slot = 0; slot < inst.pose_slot_count(); ++slot)
-        skinning_matrices(inst.model_pose(slot), m.inverse_bind[d],
-                          buffer.data() + static_cast<size_t>(slot) * joints * 12);
-      c.frame_pose_bytes += buffer.size() * sizeof(float);
-    }
-    frame.pose.assign(n, runtime::kNoPose);
-    for (size_t i = 0; i < n; ++i) {
-      const CharacterHandle h = m.character[i];
-      if (h.id.slot != kNone)
-        frame.pose[i] = m.sharing->sharing_instance(h.skeleton_type).pose_slots()[h.id.slot];
-    }
-    c.pose_bytes += c.frame_pose_bytes;
-    c.frame_ms_pose_buffer = ms_since(start);
-  }
-
+  if (poses) m.run_sharing(scene, dt, frame);
   // 3. Clip switches / GPU crossfades for the FSM's individuals.
-  if (clips) {
-    const Clock::time_point start = Clock::now();
-    const runtime::InstanceArrays& in = scene.instances;
-    frame.clip.assign(in.clip.begin(), in.clip.end());
-    frame.time_offset.assign(in.time_offset.begin(), in.time_offset.end());
-    if (fades) {
-      frame.fade_clip.assign(in.clip.begin(), in.clip.end());
-      frame.fade_time_offset.assign(in.time_offset.begin(), in.time_offset.end());
-      frame.fade_weight.assign(n, 0.0f);
-    }
-    for (size_t k = 0; k < m.fades.size(); ++k) {
-      Crossfade& f = m.fades[k];
-      const float w = crossfade_weight(f, time);
-      if (w >= 1.0f) f.from_clip = f.to_clip, f.from_offset = f.to_offset;  // fade done
-      const size_t i = m.individual_instance[k];
-      frame.clip[i] = f.from_clip;
-      frame.time_offset[i] = f.from_offset;
-      if (fades) {
-        frame.fade_clip[i] = f.to_clip;
-        frame.fade_time_offset[i] = f.to_offset;
-        frame.fade_weight[i] = w >= 1.0f ? 0.0f : w;
-      }
-    }
-    c.frame_ms_crossfade = ms_since(start);
-  }
+  if (clips) m.run_clips(scene, time, fades, frame);
   c.total_ms_behaviour += c.frame_ms_behaviour;
   c.total_ms_sharing += c.frame_ms_sharing;
   c.total_ms_pose_buffer += c.frame_ms_pose_buffer;
