@@ -138,13 +138,7 @@ double single_draw_probability(const GroupMix& mix) {
   return s >= 1.0 ? 1.0 : s * mean / (1.0 - s + s * mean);
 }
 
-}  // namespace
-
-Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
-                             SpectatorScene& out) {
-  uint16_t home = 0;
-  if (Status s = check_params(fsm, def.params, &home); !s.ok()) return s;
-
+Status check_teams(const SpectatorSceneDef& def) {
   if (def.teams.empty()) return scene_error("the crowd has no teams");
   if (def.teams.size() >= SpectatorScene::kAnyTeam)
     return scene_error("the crowd has " + std::to_string(def.teams.size()) + " teams; at most " +
@@ -161,7 +155,10 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
       return scene_error("team " + Quote(team.name) + ": embarrassment_spread " +
                          Num(team.embarrassment_spread) + " must be finite and >= 0");
   }
+  return Status();
+}
 
+Status check_individuals(const SpectatorSceneDef& def) {
   const size_t n = def.individuals.size();
   if (n >= 0xfffffffeu) return scene_error("too many individuals (" + std::to_string(n) + ")");
   for (size_t i = 0; i < n; ++i) {
@@ -175,8 +172,12 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
         !std::isfinite(p.position.z))
       return scene_error("individual " + std::to_string(i) + ": position is not finite");
   }
+  return Status();
+}
 
-  std::vector<SpectatorScene::Event> events;
+// The events as the FSM knows them (reaction and team indices), in time order.
+Status compile_events(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
+                      std::vector<SpectatorScene::Event>& events) {
   for (size_t e = 0; e < def.events.size(); ++e) {
     const SceneEvent& ev = def.events[e];
     const std::string where = "event " + std::to_string(e) + " (" + Quote(ev.kind) + " at " +
@@ -206,6 +207,22 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
   }
   std::stable_sort(events.begin(), events.end(),
                    [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+  return Status();
+}
+
+}  // namespace
+
+Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
+                             SpectatorScene& out) {
+  uint16_t home = 0;
+  if (Status s = check_params(fsm, def.params, &home); !s.ok()) return s;
+
+  if (Status s = check_teams(def); !s.ok()) return s;
+  if (Status s = check_individuals(def); !s.ok()) return s;
+  const size_t n = def.individuals.size();
+
+  std::vector<SpectatorScene::Event> events;
+  if (Status s = compile_events(fsm, def, events); !s.ok()) return s;
 
   // Groups: dense indices; singles get their own.
   SpectatorScene scene;
