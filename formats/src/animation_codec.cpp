@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include "crowdbake/formats/frame_choice.h"
+
 namespace crowdbake {
 namespace {
 
@@ -588,45 +590,17 @@ void decode_joint_blend(const AnimationTexture& t, uint32_t row0, uint32_t row1,
   for (int i = 0; i < 12; ++i) out[i] = (1.0f - u) * a[i] + u * b[i];
 }
 
-float clip_frame_position(const PackClip& clip, float time) {
-  const float last = static_cast<float>(std::max<uint32_t>(clip.frame_count, 1) - 1);
-  const float f = time * clip.fps;
-  if (!(f > 0.0f)) return 0.0f;  // also NaN time or fps
-  return f < last ? f : last;
-}
-
 void sample_joint(const AnimationTexture& t, const PackClip& clip, float time, FrameFilter filter,
                   uint32_t joint, float out[12]) {
-  const float f = clip_frame_position(clip, time);
-  const uint32_t last = std::max<uint32_t>(clip.frame_count, 1) - 1;
-  if (filter == FrameFilter::kNearest) {
-    const uint32_t k = std::min(static_cast<uint32_t>(std::floor(f + 0.5f)), last);
-    return decode_joint(t, clip.first_row + k, joint, out);
-  }
-  const uint32_t k = std::min(static_cast<uint32_t>(std::floor(f)), last);
-  const uint32_t k1 = std::min(k + 1, last);
-  decode_joint_blend(t, clip.first_row + k, clip.first_row + k1, f - static_cast<float>(k), joint,
-                     out);
+  const FrameChoice f = choose_frame(clip, time, 1.0f, 0.0f, filter);
+  if (f.blend == 0.0f) return decode_joint(t, clip.first_row + f.frame0, joint, out);
+  decode_joint_blend(t, clip.first_row + f.frame0, clip.first_row + f.frame1, f.blend, joint, out);
 }
 
 // ---- root motion ----
 
 void sample_root_motion(const PackClip& clip, float time, FrameFilter filter, float out[3]) {
-  out[0] = out[1] = out[2] = 0.0f;
-  const uint32_t n = std::max<uint32_t>(clip.frame_count, 1);
-  if (clip.root_motion.size() < 3 * static_cast<size_t>(n)) return;
-  const float f = clip_frame_position(clip, time);
-  const float* m = clip.root_motion.data();
-  if (filter == FrameFilter::kNearest) {
-    const uint32_t k = std::min(static_cast<uint32_t>(std::floor(f + 0.5f)), n - 1);
-    for (int i = 0; i < 3; ++i) out[i] = m[3 * k + i];
-    return;
-  }
-  const uint32_t k = std::min(static_cast<uint32_t>(std::floor(f)), n - 1);
-  const uint32_t k1 = std::min(k + 1, n - 1);
-  const float u = f - static_cast<float>(k);
-  for (int i = 0; i < 3; ++i)
-    out[i] = u > 0.0f ? (1.0f - u) * m[3 * k + i] + u * m[3 * k1 + i] : m[3 * k + i];
+  frame_root_motion(clip, choose_frame(clip, time, 1.0f, 0.0f, filter), out);
 }
 
 void root_motion_matrix(const float motion[3], float out[12]) {

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "crowdbake/formats/frame_choice.h"
+
 namespace crowdbake {
 namespace {
 
@@ -532,6 +534,7 @@ TEST(AnimationCodec, SampleJointPicksRows) {
   clip.frame_count = 4;
   clip.fps = 10.0f;
   clip.duration = 0.3f;
+  clip.looping = false;  // a one-shot holds its ends
   float out[12];
   sample_joint(t, clip, 0.0f, FrameFilter::kNearest, 0, out);
   EXPECT_EQ(out[3], 2.0f);
@@ -547,7 +550,16 @@ TEST(AnimationCodec, SampleJointPicksRows) {
   EXPECT_EQ(out[3], 2.0f);
   sample_joint(t, clip, NAN, FrameFilter::kNearest, 0, out);
   EXPECT_EQ(out[3], 2.0f);
-  EXPECT_EQ(clip_frame_position(clip, 0.25f), 2.5f);
+  const FrameChoice mid = choose_frame(clip, 0.25f, 1.0f, 0.0f, FrameFilter::kLinear);
+  EXPECT_EQ(mid.frame0, 2u);
+  EXPECT_EQ(mid.frame1, 3u);
+  EXPECT_FLOAT_EQ(mid.blend, 0.5f);
+  // A looping clip wraps as the runtime plays it: 0.45 s is frame 4.5, i.e. 0.5 past frame 0.
+  clip.looping = true;
+  sample_joint(t, clip, 0.45f, FrameFilter::kLinear, 0, out);
+  EXPECT_NEAR(out[3], 2.5f, 1e-6);
+  sample_joint(t, clip, 0.4f, FrameFilter::kNearest, 0, out);
+  EXPECT_EQ(out[3], 2.0f);
 }
 
 TEST(AnimationCodec, RootMotionMatrixAndSampling) {

@@ -111,11 +111,9 @@ void decode_joint(const AnimationTexture& texture, uint32_t row, uint32_t joint,
 void decode_joint_blend(const AnimationTexture& texture, uint32_t row0, uint32_t row1, float u,
                         uint32_t joint, float out[12]);
 
-// The frame position of `time` (seconds) in a clip: time * fps clamped to
-// [0, frame_count - 1]. Wrap the time first for looping playback.
-float clip_frame_position(const PackClip& clip, float time);
-
-// The joint's matrix at `time` in a clip (rows first_row .. first_row + frame_count - 1).
+// The joint's matrix at `time` in a clip (rows first_row .. first_row + frame_count - 1), on
+// the frames choose_frame picks (frame_choice.h: a looping clip wraps, a one-shot holds its
+// ends), as the runtime plays it.
 void sample_joint(const AnimationTexture& texture, const PackClip& clip, float time,
                   FrameFilter filter, uint32_t joint, float out[12]);
 
@@ -128,7 +126,8 @@ void sample_joint(const AnimationTexture& texture, const PackClip& clip, float t
 // and the true skinning matrix is M · (baked matrix): an instance is drawn with
 //     instance_matrix · M(root motion at t) · baked(t) · vertex.
 
-// (x, z, yaw) at `time`: the nearest frame's value or the linear blend of two frames.
+// (x, z, yaw) at `time` as the runtime plays it (frame_choice.h's frame_root_motion: the
+// nearest frame's value or the blend of two, plus the completed cycles of a looping clip).
 // All zero when the clip has no root motion.
 void sample_root_motion(const PackClip& clip, float time, FrameFilter filter, float out[3]);
 
