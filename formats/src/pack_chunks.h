@@ -12,12 +12,15 @@
 
 namespace crowdbake::pack_io {
 
-// HEAD's summary counts, so a streaming runtime can size buffers before the bulky
-// chunks arrive; read_pack checks they match the other chunks.
-struct HeadCounts {
-  uint32_t joints = 0, clips = 0, materials = 0, vertices = 0, triangles = 0, animation_rows = 0;
-};
+// HEAD's summary counts (PackCounts), so a streaming runtime can size buffers before the
+// bulky chunks arrive; every chunk is checked against them (check_pack_chunk).
+using HeadCounts = PackCounts;
 HeadCounts head_counts(const PackContents& contents);
+
+// check_pack_chunk's rules without the "chunk " in front: "GEOM: vertex 3 uses joint 9, ...",
+// or "" when the chunk agrees with `counts`.
+std::string chunk_rule_problem(uint32_t tag, const PackContents& contents,
+                               const HeadCounts& counts);
 
 void encode_head(const PackContents& c, ByteWriter& out);
 bool decode_head(ByteReader& in, PackContents& out, HeadCounts& counts);

@@ -64,33 +64,26 @@ const KnownChunk* find_known(uint32_t tag) {
   return nullptr;
 }
 
-// Header fields read_pack needs besides the chunk list.
-struct Header {
-  uint16_t major = 0, minor = 0;
-  uint64_t table_offset = 0, file_size = 0;
-  uint32_t chunk_count = 0;
-};
-
-Status read_header_and_table(const uint8_t* data, size_t size, Header& h,
-                             std::vector<PackChunk>& chunks) {
-  chunks.clear();
+// The header's own rules; checksum is the stored header/table checksum (the table is needed to
+// verify it).
+Status parse_header(const uint8_t* data, size_t size, PackHeader& h, uint32_t& checksum) {
   if (data == nullptr && size != 0) return error("no data");
   if (size < kMagic.size() || std::memcmp(data, kMagic.data(), kMagic.size()) != 0)
     return error("not a crowdbake pack (bad magic; expected \\x89CROWD\\r\\n)");
   ByteReader in(data, size, "header");
   in.skip(kMagic.size(), "magic");
-  in.u16(h.major, "version major");
-  in.u16(h.minor, "version minor");
+  in.u16(h.version_major, "version major");
+  in.u16(h.version_minor, "version minor");
   if (!in.ok()) return error("truncated pack: " + in.error());
-  if (h.major != kPackVersionMajor) {
-    if (h.major > kPackVersionMajor)
-      return error("unsupported pack version " + std::to_string(h.major) +
+  if (h.version_major != kPackVersionMajor) {
+    if (h.version_major > kPackVersionMajor)
+      return error("unsupported pack version " + std::to_string(h.version_major) +
                    " (this build reads <= " + std::to_string(kPackVersionMajor) +
                    "); update crowdbake");
-    return error("unsupported pack version " + std::to_string(h.major) + " (this build reads " +
-                 std::to_string(kPackVersionMajor) + "); re-bake the pack");
+    return error("unsupported pack version " + std::to_string(h.version_major) +
+                 " (this build reads " + std::to_string(kPackVersionMajor) + "); re-bake the pack");
   }
-  uint32_t flags = 0, reserved = 0, checksum = 0, reserved2 = 0;
+  uint32_t flags = 0, reserved = 0, reserved2 = 0;
   in.u32(flags, "flags");
   in.u32(h.chunk_count, "chunk count");
   in.u32(reserved, "reserved");
@@ -114,6 +107,15 @@ Status read_header_and_table(const uint8_t* data, size_t size, Header& h,
     return error("header: chunk table at " + std::to_string(h.table_offset) + " (" +
                  std::to_string(table_bytes) + " bytes) runs past the file size " +
                  std::to_string(h.file_size));
+  return {};
+}
+
+Status read_header_and_table(const uint8_t* data, size_t size, PackHeader& h,
+                             std::vector<PackChunk>& chunks) {
+  chunks.clear();
+  uint32_t checksum = 0;
+  if (Status s = parse_header(data, size, h, checksum); !s) return s;
+  const uint64_t table_bytes = uint64_t{h.chunk_count} * kChunkEntrySize;
   const uint64_t table_end = h.table_offset + table_bytes;
   if (size > h.file_size)
     return error("pack has " + std::to_string(size - h.file_size) +
@@ -163,7 +165,7 @@ Status read_header_and_table(const uint8_t* data, size_t size, Header& h,
 
 // Decodes one chunk whose payload bytes are [payload, payload + chunk.size).
 Status decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
-                    pack_io::HeadCounts* counts) {
+                    PackCounts* counts) {
   const std::string name = "chunk " + tag_name(chunk.tag);
   const uint32_t crc = pack_io::crc32c(payload, static_cast<size_t>(chunk.size));
   if (!checksum_matches(chunk.checksum, crc))
@@ -187,7 +189,7 @@ Status decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents
     size = expanded.size();
   }
   ByteReader in(payload, size, name);
-  pack_io::HeadCounts ignored;
+  PackCounts ignored;
   bool ok = false;
   switch (chunk.tag) {
     case kTagHead:
@@ -231,8 +233,8 @@ Status decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents
   return {};
 }
 
-Status check_head_counts(const pack_io::HeadCounts& h, const PackContents& c) {
-  const pack_io::HeadCounts actual = pack_io::head_counts(c);
+Status check_head_counts(const PackCounts& h, const PackContents& c) {
+  const PackCounts actual = pack_io::head_counts(c);
   const struct {
     const char* what;
     uint32_t head, actual;
@@ -263,25 +265,34 @@ std::string tag_name(uint32_t tag) {
 }
 }  // namespace pack_format
 
+Status read_pack_header(const uint8_t* data, size_t size, PackHeader& out) {
+  PackHeader h;
+  uint32_t checksum = 0;
+  if (Status s = parse_header(data, size, h, checksum); !s) return s;
+  out = h;
+  return {};
+}
+
 Status read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
                         uint16_t* version_major, uint16_t* version_minor) {
-  Header h;
+  PackHeader h;
   Status status = read_header_and_table(data, size, h, chunks);
-  if (version_major) *version_major = h.major;
-  if (version_minor) *version_minor = h.minor;
+  if (version_major) *version_major = h.version_major;
+  if (version_minor) *version_minor = h.version_minor;
   if (!status) chunks.clear();
   return status;
 }
 
-Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out) {
+Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
+                       PackCounts* counts) {
   if (payload == nullptr && chunk.size != 0)
     return error("chunk " + tag_name(chunk.tag) + ": no data");
-  return decode_chunk(chunk, payload, out, nullptr);
+  return decode_chunk(chunk, payload, out, counts);
 }
 
 Status read_pack(const uint8_t* data, size_t size, PackContents& out) {
   out = PackContents{};
-  Header h;
+  PackHeader h;
   std::vector<PackChunk> chunks;
   Status status = read_header_and_table(data, size, h, chunks);
   if (!status) return status;
@@ -304,7 +315,7 @@ Status read_pack(const uint8_t* data, size_t size, PackContents& out) {
   }
   if (!(status = zero_gap(at, h.file_size))) return status;
 
-  pack_io::HeadCounts counts;
+  PackCounts counts;
   for (const KnownChunk& k : kKnownChunks) {
     const auto it = std::find_if(chunks.begin(), chunks.end(),
                                  [&](const PackChunk& c) { return c.tag == k.tag; });

@@ -8,6 +8,7 @@
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
 #include "crowdbake/formats/progressive.h"
+#include "pack_chunks.h"
 
 namespace crowdbake::pack_io {
 namespace {
@@ -221,46 +222,11 @@ std::string check_partition(const PartitionMask& p) {
 }
 
 std::string check_cross_references(const PackContents& c) {
-  const PackGeometry& g = c.geometry;
-  std::ostringstream out;
-  if (!g.joints.empty() && c.joints.empty())
-    return "GEOM: vertices are skinned but the skeleton is empty";
-  for (size_t i = 0; i < g.joints.size(); ++i)
-    if (g.joints[i] >= c.joints.size())
-      return "GEOM: vertex " + std::to_string(i / 4) + " uses joint " +
-             std::to_string(g.joints[i]) + ", the skeleton has " + std::to_string(c.joints.size());
-  for (size_t t = 0; t < g.triangle_material.size(); ++t)
-    if (g.triangle_material[t] >= c.materials.size())
-      return "GEOM: triangle " + std::to_string(t) + " uses material " +
-             std::to_string(g.triangle_material[t]) + ", there are " +
-             std::to_string(c.materials.size());
-  for (size_t i = 0; i < c.materials.size(); ++i)
-    if (c.materials[i].base_color_image >= static_cast<int64_t>(c.images.size()))
-      return "MATL: material " + std::to_string(i) + " uses image " +
-             std::to_string(c.materials[i].base_color_image) + ", there are " +
-             std::to_string(c.images.size());
-  const PackProgressive& p = c.progressive;
-  if (!c.level_errors.vertices.empty() && c.level_errors.vertices.back() > g.vertex_count())
-    return "LERR: a sample has " + std::to_string(c.level_errors.vertices.back()) +
-           " vertices, GEOM has " + std::to_string(g.vertex_count());
-  if (!p.collapse_to.empty()) {
-    if (p.collapse_to.size() != g.vertex_count())
-      out << "PROG: " << p.collapse_to.size() << " vertices, GEOM has " << g.vertex_count();
-    else if (p.triangle_count.back() != g.triangle_count())
-      out << "PROG: triangle_count[" << g.vertex_count() << "] = " << p.triangle_count.back()
-          << ", GEOM has " << g.triangle_count() << " triangles";
-    if (!out.str().empty()) return out.str();
-  }
-  for (size_t i = 0; i < c.clips.size(); ++i) {
-    const PackClip& clip = c.clips[i];
-    if (uint64_t{clip.first_row} + clip.frame_count > c.animation.rows)
-      return "CLIP: clip " + std::to_string(i) + " uses rows " + std::to_string(clip.first_row) +
-             ".." + std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) +
-             ", the texture has " + std::to_string(c.animation.rows);
-  }
-  if (c.animation.rows > 0 && c.animation.joints != c.joints.size())
-    return "ANIM: " + std::to_string(c.animation.joints) + " joints per row, the skeleton has " +
-           std::to_string(c.joints.size());
+  // note: a whole pack is checked with its own counts, which HEAD records (pack_chunk_rules).
+  const HeadCounts counts = head_counts(c);
+  for (uint32_t tag : {pack_format::kTagGeom, pack_format::kTagMatl, pack_format::kTagLerr,
+                       pack_format::kTagProg, pack_format::kTagClip, pack_format::kTagAnim})
+    if (std::string problem = chunk_rule_problem(tag, c, counts); !problem.empty()) return problem;
   return "";
 }
 

@@ -1,7 +1,7 @@
-// Pack streaming: header and table first, tables at open, bulky chunks on demand. The
-// per-chunk decoding and checks are crowdbake_formats' (read_pack_chunks, read_pack_chunk);
-// this file adds what a reader of single chunks must check itself: HEAD's counts against
-// every chunk, and the rules between chunks that read_pack checks after decoding a whole file.
+// Pack streaming: header and table first, tables at open, bulky chunks on demand. Reading and
+// checking are crowdbake_formats' (read_pack_header, read_pack_chunks, read_pack_chunk, and
+// check_pack_chunk for the rules between a chunk and HEAD's counts); this file decides what
+// to read when.
 #include "crowdbake/runtime/pack.h"
 
 #include <cmath>
@@ -22,17 +22,6 @@ constexpr uint32_t kRequiredTags[] = {
     pack_format::kTagHead, pack_format::kTagSkel, pack_format::kTagClip,
     pack_format::kTagMatl, pack_format::kTagBnds, pack_format::kTagProg,
     pack_format::kTagGeom, pack_format::kTagAnim, pack_format::kTagPart};
-
-uint32_t load_u32(const uint8_t* p) {
-  uint32_t v;
-  std::memcpy(&v, p, 4);  // note: the format and every supported target are little-endian
-  return v;
-}
-uint64_t load_u64(const uint8_t* p) {
-  uint64_t v;
-  std::memcpy(&v, p, 8);
-  return v;
-}
 
 // Inverse of a 3x4 affine matrix in double; false when the 3x3 part is singular.
 bool invert_affine(const float m[12], float out[12]) {
@@ -85,15 +74,14 @@ struct Pack::Impl {
     return nullptr;
   }
 
-  // Reads one chunk's payload and decodes it into `contents`.
-  Status read_chunk(uint32_t tag, std::vector<uint8_t>* keep_payload = nullptr) {
+  // Reads one chunk's payload and decodes it into `contents` (HEAD: and `counts`).
+  Status read_chunk(uint32_t tag) {
     const PackChunk* chunk = find(tag);
     if (!chunk) return fail("missing chunk " + tag_name(tag));
     std::vector<uint8_t> payload(static_cast<size_t>(chunk->size));
     if (Status s = source->read(chunk->offset, payload.size(), payload.data()); !s) return s;
-    const Status decoded = read_pack_chunk(*chunk, payload.data(), contents);
+    const Status decoded = read_pack_chunk(*chunk, payload.data(), contents, &counts);
     if (!decoded) return fail(decoded.message());
-    if (keep_payload) *keep_payload = std::move(payload);
     return {};
   }
 
@@ -104,125 +92,48 @@ struct Pack::Impl {
     std::vector<uint8_t> front(
         static_cast<size_t>(std::min<uint64_t>(size, pack_format::kHeaderSize)));
     if (Status s = source->read(0, front.size(), front.data()); !s) return s;
-    if (front.size() == pack_format::kHeaderSize) {
-      const uint32_t chunk_count = load_u32(&front[16]);
-      const uint64_t table_offset = load_u64(&front[24]);
-      const uint64_t table_bytes = uint64_t{chunk_count} * pack_format::kChunkEntrySize;
-      if (chunk_count <= pack_format::kMaxChunks && table_offset <= size &&
-          table_bytes <= size - table_offset && table_offset + table_bytes > front.size()) {
+    PackHeader header;
+    if (read_pack_header(front.data(), front.size(), header)) {
+      const uint64_t table_end =
+          header.table_offset + uint64_t{header.chunk_count} * pack_format::kChunkEntrySize;
+      if (table_end <= size && table_end > front.size()) {
         const size_t old = front.size();
-        front.resize(static_cast<size_t>(table_offset + table_bytes));
+        front.resize(static_cast<size_t>(table_end));
         if (Status s = source->read(old, front.size() - old, front.data() + old); !s) return s;
       }
     }
     const Status table = read_pack_chunks(front.data(), front.size(), chunks, &major, &minor);
     if (!table) return fail(table.message());
-    const uint64_t recorded = load_u64(&front[32]);
-    if (size < recorded)
+    if (size < header.file_size)
       return fail("truncated pack: " + std::to_string(size) + " bytes, the header records " +
-                  std::to_string(recorded));
-    if (size > recorded)
-      return fail("pack has " + std::to_string(size - recorded) +
-                  " trailing bytes after its recorded size " + std::to_string(recorded));
+                  std::to_string(header.file_size));
+    if (size > header.file_size)
+      return fail("pack has " + std::to_string(size - header.file_size) +
+                  " trailing bytes after its recorded size " + std::to_string(header.file_size));
     for (uint32_t tag : kRequiredTags)
       if (!find(tag)) return fail("missing chunk " + tag_name(tag));
     return {};
   }
 
   Status load_tables() {
-    std::vector<uint8_t> head;
-    if (Status s = read_chunk(pack_format::kTagHead, &head); !s) return s;
-    // note: HEAD ends with its six u32 counts (docs/pack-format.md 3.1); read_pack_chunk
-    // has checked the payload holds exactly name, settings and those counts.
-    if (head.size() < 24) return fail("chunk HEAD: too short for its counts");
-    const uint8_t* c = head.data() + head.size() - 24;
-    counts = {load_u32(c),      load_u32(c + 4),  load_u32(c + 8),
-              load_u32(c + 12), load_u32(c + 16), load_u32(c + 20)};
+    if (Status s = read_chunk(pack_format::kTagHead); !s) return s;
     for (uint32_t tag : kTableTags)
       if (tag != pack_format::kTagHead)
         if (Status s = read_chunk(tag); !s) return s;
     // note: LERR is optional (packs of 1.0 have none); it is a small table when present.
-    if (find(pack_format::kTagLerr))
-      if (Status s = read_chunk(pack_format::kTagLerr); !s) return s;
-    // note: MATX and IMGS (1.2) are optional too; IMGS holds encoded PNG/JPEG images, a
-    // texture's worth, read with the tables because type creation needs them.
-    for (uint32_t tag : {pack_format::kTagMatx, pack_format::kTagImgs})
+    // MATX and IMGS (1.2) are optional too; IMGS holds encoded PNG/JPEG images, a texture's
+    // worth, read with the tables because type creation needs them.
+    for (uint32_t tag : {pack_format::kTagLerr, pack_format::kTagMatx, pack_format::kTagImgs})
       if (find(tag))
         if (Status s = read_chunk(tag); !s) return s;
-    return check_tables();
-  }
-
-  Status count_mismatch(const char* chunk, const char* what, uint64_t head, uint64_t actual) const {
-    return fail(std::string("chunk ") + chunk + ": holds " + std::to_string(actual) + " " + what +
-                ", HEAD says " + std::to_string(head));
-  }
-
-  Status check_tables() {
+    for (uint32_t tag : {pack_format::kTagSkel, pack_format::kTagClip, pack_format::kTagMatl,
+                         pack_format::kTagProg, pack_format::kTagLerr})
+      if (Status s = check_pack_chunk(tag, contents, counts); !s) return fail(s.message());
     const PackContents& p = contents;
-    if (p.joints.size() != counts.joints)
-      return count_mismatch("SKEL", "joints", counts.joints, p.joints.size());
-    if (p.clips.size() != counts.clips)
-      return count_mismatch("CLIP", "clips", counts.clips, p.clips.size());
-    if (p.materials.size() != counts.materials)
-      return count_mismatch("MATL", "materials", counts.materials, p.materials.size());
-    for (size_t i = 0; i < p.materials.size(); ++i)
-      if (p.materials[i].base_color_image >= static_cast<int64_t>(p.images.size()))
-        return fail("chunk MATL: material " + std::to_string(i) + " uses image " +
-                    std::to_string(p.materials[i].base_color_image) + ", the pack has " +
-                    std::to_string(p.images.size()));
-    for (size_t i = 0; i < p.clips.size(); ++i) {
-      const PackClip& clip = p.clips[i];
-      if (uint64_t{clip.first_row} + clip.frame_count > counts.animation_rows)
-        return fail("chunk CLIP: clip " + std::to_string(i) + " '" + clip.name + "' uses rows " +
-                    std::to_string(clip.first_row) + ".." +
-                    std::to_string(uint64_t{clip.first_row} + clip.frame_count - 1) +
-                    ", HEAD says the animation texture has " +
-                    std::to_string(counts.animation_rows));
-    }
-    const PackProgressive& prog = p.progressive;
-    if (!prog.collapse_to.empty()) {
-      if (prog.collapse_to.size() != counts.vertices)
-        return count_mismatch("PROG", "vertices", counts.vertices, prog.collapse_to.size());
-      if (prog.triangle_count.back() != counts.triangles)
-        return fail("chunk PROG: triangle_count[" + std::to_string(counts.vertices) +
-                    "] = " + std::to_string(prog.triangle_count.back()) + ", HEAD says " +
-                    std::to_string(counts.triangles) + " triangles");
-    }
     bind.assign(size_t{12} * p.joints.size(), 0.0f);
     bind_ok.assign(p.joints.size(), 0);
     for (size_t j = 0; j < p.joints.size(); ++j)
       bind_ok[j] = invert_affine(p.joints[j].inverse_bind.data(), &bind[12 * j]);
-    return {};
-  }
-
-  Status check_geometry() const {
-    const PackGeometry& g = contents.geometry;
-    if (g.vertex_count() != counts.vertices)
-      return count_mismatch("GEOM", "vertices", counts.vertices, g.vertex_count());
-    if (g.triangle_count() != counts.triangles)
-      return count_mismatch("GEOM", "triangles", counts.triangles, g.triangle_count());
-    if (!g.joints.empty() && counts.joints == 0)
-      return fail("chunk GEOM: vertices are skinned but the skeleton is empty");
-    for (size_t i = 0; i < g.joints.size(); ++i)
-      if (g.joints[i] >= counts.joints)
-        return fail("chunk GEOM: vertex " + std::to_string(i / 4) + " uses joint " +
-                    std::to_string(g.joints[i]) + ", the skeleton has " +
-                    std::to_string(counts.joints));
-    for (size_t t = 0; t < g.triangle_material.size(); ++t)
-      if (g.triangle_material[t] >= counts.materials)
-        return fail("chunk GEOM: triangle " + std::to_string(t) + " uses material " +
-                    std::to_string(g.triangle_material[t]) + ", there are " +
-                    std::to_string(counts.materials));
-    return {};
-  }
-
-  Status check_animation() const {
-    const AnimationTexture& a = contents.animation;
-    if (a.rows != counts.animation_rows)
-      return count_mismatch("ANIM", "rows", counts.animation_rows, a.rows);
-    if (a.rows > 0 && a.joints != counts.joints)
-      return fail("chunk ANIM: " + std::to_string(a.joints) + " joints per row, the skeleton has " +
-                  std::to_string(counts.joints));
     return {};
   }
 
@@ -238,8 +149,8 @@ struct Pack::Impl {
                          : part == kPackAnimation ? pack_format::kTagAnim
                                                   : pack_format::kTagPart;
     Status s = read_chunk(tag);
-    if (s && part == kPackGeometry) s = check_geometry();
-    if (s && part == kPackAnimation) s = check_animation();
+    if (s && (part == kPackGeometry || part == kPackAnimation))
+      if (Status rules = check_pack_chunk(tag, contents, counts); !rules) s = fail(rules.message());
     if (!s) {
       clear(part);
       return s;

@@ -458,5 +458,48 @@ TEST(PackReader, ReadOneChunkForStreaming) {
   EXPECT_TRUE(read_pack_chunk(unknown, bytes.data() + geom.offset, out).ok());
 }
 
+// A streaming reader's view: the header alone, the table, HEAD's counts, then each chunk
+// checked against them as it arrives.
+TEST(PackStreaming, HeaderTableCountsAndChunkRules) {
+  const std::vector<uint8_t> bytes = small_pack(GeometryCodec::kDraco);
+  PackHeader header;
+  ASSERT_TRUE(read_pack_header(bytes.data(), kHeaderSize, header));
+  EXPECT_EQ(header.version_major, kPackVersionMajor);
+  EXPECT_EQ(header.file_size, bytes.size());
+  EXPECT_GE(header.table_offset, kHeaderSize);
+  std::vector<PackChunk> chunks;
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks));
+  EXPECT_EQ(chunks.size(), header.chunk_count);
+
+  PackContents contents;
+  PackCounts counts;
+  for (const PackChunk& c : chunks)
+    ASSERT_TRUE(read_pack_chunk(c, bytes.data() + c.offset, contents, &counts)) << c.tag;
+  EXPECT_EQ(counts.joints, contents.joints.size());
+  EXPECT_EQ(counts.vertices, contents.geometry.vertex_count());
+  for (const PackChunk& c : chunks) EXPECT_TRUE(check_pack_chunk(c.tag, contents, counts));
+
+  PackCounts wrong = counts;
+  wrong.joints += 1;
+  const Status skel = check_pack_chunk(kTagSkel, contents, wrong);
+  EXPECT_EQ(skel.code(), StatusCode::kInvalidPack);
+  EXPECT_EQ(skel.message(), "chunk SKEL: holds " + std::to_string(counts.joints) +
+                                " joints, HEAD says " + std::to_string(wrong.joints));
+  wrong = counts;
+  wrong.joints = 1;  // the geometry's joint indices reach beyond it
+  EXPECT_NE(check_pack_chunk(kTagGeom, contents, wrong).message().find("uses joint"),
+            std::string::npos);
+  wrong = counts;
+  wrong.animation_rows = 1;
+  EXPECT_NE(check_pack_chunk(kTagClip, contents, wrong).message().find("uses rows"),
+            std::string::npos);
+
+  std::vector<uint8_t> bad(bytes.begin(), bytes.begin() + kHeaderSize);
+  bad[1] = 'X';
+  EXPECT_NE(read_pack_header(bad.data(), bad.size(), header).message().find("bad magic"),
+            std::string::npos);
+  EXPECT_FALSE(read_pack_header(bytes.data(), 10, header)) << "a truncated header";
+}
+
 }  // namespace
 }  // namespace crowdbake

@@ -240,7 +240,7 @@ TEST(PackWriter, RefusesInvalidContents) {
   expect_refused(c, "triangle_count");
   c = good;
   c.clips[2].first_row = 100;
-  expect_refused(c, "clip 2 uses rows");
+  expect_refused(c, "clip 2 'clip_c' uses rows");
   c = good;
   c.clips[1].root_motion = {1.0f};
   expect_refused(c, "root motion");

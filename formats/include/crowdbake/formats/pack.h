@@ -215,6 +215,21 @@ StoredAnimation stored_animation(const PackContents& contents, const PackWriteOp
 std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options,
                                 const StoredAnimation& animation);
 
+// The pack's summary counts, as HEAD records them before the bulky chunks: what a streaming
+// reader sizes its buffers by, and what every chunk loaded later must agree with.
+struct PackCounts {
+  uint32_t joints = 0, clips = 0, materials = 0, vertices = 0, triangles = 0, animation_rows = 0;
+};
+
+// The fixed header (docs/pack-format.md 2.1): version, where the chunk table is, the recorded
+// file size.
+struct PackHeader {
+  uint16_t version_major = 0, version_minor = 0;
+  uint32_t chunk_count = 0;
+  uint64_t table_offset = 0;
+  uint64_t file_size = 0;
+};
+
 struct PackChunk {
   uint32_t tag = 0;      // four ASCII characters, little-endian (pack_format::kTagGeom, ...)
   uint32_t version = 0;  // per-chunk layout version
@@ -230,12 +245,26 @@ struct PackChunk {
 Status read_pack_chunks(const uint8_t* data, size_t size, std::vector<PackChunk>& chunks,
                         uint16_t* version_major = nullptr, uint16_t* version_minor = nullptr);
 
+// The header alone, from the file's first bytes (at least pack_format::kHeaderSize): magic,
+// version and the table's place, checked for what the header can say by itself. A streaming
+// reader reads this, then the table with read_pack_chunks. The checksum covers the table too,
+// so read_pack_chunks verifies it.
+Status read_pack_header(const uint8_t* data, size_t size, PackHeader& out);
+
 // Verifies one chunk's checksum and decodes it into its part of `out` (HEAD: name and
 // settings; SKEL: joints; ...). `payload` points at the chunk's `chunk.size` bytes. Checks
-// everything inside the chunk; rules that span chunks (joint indices < joint count, clip
-// rows < texture rows, ...) are checked by read_pack() or validate_pack_contents().
-// Unknown tags are accepted and ignored. For streaming GEOM, ANIM and PART separately.
-Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out);
+// everything inside the chunk; rules that span chunks are check_pack_chunk's, which read_pack()
+// and validate_pack_contents() apply to a whole pack. Unknown tags are accepted and ignored.
+// For streaming GEOM, ANIM and PART separately. HEAD's counts go to *counts (may be null).
+Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents& out,
+                       PackCounts* counts = nullptr);
+
+// The rules between the chunk `tag` (decoded into `contents`) and the others, for a reader
+// that loads chunks one at a time: its counts agree with HEAD's `counts`, and its indices are
+// in range of them (GEOM: joints, materials; CLIP: texture rows; MATL: the images; PROG and
+// LERR: vertices and triangles; ANIM: joints per row). kInvalidPack "chunk GEOM: ..." when
+// one is broken; ok for tags without such rules.
+Status check_pack_chunk(uint32_t tag, const PackContents& contents, const PackCounts& counts);
 
 // Parses and validates every size, offset, count, index and checksum. Never crashes,
 // hangs or allocates more than a small multiple of `size` on any input (a compressed

@@ -37,10 +37,9 @@ enum PackPart : uint32_t {
   kPackAll = kPackTables | kPackGeometry | kPackAnimation | kPackPartition,
 };
 
-// The counts HEAD records; known as soon as the pack is open (size buffers before streaming).
-struct PackCounts {
-  uint32_t joints = 0, clips = 0, materials = 0, vertices = 0, triangles = 0, animation_rows = 0;
-};
+// The counts HEAD records (formats' PackCounts); known as soon as the pack is open (size
+// buffers before streaming).
+using crowdbake::PackCounts;
 
 class Pack {
  public:
