@@ -25,7 +25,9 @@ install(TARGETS ${crowdbake_install_targets} EXPORT crowdbakeTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY base/include/ formats/include/ runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY base/include/ formats/include/ runtime/include/ runtime/crowd/include/
+                  runtime/effects/include/ runtime/scene_effects/include/ runtime/gpu/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 if(CROWDBAKE_BUILD_PIPELINE)
   install(DIRECTORY pipeline/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()

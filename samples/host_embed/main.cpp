@@ -1,5 +1,5 @@
 // host_embed: a minimal "game" that owns its Vulkan instance, device, command buffer and render
-// target, and lets crowdbake record a crowd into them (runtime/include/crowdbake/runtime/gpu/
+// target, and lets crowdbake record a crowd into them (runtime/gpu/include/crowdbake/runtime/gpu/
 // renderer.h: VulkanContext::wrap, Renderer::prepare, Renderer::record_draw).
 //
 //   host_embed PACK.crowdpack [OUT.ppm]

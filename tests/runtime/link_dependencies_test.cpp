@@ -87,6 +87,47 @@ TEST(LinkDependencies, EveryRuntimeLibraryKeepsToItsLayer) {
   EXPECT_TRUE(reaches(link_closure("crowdbake_scene_effects"), "crowdbake_crowd"));
 }
 
+// The include folders a library's users get (its own and those of what it links).
+std::vector<std::string> include_roots(const std::string& library) {
+  std::ifstream in(std::string(LINK_CLOSURE_DIR) + "/include_roots_" + library + ".txt");
+  std::vector<std::string> roots;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) roots.push_back(line);
+  return roots;
+}
+
+// Each runtime library has its own include root, and sees only the roots of what it links: the
+// crowd and effects libraries cannot include the core's pack.h, nor the core an effect.
+TEST(LinkDependencies, EachRuntimeLibraryHasItsOwnIncludeRoot) {
+  const std::string runtime = RUNTIME_SOURCE_DIR;
+  const std::string core = runtime + "/include", crowd = runtime + "/crowd/include",
+                    effects = runtime + "/effects/include",
+                    scene = runtime + "/scene_effects/include", gpu = runtime + "/gpu/include";
+  struct Rule {
+    const char* library;
+    std::string own;
+    std::vector<std::string> must_not_see;
+  };
+  const Rule rules[] = {
+      {"crowdbake_runtime", core, {crowd, effects, scene, gpu}},
+      {"crowdbake_crowd", crowd, {core, effects, scene, gpu}},
+      {"crowdbake_effects", effects, {core, crowd, scene, gpu}},
+      {"crowdbake_scene_effects", scene, {gpu}},
+      {"crowdbake_gpu", gpu, {crowd, effects, scene}},
+  };
+  int checked = 0;
+  for (const Rule& rule : rules) {
+    const std::vector<std::string> roots = include_roots(rule.library);
+    if (roots.empty()) continue;  // note: not in this build
+    ++checked;
+    EXPECT_TRUE(reaches(roots, rule.own)) << rule.library << " lacks its root " << rule.own;
+    for (const std::string& other : rule.must_not_see)
+      EXPECT_FALSE(reaches(roots, other)) << rule.library << " sees " << other;
+  }
+  EXPECT_GE(checked, 4);
+  EXPECT_TRUE(reaches(include_roots("crowdbake_scene_effects"), core));
+}
+
 TEST(LinkDependencies, DynamicSectionOfARuntimeBinary) {
   std::string out;
   ASSERT_EQ(run_command("readelf -d /proc/" + std::to_string(::getpid()) + "/exe", &out), 0) << out;

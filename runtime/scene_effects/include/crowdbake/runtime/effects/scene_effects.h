@@ -67,7 +67,7 @@ struct EffectEvent {
   float excitement = 1.0f;
 };
 
-// SpectatorParams (runtime/include/crowdbake/runtime/crowd/spectator_scene.h) as declared.
+// SpectatorParams (runtime/crowd/include/crowdbake/runtime/crowd/spectator_scene.h) as declared.
 struct EffectSpectatorParams {
   std::string home_state;  // "" = the first rest state
   float tick = 0.1f;
