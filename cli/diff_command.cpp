@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "cli/pack_diff.h"
 #include "cli/pack_file.h"
+#include "crowdbake/formats/pack_diff.h"
 #include "crowdbake/pipeline/error.h"
 
 namespace crowdbake::cli {

@@ -2,7 +2,6 @@
 
 #include <cctype>
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -30,10 +29,7 @@ PackFile load_pack_file(const std::string& path) {
 
   PackFile pack;
   pack.path = path;
-  pack.bytes = data.size();
-  Status status = read_pack_chunks(data.data(), data.size(), pack.chunks, &pack.version_major,
-                                   &pack.version_minor);
-  if (status) status = read_pack(data.data(), data.size(), pack.contents);
+  const Status status = read_pack_file(data.data(), data.size(), pack);
   if (!status) {
     // note: the reader's message says what is wrong; some already say what to do
     // ("...; update crowdbake"), the others get the general advice.
@@ -43,29 +39,6 @@ PackFile load_pack_file(const std::string& path) {
     throw input_error(path, message);
   }
   return pack;
-}
-
-const char* region_name(uint8_t region) {
-  switch (static_cast<Region>(region)) {
-    case Region::kHead:
-      return "head";
-    case Region::kUpperBody:
-      return "upper body";
-    case Region::kTrousers:
-      return "trousers";
-    case Region::kUnused:
-      return "unused";
-  }
-  return "unknown";
-}
-
-double bbox_diagonal(const PackContents& contents) {
-  double sum = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double d = double{contents.bounds.max[k]} - double{contents.bounds.min[k]};
-    sum += d * d;
-  }
-  return std::sqrt(sum);
 }
 
 }  // namespace crowdbake::cli

@@ -2,6 +2,7 @@
 // through a bounds-checked ByteReader; every count is checked against the bytes left
 // before anything is allocated; every failure is a Status naming the chunk and field.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -288,6 +289,36 @@ Status read_pack_chunk(const PackChunk& chunk, const uint8_t* payload, PackConte
   if (payload == nullptr && chunk.size != 0)
     return error("chunk " + tag_name(chunk.tag) + ": no data");
   return decode_chunk(chunk, payload, out, counts);
+}
+
+Status read_pack_file(const uint8_t* data, size_t size, PackFile& out) {
+  out.bytes = size;
+  Status status = read_pack_chunks(data, size, out.chunks, &out.version_major, &out.version_minor);
+  if (status) status = read_pack(data, size, out.contents);
+  return status;
+}
+
+const char* region_name(uint8_t region) {
+  switch (static_cast<Region>(region)) {
+    case Region::kHead:
+      return "head";
+    case Region::kUpperBody:
+      return "upper body";
+    case Region::kTrousers:
+      return "trousers";
+    case Region::kUnused:
+      return "unused";
+  }
+  return "unknown";
+}
+
+double bbox_diagonal(const PackContents& contents) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = double{contents.bounds.max[k]} - double{contents.bounds.min[k]};
+    sum += d * d;
+  }
+  return std::sqrt(sum);
 }
 
 Status read_pack(const uint8_t* data, size_t size, PackContents& out) {

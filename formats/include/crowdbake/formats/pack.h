@@ -272,6 +272,25 @@ Status check_pack_chunk(uint32_t tag, const PackContents& contents, const PackCo
 // pack_format::kGeomExpansionSlack). On failure `out` holds partial contents.
 Status read_pack(const uint8_t* data, size_t size, PackContents& out);
 
+// A whole pack as its file holds it: the chunk table as stored and the decoded, validated
+// contents (what inspect and diff look at).
+struct PackFile {
+  std::string path;    // where it was read from (set by the caller; for messages)
+  uint64_t bytes = 0;  // file size
+  uint16_t version_major = 0, version_minor = 0;
+  std::vector<PackChunk> chunks;  // file order, unknown tags included
+  PackContents contents;
+};
+
+// read_pack_chunks + read_pack into a PackFile (path left as it was).
+Status read_pack_file(const uint8_t* data, size_t size, PackFile& out);
+
+// "head", "upper body", "trousers", "unused"; "unknown" otherwise.
+const char* region_name(uint8_t region);
+
+// The bind-pose bounding box diagonal (bounds.min..max); 0 for an empty box.
+double bbox_diagonal(const PackContents& contents);
+
 // "opaque", "mask", "blend".
 const char* alpha_mode_name(AlphaMode mode);
 

@@ -4,9 +4,9 @@
 #include <numeric>
 #include <tuple>
 
-#include "cli/pack_diff_support.h"
+#include "pack_diff_support.h"
 
-namespace crowdbake::cli::diff {
+namespace crowdbake::diff {
 namespace {
 
 using Triangle = std::array<uint32_t, 3>;
@@ -255,4 +255,4 @@ DiffSection diff_progressive(const PackContents& a, const PackContents& b) {
   return s;
 }
 
-}  // namespace crowdbake::cli::diff
+}  // namespace crowdbake::diff

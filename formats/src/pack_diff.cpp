@@ -1,6 +1,6 @@
 // diff_packs: one static function per section, each filling a DiffSection from the two
 // decoded packs. Tolerance rules are in pack_diff.h.
-#include "cli/pack_diff.h"
+#include "crowdbake/formats/pack_diff.h"
 
 #include <algorithm>
 #include <array>
@@ -11,11 +11,11 @@
 #include <tuple>
 #include <type_traits>
 
-#include "cli/pack_diff_support.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
+#include "pack_diff_support.h"
 
-namespace crowdbake::cli {
+namespace crowdbake {
 namespace {
 
 using namespace diff;
@@ -486,4 +486,4 @@ PackDiff diff_packs(const PackFile& a, const PackFile& b, const DiffOptions& opt
   return diff;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake

@@ -1,5 +1,5 @@
 // What the section comparisons of diff_packs (pack_diff.h) share: the tolerance rules, the
-// figures' formatting and the sections kept in their own files. Internal to the CLI.
+// figures' formatting and the sections kept in their own files. Internal to formats.
 #pragma once
 
 #include <algorithm>
@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "cli/pack_diff.h"
+#include "crowdbake/formats/pack_diff.h"
 
-namespace crowdbake::cli::diff {
+namespace crowdbake::diff {
 
 using nlohmann::ordered_json;
 
@@ -92,4 +92,4 @@ inline void matrix_diff(const float* a, const float* b, double& linear, double& 
 DiffSection diff_geometry(const PackContents& pa, const PackContents& pb, const Compare& cmp);
 DiffSection diff_progressive(const PackContents& a, const PackContents& b);
 
-}  // namespace crowdbake::cli::diff
+}  // namespace crowdbake::diff

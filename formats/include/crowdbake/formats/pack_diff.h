@@ -1,4 +1,4 @@
-// Semantic comparison of two packs for `crowdbake diff` (docs/pack-diff.md): section by
+// Semantic comparison of two packs (docs/pack-diff.md; `crowdbake diff` prints it): section by
 // section (header, settings, skeleton, clips, materials, bounds, geometry, progressive,
 // animation, partition, sizes), each with what differs and the measured figures.
 //
@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/pack_file.h"
+#include "crowdbake/formats/pack.h"
 
-namespace crowdbake::cli {
+namespace crowdbake {
 
 struct DiffOptions {
   double tolerance = 0.0;  // T above; >= 0
@@ -51,4 +51,4 @@ const std::vector<std::string>& diff_section_names();
 
 PackDiff diff_packs(const PackFile& a, const PackFile& b, const DiffOptions& options);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake
