@@ -7,15 +7,18 @@
 #include <map>
 #include <sstream>
 
+#include "messages.h"
+
 namespace crowdbake::crowd {
+
+using detail::format_number;
+using detail::quote;
 namespace {
 
 constexpr size_t kMaxStates = 1024;  // note: the routing table is states² entries
 constexpr size_t kMaxClips = 65534;
 
 Status fsm_error(const std::string& message) { return Status(StatusCode::kInvalidFsm, message); }
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
 std::string format_seconds(double s) {
   std::ostringstream o;
@@ -112,7 +115,7 @@ class FsmCompiler {
       const StateDef& st = def.states[s];
       const std::string where = "state " + std::to_string(s);
       if (st.name.empty()) return fsm_error(where + ": the name is empty");
-      const std::string name = "state " + Quote(st.name);
+      const std::string name = "state " + quote(st.name);
       if (!state_index.emplace(st.name, static_cast<uint16_t>(s)).second)
         return fsm_error(name + " is defined twice");
       if (st.pose_in.empty() || st.pose_out.empty())
@@ -124,7 +127,7 @@ class FsmCompiler {
         const ClipVariant& clip = st.clips[c];
         if (clip.clip.empty())
           return fsm_error(name + " clip " + std::to_string(c) + ": the clip name is empty");
-        const std::string cname = name + " clip " + Quote(clip.clip);
+        const std::string cname = name + " clip " + quote(clip.clip);
         if (!std::isfinite(clip.duration_s) || clip.duration_s <= 0.0f)
           return fsm_error(cname + ": duration " + format_seconds(clip.duration_s) +
                            " must be > 0");
@@ -152,7 +155,7 @@ class FsmCompiler {
                                (st.contagious ? BehaviourFsm::kContagious : 0)));
       if (st.rest && st.pose_in != st.pose_out)
         return fsm_error(name + " is a rest state, so it loops, but it starts in pose " +
-                         Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+                         quote(st.pose_in) + " and ends in pose " + quote(st.pose_out));
     }
     return Status();
   }
@@ -163,16 +166,16 @@ class FsmCompiler {
       const std::string where =
           "transition " + std::to_string(t) + " (" + tr.from + " -> " + tr.to + ")";
       auto from = state_index.find(tr.from);
-      if (from == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.from));
+      if (from == state_index.end()) return fsm_error(where + ": unknown state " + quote(tr.from));
       auto to = state_index.find(tr.to);
-      if (to == state_index.end()) return fsm_error(where + ": unknown state " + Quote(tr.to));
+      if (to == state_index.end()) return fsm_error(where + ": unknown state " + quote(tr.to));
       const uint16_t a = from->second, b = to->second;
       if (std::find(adjacency[a].begin(), adjacency[a].end(), b) != adjacency[a].end())
         return fsm_error(where + " is defined twice");
       if (def.states[a].pose_out != def.states[b].pose_in)
-        return fsm_error(where + ": " + Quote(tr.from) + " ends in pose " +
-                         Quote(def.states[a].pose_out) + " but " + Quote(tr.to) +
-                         " starts in pose " + Quote(def.states[b].pose_in) +
+        return fsm_error(where + ": " + quote(tr.from) + " ends in pose " +
+                         quote(def.states[a].pose_out) + " but " + quote(tr.to) +
+                         " starts in pose " + quote(def.states[b].pose_in) +
                          "; go through a state that changes the pose");
       if (!std::isfinite(tr.idle_weight) || tr.idle_weight < 0.0f)
         return fsm_error(where + ": idle_weight " + std::to_string(tr.idle_weight) +
@@ -253,7 +256,7 @@ class FsmCompiler {
       const ReactionDef& re = def.reactions[r];
       if (re.event.empty())
         return fsm_error("reaction " + std::to_string(r) + ": the event is empty");
-      const std::string where = "reaction " + Quote(re.event);
+      const std::string where = "reaction " + quote(re.event);
       if (fsm.find_reaction(re.event) != BehaviourFsm::kNone)
         return fsm_error(where + " is defined twice");
       if (!std::isfinite(re.decay_s) || re.decay_s <= 0.0f)
@@ -265,19 +268,19 @@ class FsmCompiler {
         if (k == 1 && names[k]->empty()) break;
         auto it = state_index.find(*names[k]);
         if (it == state_index.end())
-          return fsm_error(where + ": " + roles[k] + " " + Quote(*names[k]) +
+          return fsm_error(where + ": " + roles[k] + " " + quote(*names[k]) +
                            " is an unknown state");
         states[k] = it->second;
         const StateDef& st = def.states[states[k]];
         if (st.pose_in != st.pose_out)
-          return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
+          return fsm_error(where + ": " + roles[k] + " " + quote(st.name) +
                            " loops while the reaction lasts, but it starts in pose " +
-                           Quote(st.pose_in) + " and ends in pose " + Quote(st.pose_out));
+                           quote(st.pose_in) + " and ends in pose " + quote(st.pose_out));
         for (size_t s = 0; s < n; ++s)
           if (def.states[s].rest &&
               fsm.next_hop(static_cast<uint16_t>(s), states[k]) == BehaviourFsm::kNone)
-            return fsm_error(where + ": " + roles[k] + " " + Quote(st.name) +
-                             " cannot be reached from rest state " + Quote(def.states[s].name));
+            return fsm_error(where + ": " + roles[k] + " " + quote(st.name) +
+                             " cannot be reached from rest state " + quote(def.states[s].name));
       }
       fsm.reaction_events_.push_back(re.event);
       fsm.reaction_supporters_.push_back(states[0]);

@@ -46,7 +46,7 @@ std::vector<uint8_t> draw_group_sizes(const GroupMix& mix, int people, uint64_t 
   while (left > 0) {
     int size = 1;
     if (total > 0.0) {
-      const double u = rng.Next() * total;
+      const double u = rng.next() * total;
       size = u < w2 ? 2 : u < w2 + w3 ? 3 : 4;
     }
     size = std::min(size, left);
@@ -54,7 +54,7 @@ std::vector<uint8_t> draw_group_sizes(const GroupMix& mix, int people, uint64_t 
     left -= size;
   }
   // Fisher–Yates, so singles are not all first.
-  for (size_t i = sizes.size(); i > 1; --i) std::swap(sizes[i - 1], sizes[rng.Below(i)]);
+  for (size_t i = sizes.size(); i > 1; --i) std::swap(sizes[i - 1], sizes[rng.below(i)]);
   return sizes;
 }
 

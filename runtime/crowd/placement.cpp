@@ -10,12 +10,16 @@
 #include <limits>
 #include <sstream>
 
+#include "messages.h"
 #include "polygon.h"
 #include "power_cells.h"
 #include "power_diagram.h"
 #include "random.h"
 
 namespace crowdbake::crowd {
+
+using detail::format_number;
+using detail::quote;
 namespace {
 
 using glm::dvec2;
@@ -25,12 +29,6 @@ constexpr int kFormationTurns = 24;  // rotations tried per group formation
 constexpr int kRepairRounds = 200;   // min-distance passes before giving up
 constexpr int kMaxPeople = 10'000'000;
 
-std::string Num(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 Status bad_option(const std::string& what) {
   return Status(StatusCode::kInvalidArgument, "placement: " + what);
 }
@@ -38,14 +36,14 @@ Status bad_option(const std::string& what) {
 // Moves p inside the polygon when it is outside (centroids of non-convex patches).
 dvec2 into_region(const std::vector<dvec2>& region, const dvec2& p, const dvec2& towards,
                   double inset) {
-  if (detail::Inside(region, p)) return p;
+  if (detail::inside(region, p)) return p;
   dvec2 nearest;
   detail::boundary_distance(region, p, &nearest);
   for (double t = inset; t < 1e6 * inset; t *= 2.0) {
     const dvec2 d = towards - nearest;
     const double len = glm::length(d);
     const dvec2 q = len > 0.0 ? nearest + std::min(t, len) * d / len : nearest;
-    if (detail::Inside(region, q)) return q;
+    if (detail::inside(region, q)) return q;
   }
   return towards;
 }
@@ -86,17 +84,20 @@ Status check_options(const PlacementOptions& o) {
     return bad_option("people = " + std::to_string(o.people) + " must be in [0, " +
                       std::to_string(kMaxPeople) + "]");
   if (!std::isfinite(o.min_distance_m) || o.min_distance_m <= 0.0)
-    return bad_option("min_distance_m = " + Num(o.min_distance_m) + " must be finite and > 0");
+    return bad_option("min_distance_m = " + format_number(o.min_distance_m) +
+                      " must be finite and > 0");
   if (!std::isfinite(o.group_spacing_m) || o.group_spacing_m < o.min_distance_m)
-    return bad_option("group_spacing_m = " + Num(o.group_spacing_m) +
-                      " must be finite and >= min_distance_m (" + Num(o.min_distance_m) + ")");
+    return bad_option("group_spacing_m = " + format_number(o.group_spacing_m) +
+                      " must be finite and >= min_distance_m (" + format_number(o.min_distance_m) +
+                      ")");
   if (Status s = validate_group_mix(o.groups); !s.ok()) return bad_option(s.message());
   if (o.max_iterations < 0) return bad_option("max_iterations must be >= 0");
   if (o.weight_iterations < 0) return bad_option("weight_iterations must be >= 0");
   if (!std::isfinite(o.capacity_tolerance) || o.capacity_tolerance <= 0.0)
-    return bad_option("capacity_tolerance = " + Num(o.capacity_tolerance) + " must be > 0");
+    return bad_option("capacity_tolerance = " + format_number(o.capacity_tolerance) +
+                      " must be > 0");
   if (!std::isfinite(o.move_tolerance) || o.move_tolerance <= 0.0)
-    return bad_option("move_tolerance = " + Num(o.move_tolerance) + " must be > 0");
+    return bad_option("move_tolerance = " + format_number(o.move_tolerance) + " must be > 0");
   if (const std::string why = detail::check_simple_polygon(o.region); !why.empty())
     return bad_option("region " + why);
   return Status();
@@ -133,8 +134,8 @@ Status sample_sites(const UnitFrame& f, size_t groups, uint64_t seed, std::vecto
     if (attempt >= max_attempts)
       return Status(StatusCode::kInfeasible,
                     "placement: could not sample starting points inside the region");
-    const dvec2 p(rng.Range(f.lo.x, f.hi.x), rng.Range(f.lo.y, f.hi.y));
-    if (detail::Inside(f.region, p)) sites.push_back(p);
+    const dvec2 p(rng.range(f.lo.x, f.hi.x), rng.range(f.lo.y, f.hi.y));
+    if (detail::inside(f.region, p)) sites.push_back(p);
   }
   return Status();
 }
@@ -191,7 +192,7 @@ void place_formations(const PlacementOptions& o, const std::vector<dvec2>& regio
     const dvec2 c = out.sites[g];
     const std::vector<dvec2>& patch = out.patches[g].empty() ? region : out.patches[g];
     out.group_first.push_back(static_cast<uint32_t>(out.positions.size()));
-    const double start = turn_rng.Next() * 2.0 * kPi;
+    const double start = turn_rng.next() * 2.0 * kPi;
     if (n == 1) {
       out.positions.push_back(c);
       out.facing.push_back(dvec2(std::cos(start), std::sin(start)));
@@ -227,7 +228,7 @@ void place_formations(const PlacementOptions& o, const std::vector<dvec2>& regio
 Status separate(const PlacementOptions& o, const std::vector<dvec2>& region, double area,
                 Placement& out) {
   const double d = o.min_distance_m;
-  const dvec2 region_centroid = detail::Centroid(region);
+  const dvec2 region_centroid = detail::centroid(region);
   for (size_t i = 0; i < out.positions.size(); ++i)
     out.positions[i] = into_region(region, out.positions[i], out.sites[out.group_of[i]], 1e-6 * d);
   const double goal = d * (1.0 + 1e-9);
@@ -239,18 +240,18 @@ Status separate(const PlacementOptions& o, const std::vector<dvec2>& region, dou
       const auto [a, b] = close.front();
       return Status(StatusCode::kInfeasible,
                     "placement: characters " + std::to_string(a) + " and " + std::to_string(b) +
-                        " stay " + Num(glm::length(out.positions[a] - out.positions[b])) +
-                        " m apart (< min_distance_m " + Num(d) + ") after " +
+                        " stay " + format_number(glm::length(out.positions[a] - out.positions[b])) +
+                        " m apart (< min_distance_m " + format_number(d) + ") after " +
                         std::to_string(kRepairRounds) +
-                        " separation passes; the region is too crowded (" + Num(o.people / area) +
-                        " people/m²)");
+                        " separation passes; the region is too crowded (" +
+                        format_number(o.people / area) + " people/m²)");
     }
     if (round == 0) out.repaired_pairs = static_cast<int>(close.size());
     for (const auto& [a, b] : close) {
       dvec2 delta = out.positions[b] - out.positions[a];
       double len = glm::length(delta);
       if (len < 1e-12 * d) {
-        const double angle = detail::Uniform(o.seed, a, b) * 2.0 * kPi;
+        const double angle = detail::uniform(o.seed, a, b) * 2.0 * kPi;
         delta = dvec2(std::cos(angle), std::sin(angle));
         len = 1.0;
       }
@@ -273,9 +274,9 @@ Status place_crowd(const PlacementOptions& o, Placement& result) {
   const double packing = static_cast<double>(o.people) * std::sqrt(3.0) / 2.0 * d * d;
   if (area < packing)
     return Status(StatusCode::kInfeasible,
-                  "placement: the region's " + Num(area) + " m² cannot hold " +
-                      std::to_string(o.people) + " people " + Num(d) +
-                      " m apart (hexagonal packing needs >= " + Num(packing) + " m²)");
+                  "placement: the region's " + format_number(area) + " m² cannot hold " +
+                      std::to_string(o.people) + " people " + format_number(d) +
+                      " m apart (hexagonal packing needs >= " + format_number(packing) + " m²)");
 
   Placement out;
   out.backend = detail::power_backend_name();

@@ -10,10 +10,10 @@
 namespace crowdbake::crowd::detail {
 namespace {
 
-double Cross(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
 
-double Orient(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
-  return Cross(b - a, c - a);
+double orient(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  return cross2(b - a, c - a);
 }
 
 bool on_segment(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
@@ -23,8 +23,8 @@ bool on_segment(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p) {
 
 bool segments_touch(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
                     const glm::dvec2& d) {
-  const double o1 = Orient(a, b, c), o2 = Orient(a, b, d), o3 = Orient(c, d, a),
-               o4 = Orient(c, d, b);
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+               o4 = orient(c, d, b);
   if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
     return true;
   return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
@@ -74,18 +74,18 @@ void clip_half_plane(const LabelledPolygon& in, const glm::dvec2& a, double c, i
 
 double signed_area(const std::vector<glm::dvec2>& poly) {
   double twice = 0.0;
-  for (size_t k = 0, n = poly.size(); k < n; ++k) twice += Cross(poly[k], poly[(k + 1) % n]);
+  for (size_t k = 0, n = poly.size(); k < n; ++k) twice += cross2(poly[k], poly[(k + 1) % n]);
   return 0.5 * twice;
 }
 
-glm::dvec2 Centroid(const std::vector<glm::dvec2>& poly) {
+glm::dvec2 centroid(const std::vector<glm::dvec2>& poly) {
   // note: relative to the first vertex, which keeps far-from-origin polygons accurate.
   const glm::dvec2 o = poly.empty() ? glm::dvec2(0.0) : poly[0];
   double twice = 0.0;
   glm::dvec2 sum(0.0);
   for (size_t k = 0, n = poly.size(); k < n; ++k) {
     const glm::dvec2 p = poly[k] - o, q = poly[(k + 1) % n] - o;
-    const double w = Cross(p, q);
+    const double w = cross2(p, q);
     twice += w;
     sum += w * (p + q);
   }
@@ -96,20 +96,20 @@ double second_moment(const std::vector<glm::dvec2>& poly, const glm::dvec2& c) {
   double total = 0.0;
   for (size_t k = 0, n = poly.size(); k < n; ++k) {
     const glm::dvec2 p = poly[k] - c, q = poly[(k + 1) % n] - c;
-    const double w = Cross(p, q);
+    const double w = cross2(p, q);
     total += w * (p.x * p.x + p.x * q.x + q.x * q.x + p.y * p.y + p.y * q.y + q.y * q.y);
   }
   return total / 12.0;
 }
 
-bool Inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
+bool inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
   int winding = 0;
   for (size_t k = 0, n = poly.size(); k < n; ++k) {
     const glm::dvec2& a = poly[k];
     const glm::dvec2& b = poly[(k + 1) % n];
     if (a.y <= p.y) {
-      if (b.y > p.y && Orient(a, b, p) > 0) ++winding;
-    } else if (b.y <= p.y && Orient(a, b, p) < 0) {
+      if (b.y > p.y && orient(a, b, p) > 0) ++winding;
+    } else if (b.y <= p.y && orient(a, b, p) < 0) {
       --winding;
     }
   }
@@ -132,7 +132,7 @@ double boundary_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& 
 
 double signed_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p) {
   const double d = boundary_distance(poly, p);
-  return Inside(poly, p) ? d : -d;
+  return inside(poly, p) ? d : -d;
 }
 
 std::string check_simple_polygon(const std::vector<glm::dvec2>& poly) {
@@ -155,7 +155,7 @@ std::string check_simple_polygon(const std::vector<glm::dvec2>& poly) {
         const glm::dvec2& shared = next ? b : a;
         const glm::dvec2& u = next ? a : b;
         const glm::dvec2& v = next ? d : c;
-        if (Orient(shared, u, v) == 0.0 && glm::dot(u - shared, v - shared) > 0.0)
+        if (orient(shared, u, v) == 0.0 && glm::dot(u - shared, v - shared) > 0.0)
           return "edges " + std::to_string(i) + " and " + std::to_string(j) + " overlap";
         continue;
       }

@@ -24,11 +24,11 @@ void clip_half_plane(const LabelledPolygon& in, const glm::dvec2& a, double c, i
 
 double signed_area(const std::vector<glm::dvec2>& poly);
 // Centroid of a polygon with non-zero area.
-glm::dvec2 Centroid(const std::vector<glm::dvec2>& poly);
+glm::dvec2 centroid(const std::vector<glm::dvec2>& poly);
 // ∫ |x - p|² over the polygon (positive for counter-clockwise polygons).
 double second_moment(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
 // Winding-number test; points on the boundary count as inside or outside arbitrarily.
-bool Inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
+bool inside(const std::vector<glm::dvec2>& poly, const glm::dvec2& p);
 // Distance to the nearest edge, and the nearest boundary point.
 double boundary_distance(const std::vector<glm::dvec2>& poly, const glm::dvec2& p,
                          glm::dvec2* nearest = nullptr);

@@ -115,7 +115,7 @@ bool compute_cells(const std::vector<glm::dvec2>& region, const std::vector<glm:
     const double area = poly.points.empty() ? 0.0 : detail::signed_area(poly.points);
     if (area > 0.0) {
       cells->area[i] = area;
-      cells->centroid[i] = detail::Centroid(poly.points);
+      cells->centroid[i] = detail::centroid(poly.points);
       cells->moment[i] = detail::second_moment(poly.points, p);
       for (size_t e = 0, m = poly.points.size(); e < m; ++e)
         if (poly.labels[e] >= 0)

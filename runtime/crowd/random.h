@@ -9,24 +9,24 @@
 
 namespace crowdbake::crowd::detail {
 
-inline uint64_t Mix64(uint64_t x) { return splitmix64(x); }
+inline uint64_t mix64(uint64_t x) { return splitmix64(x); }
 
-inline uint64_t Hash3(uint64_t seed, uint64_t stream, uint64_t counter) {
-  return Mix64(Mix64(Mix64(seed) ^ stream) ^ counter);
+inline uint64_t hash3(uint64_t seed, uint64_t stream, uint64_t counter) {
+  return mix64(mix64(mix64(seed) ^ stream) ^ counter);
 }
 
-inline double Uniform(uint64_t seed, uint64_t stream, uint64_t counter) {
-  return unit_double(Hash3(seed, stream, counter));
+inline double uniform(uint64_t seed, uint64_t stream, uint64_t counter) {
+  return unit_double(hash3(seed, stream, counter));
 }
 
 // A sequential generator for setup code (placement, seat grids).
 class Rng {
  public:
   explicit Rng(uint64_t seed, uint64_t stream = 0) : seed_(seed), stream_(stream) {}
-  double Next() { return Uniform(seed_, stream_, counter_++); }
-  double Range(double lo, double hi) { return lo + (hi - lo) * Next(); }
+  double next() { return uniform(seed_, stream_, counter_++); }
+  double range(double lo, double hi) { return lo + (hi - lo) * next(); }
   // Uniform integer in [0, n), n > 0.
-  uint64_t Below(uint64_t n) { return static_cast<uint64_t>(Next() * static_cast<double>(n)) % n; }
+  uint64_t below(uint64_t n) { return static_cast<uint64_t>(next() * static_cast<double>(n)) % n; }
 
  private:
   uint64_t seed_, stream_, counter_ = 0;

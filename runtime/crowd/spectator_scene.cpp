@@ -9,9 +9,13 @@
 #include <unordered_map>
 
 #include "crowdbake/runtime/crowd/behaviour_fsm.h"
+#include "messages.h"
 #include "random.h"
 
 namespace crowdbake::crowd {
+
+using detail::format_number;
+using detail::quote;
 namespace {
 
 constexpr size_t kMaxGroupMembers = 64;
@@ -19,14 +23,6 @@ constexpr int64_t kMaxSeats = 16 * 1024 * 1024;
 
 Status scene_error(const std::string& message) {
   return Status(StatusCode::kInvalidScene, message);
-}
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
-
-std::string Num(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
 }
 
 std::string team_list(const std::vector<TeamDef>& teams) {
@@ -43,7 +39,8 @@ int find_team(const std::vector<TeamDef>& teams, const std::string& name) {
 
 Status check_params(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t* home) {
   auto bad = [](const char* field, double v, const char* rule) {
-    return scene_error(std::string("params.") + field + " = " + Num(v) + " must be " + rule);
+    return scene_error(std::string("params.") + field + " = " + format_number(v) + " must be " +
+                       rule);
   };
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
@@ -73,16 +70,16 @@ Status check_params(const BehaviourFsm& fsm, const SpectatorParams& p, uint16_t*
     return bad("isolation_cooldown_s", p.isolation_cooldown_s, "finite and >= 0 (a time)");
   *home = fsm.find_state(p.home_state);
   if (*home == BehaviourFsm::kNone)
-    return scene_error("params.home_state " + Quote(p.home_state) + " is an unknown state");
+    return scene_error("params.home_state " + quote(p.home_state) + " is an unknown state");
   if (!fsm.is_rest(*home))
-    return scene_error("params.home_state " + Quote(p.home_state) + " is not a rest state");
+    return scene_error("params.home_state " + quote(p.home_state) + " is not a rest state");
   // note: every state an individual can get to from home must lead back home.
   for (int s = 0; s < fsm.state_count(); ++s) {
     const auto st = static_cast<uint16_t>(s);
     if (fsm.next_hop(*home, st) != BehaviourFsm::kNone &&
         fsm.next_hop(st, *home) == BehaviourFsm::kNone)
-      return scene_error("params.home_state " + Quote(p.home_state) + ": state " +
-                         Quote(fsm.state_name(st)) +
+      return scene_error("params.home_state " + quote(p.home_state) + ": state " +
+                         quote(fsm.state_name(st)) +
                          " can be reached from it but has no path back");
   }
   return Status();
@@ -147,13 +144,13 @@ Status check_teams(const SpectatorSceneDef& def) {
     const TeamDef& team = def.teams[t];
     if (team.name.empty()) return scene_error("team " + std::to_string(t) + ": the name is empty");
     if (find_team(def.teams, team.name) != static_cast<int>(t))
-      return scene_error("team " + Quote(team.name) + " is defined twice");
+      return scene_error("team " + quote(team.name) + " is defined twice");
     if (!std::isfinite(team.embarrassment) || team.embarrassment < 0.0f)
-      return scene_error("team " + Quote(team.name) + ": embarrassment " + Num(team.embarrassment) +
-                         " must be finite and >= 0");
+      return scene_error("team " + quote(team.name) + ": embarrassment " +
+                         format_number(team.embarrassment) + " must be finite and >= 0");
     if (!std::isfinite(team.embarrassment_spread) || team.embarrassment_spread < 0.0f)
-      return scene_error("team " + Quote(team.name) + ": embarrassment_spread " +
-                         Num(team.embarrassment_spread) + " must be finite and >= 0");
+      return scene_error("team " + quote(team.name) + ": embarrassment_spread " +
+                         format_number(team.embarrassment_spread) + " must be finite and >= 0");
   }
   return Status();
 }
@@ -180,26 +177,28 @@ Status compile_events(const BehaviourFsm& fsm, const SpectatorSceneDef& def,
                       std::vector<SpectatorScene::Event>& events) {
   for (size_t e = 0; e < def.events.size(); ++e) {
     const SceneEvent& ev = def.events[e];
-    const std::string where = "event " + std::to_string(e) + " (" + Quote(ev.kind) + " at " +
-                              Num(ev.time_s) + " s" +
-                              (ev.team.empty() ? "" : " for team " + Quote(ev.team)) + ")";
+    const std::string where = "event " + std::to_string(e) + " (" + quote(ev.kind) + " at " +
+                              format_number(ev.time_s) + " s" +
+                              (ev.team.empty() ? "" : " for team " + quote(ev.team)) + ")";
     if (!std::isfinite(ev.time_s) || ev.time_s < 0.0)
-      return scene_error(where + ": time " + Num(ev.time_s) + " s must be finite and >= 0");
+      return scene_error(where + ": time " + format_number(ev.time_s) +
+                         " s must be finite and >= 0");
     if (!std::isfinite(ev.excitement) || ev.excitement < 0.0f)
-      return scene_error(where + ": excitement " + Num(ev.excitement) + " must be finite and >= 0");
+      return scene_error(where + ": excitement " + format_number(ev.excitement) +
+                         " must be finite and >= 0");
     const uint16_t reaction = fsm.find_reaction(ev.kind);
     if (reaction == BehaviourFsm::kNone) {
       std::string kinds;
       for (int r = 0; r < fsm.reaction_count(); ++r)
         kinds += (r ? ", " : "") + fsm.reaction_event(static_cast<uint16_t>(r));
-      return scene_error(where + ": the FSM has no reaction to " + Quote(ev.kind) +
+      return scene_error(where + ": the FSM has no reaction to " + quote(ev.kind) +
                          " (reactions: " + kinds + ")");
     }
     uint16_t team = SpectatorScene::kAnyTeam;
     if (!ev.team.empty()) {
       const int t = find_team(def.teams, ev.team);
       if (t < 0)
-        return scene_error(where + ": team " + Quote(ev.team) +
+        return scene_error(where + ": team " + quote(ev.team) +
                            " is not in the crowd (teams: " + team_list(def.teams) + ")");
       team = static_cast<uint16_t>(t);
     }
@@ -270,7 +269,7 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
   for (size_t i = 0; i < n; ++i) {
     const TeamDef& team = def.teams[def.individuals[i].team];
     auto u = [&](uint64_t k) {
-      return 2.0 * detail::Uniform(p.seed, detail::kStreamIndividual, i * 4 + k) - 1.0;
+      return 2.0 * detail::uniform(p.seed, detail::kStreamIndividual, i * 4 + k) - 1.0;
     };
     scene.team_[i] = def.individuals[i].team;
     scene.embarrassment_[i] =
@@ -289,7 +288,7 @@ Status build_spectator_scene(const BehaviourFsm& fsm, const SpectatorSceneDef& d
 Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams,
                        std::vector<IndividualDef>& individuals) {
   auto bad = [](const std::string& field, double v, const char* rule) {
-    return scene_error("seat grid: " + field + " = " + Num(v) + " must be " + rule);
+    return scene_error("seat grid: " + field + " = " + format_number(v) + " must be " + rule);
   };
   if (def.rows <= 0) return bad("rows", def.rows, "> 0");
   if (def.columns <= 0) return bad("columns", def.columns, "> 0");
@@ -319,10 +318,10 @@ Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams
   for (size_t s = 0; s < def.sections.size(); ++s) {
     const SeatSection& sec = def.sections[s];
     const std::string where =
-        "seat section " + std::to_string(s) + " (team " + Quote(sec.team) + ")";
+        "seat section " + std::to_string(s) + " (team " + quote(sec.team) + ")";
     const int t = find_team(teams, sec.team);
     if (t < 0)
-      return scene_error(where + ": team " + Quote(sec.team) +
+      return scene_error(where + ": team " + quote(sec.team) +
                          " is not in the crowd (teams: " + team_list(teams) + ")");
     section_team[s] = static_cast<uint16_t>(t);
     const int rows = sec.row_count < 0 ? def.rows - sec.first_row : sec.row_count;
@@ -353,8 +352,8 @@ Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams
   const double wsum = w2 + w3 + w4;
   detail::Rng group_rng(def.seed, detail::kStreamGroups);
   auto draw_size = [&]() {
-    if (group_rng.Next() < q || !(wsum > 0.0)) return 1;
-    const double u = group_rng.Next() * wsum;
+    if (group_rng.next() < q || !(wsum > 0.0)) return 1;
+    const double u = group_rng.next() * wsum;
     return u < w2 ? 2 : u < w2 + w3 ? 3 : 4;
   };
 
@@ -367,7 +366,7 @@ Status place_seat_grid(const SeatGridDef& def, const std::vector<TeamDef>& teams
       const size_t seat = static_cast<size_t>(r) * def.columns + c;
       const int s = owner[seat];
       const bool occupied =
-          s >= 0 && detail::Uniform(def.seed, detail::kStreamSeats, seat) >= def.empty_probability;
+          s >= 0 && detail::uniform(def.seed, detail::kStreamSeats, seat) >= def.empty_probability;
       if (!occupied || s != run_section) left_in_group = 0;  // a gap or a new section cuts groups
       run_section = occupied ? s : -1;
       if (!occupied) continue;

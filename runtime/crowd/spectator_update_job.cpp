@@ -18,8 +18,8 @@ constexpr double kMinDrive = 1e-3;      // below this an event no longer drives 
 constexpr double kEventHorizon = 12.0;  // note: exp(-12) < 1e-5, older events are skipped
 constexpr uint32_t kContagionCause = 0xffffffffu;
 
-double Draw(const SpectatorScene& scene, SpectatorState& st, size_t i) {
-  return detail::Uniform(scene.params().seed, detail::kStreamBehaviour,
+double next_draw(const SpectatorScene& scene, SpectatorState& st, size_t i) {
+  return detail::uniform(scene.params().seed, detail::kStreamBehaviour,
                          (static_cast<uint64_t>(i) << 32) | st.draws[i]++);
 }
 
@@ -32,7 +32,7 @@ void start_next(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorS
   if (st.mode[i] == SpectatorState::kReacting) {
     destination = st.target[i];
   } else if (fsm.pose_out(current) == fsm.pose_in(home)) {
-    next = fsm.pick_idle_next(current, Draw(scene, st, i));
+    next = fsm.pick_idle_next(current, next_draw(scene, st, i));
     if (next == kNone) next = fsm.is_rest(current) ? current : fsm.next_hop(current, home);
   } else {
     destination = home;
@@ -47,7 +47,7 @@ void start_next(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorS
   }
   if (next == kNone) next = current;  // note: validation makes this unreachable
   st.state[i] = next;
-  st.clip[i] = fsm.pick_clip(next, Draw(scene, st, i));
+  st.clip[i] = fsm.pick_clip(next, next_draw(scene, st, i));
   st.clip_start_s[i] = t0;
   ++st.counters.clip_switches;
 }
@@ -66,7 +66,7 @@ void finish_clips(const BehaviourFsm& fsm, const SpectatorScene& scene, Spectato
 
 // Pass 1: drive, candidate reaction and share of reacting neighbours, from the previous
 // tick's decisions only.
-void Measure(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, double t) {
+void measure(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, double t) {
   const auto& events = scene.events();
   size_t live_end = 0;
   for (size_t e = 0; e < events.size() && events[e].time_s <= t; ++e) {
@@ -123,7 +123,7 @@ void Measure(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorStat
 
 // Pass 2: start, keep or stop reacting (model in spectator_scene.h). Returns whether the
 // visible decision changed (became reacting, or stopped).
-bool Decide(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, size_t i,
+bool decide(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, size_t i,
             double t) {
   const SpectatorParams& p = scene.params();
   const double f = st.share[i], b = st.drive[i], e = scene.embarrassment(i);
@@ -148,7 +148,7 @@ bool Decide(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState
     // note: the delay is drawn per group and cause, so friends deciding together start together.
     const uint64_t key = (static_cast<uint64_t>(scene.group(i)) << 32) | st.cause[i];
     const double delay =
-        p.start_delay_max_s * detail::Uniform(p.seed, detail::kStreamGroupDelay, key);
+        p.start_delay_max_s * detail::uniform(p.seed, detail::kStreamGroupDelay, key);
     st.mode[i] = SpectatorState::kPending;
     st.target[i] = candidate;
     st.pending_until_s[i] = t + delay;
@@ -202,11 +202,11 @@ bool Decide(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState
   return false;
 }
 
-void Tick(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, double t) {
+void run_tick(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& st, double t) {
   finish_clips(fsm, scene, st, t);
-  Measure(fsm, scene, st, t);
+  measure(fsm, scene, st, t);
   for (size_t i = 0; i < scene.size(); ++i) {
-    if (!Decide(fsm, scene, st, i, t)) continue;
+    if (!decide(fsm, scene, st, i, t)) continue;
     // note: interruptible idle loops give way at once; motion states finish their clip.
     const uint16_t s = st.state[i];
     if (!fsm.is_interruptible(s)) continue;
@@ -217,7 +217,7 @@ void Tick(const BehaviourFsm& fsm, const SpectatorScene& scene, SpectatorState& 
 
 }  // namespace
 
-void SpectatorState::Reset(const BehaviourFsm& fsm, const SpectatorScene& scene) {
+void SpectatorState::reset(const BehaviourFsm& fsm, const SpectatorScene& scene) {
   const size_t n = scene.size();
   time_s = 0.0;
   next_tick = 0;
@@ -241,9 +241,9 @@ void SpectatorState::Reset(const BehaviourFsm& fsm, const SpectatorScene& scene)
   event_factor.assign(scene.events().size(), 0.0);
   tally.assign(static_cast<size_t>(fsm.state_count()), 0);
   for (size_t i = 0; i < n; ++i) {
-    clip[i] = fsm.pick_clip(state[i], Draw(scene, *this, i));
+    clip[i] = fsm.pick_clip(state[i], next_draw(scene, *this, i));
     // note: a random phase, so the crowd does not start in lockstep.
-    clip_start_s[i] = -Draw(scene, *this, i) * fsm.clip_duration(clip[i]);
+    clip_start_s[i] = -next_draw(scene, *this, i) * fsm.clip_duration(clip[i]);
   }
 }
 
@@ -275,7 +275,7 @@ bool SpectatorUpdateJob::Run() const {
   for (;;) {
     const double t = static_cast<double>(st.next_tick) * tick;
     if (t > time_s) break;
-    Tick(*fsm, *scene, st, t);
+    run_tick(*fsm, *scene, st, t);
     ++st.next_tick;
   }
   finish_clips(*fsm, *scene, st, time_s);

@@ -247,7 +247,7 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   crowd = std::make_unique<crowd::SpectatorScene>();
   if (crowd::Status s = crowd::build_spectator_scene(*fsm, sdef, *crowd); !s.ok())
     return invalid("effects.spectators: " + s.message());
-  fsm_state.Reset(*fsm, *crowd);
+  fsm_state.reset(*fsm, *crowd);
   const size_t n = crowd->size();
   out_state.assign(n, crowd->home_state());
   out_clip.assign(n, 0);

@@ -38,7 +38,7 @@ struct Sim {
       std::fprintf(stderr, "error: %s\n", s.message().c_str());
       std::exit(2);
     }
-    state.Reset(fsm, scene);
+    state.reset(fsm, scene);
     out_state.resize(scene.size());
     out_clip.resize(scene.size());
     out_time.resize(scene.size());

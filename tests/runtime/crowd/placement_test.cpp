@@ -53,7 +53,7 @@ void CheckPlacement(const PlacementOptions& o, const Placement& p) {
   EXPECT_GE(BruteMinDistance(p.positions), o.min_distance_m * (1.0 - 1e-9));
   EXPECT_NEAR(p.min_pair_distance, BruteMinDistance(p.positions), 1e-9);
   // All inside the region.
-  for (const dvec2& x : p.positions) ASSERT_TRUE(detail::Inside(o.region, x)) << x.x << " " << x.y;
+  for (const dvec2& x : p.positions) ASSERT_TRUE(detail::inside(o.region, x)) << x.x << " " << x.y;
   // Group members inside their own patch, standing around their site, facing its centre.
   EXPECT_EQ(p.members_outside_patch, 0);
   int people = 0;
@@ -152,7 +152,7 @@ TEST(Placement, DenseCrowdKeepsTheMinimumDistance) {
   const Status s = place_crowd(o, p);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_GE(BruteMinDistance(p.positions), o.min_distance_m * (1.0 - 1e-9));
-  for (const dvec2& x : p.positions) EXPECT_TRUE(detail::Inside(o.region, x));
+  for (const dvec2& x : p.positions) EXPECT_TRUE(detail::inside(o.region, x));
 }
 
 TEST(Placement, TinyCrowds) {
@@ -236,7 +236,7 @@ TEST(PowerCells, BackendMatchesAllPairs) {
   std::vector<double> weights;
   while (sites.size() < 200) {
     const dvec2 p(u(rng), u(rng));
-    if (!detail::Inside(local, p)) continue;
+    if (!detail::inside(local, p)) continue;
     sites.push_back(p);
     weights.push_back(0.004 * u(rng));
   }
@@ -315,7 +315,7 @@ TEST(PowerCells, NewtonReachesTheCapacities) {
 TEST(Polygon, AreaCentroidMomentAndClipping) {
   const std::vector<dvec2> square = Square(2.0);
   EXPECT_DOUBLE_EQ(detail::signed_area(square), 4.0);
-  EXPECT_EQ(detail::Centroid(square), dvec2(1.0, 1.0));
+  EXPECT_EQ(detail::centroid(square), dvec2(1.0, 1.0));
   // ∫ |x - c|² over a 2 × 2 square about its centre = 2 · (2 · 2³ / 12) = 8/3.
   EXPECT_NEAR(detail::second_moment(square, dvec2(1.0)), 8.0 / 3.0, 1e-12);
   detail::LabelledPolygon poly{square, {-1, -1, -1, -1}}, half;
@@ -326,8 +326,8 @@ TEST(Polygon, AreaCentroidMomentAndClipping) {
     if (half.labels[k] == 7)
       on_line += glm::length(half.points[(k + 1) % half.points.size()] - half.points[k]);
   EXPECT_NEAR(on_line, 2.0, 1e-12);
-  EXPECT_TRUE(detail::Inside(square, dvec2(1.0, 1.0)));
-  EXPECT_FALSE(detail::Inside(square, dvec2(3.0, 1.0)));
+  EXPECT_TRUE(detail::inside(square, dvec2(1.0, 1.0)));
+  EXPECT_FALSE(detail::inside(square, dvec2(3.0, 1.0)));
   EXPECT_NEAR(detail::signed_distance(square, dvec2(0.5, 1.0)), 0.5, 1e-12);
   EXPECT_NEAR(detail::signed_distance(square, dvec2(-0.5, 1.0)), -0.5, 1e-12);
   // Clipping a non-convex L keeps area exact (bridges add none).

@@ -30,7 +30,7 @@ struct Sim {
     EXPECT_TRUE(s.ok()) << s.message();
     s = build_spectator_scene(fsm, def, scene);
     EXPECT_TRUE(s.ok()) << s.message();
-    state.Reset(fsm, scene);
+    state.reset(fsm, scene);
     out_state.resize(scene.size());
     out_clip.resize(scene.size());
     out_time.resize(scene.size());
@@ -374,10 +374,10 @@ TEST(SpectatorUpdateJob, JobValidity) {
   job.out_clip_time = nullptr;
   job.out_count = 0;
   EXPECT_TRUE(job.Run());
-  // Time never goes backwards; Reset() rewinds.
+  // Time never goes backwards; reset() rewinds.
   EXPECT_FALSE(sim.Job(0.5).Validate());
   EXPECT_TRUE(sim.Job(1.0).Validate());
-  sim.state.Reset(sim.fsm, sim.scene);
+  sim.state.reset(sim.fsm, sim.scene);
   EXPECT_TRUE(sim.Job(0.5).Run());
   // A state sized for another scene is refused.
   SpectatorState other;

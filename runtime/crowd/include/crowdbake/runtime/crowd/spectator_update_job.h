@@ -26,13 +26,13 @@ namespace crowdbake::crowd {
 class BehaviourFsm;
 class SpectatorScene;
 
-// Mutable per-individual simulation state, parallel arrays sized by Reset().
+// Mutable per-individual simulation state, parallel arrays sized by reset().
 struct SpectatorState {
   enum Mode : uint8_t { kIdle = 0, kPending = 1, kReacting = 2 };
 
   // Sizes every array for `scene` and puts everyone in the home state at t = 0, each on a
   // random variant at a random phase (so the crowd does not move in lockstep). Allocates.
-  void Reset(const BehaviourFsm& fsm, const SpectatorScene& scene);
+  void reset(const BehaviourFsm& fsm, const SpectatorScene& scene);
 
   double time_s = 0.0;    // time reached by the last Run()
   int64_t next_tick = 0;  // index of the next decision tick (at next_tick · tick_s)
@@ -57,7 +57,7 @@ struct SpectatorState {
   std::vector<double> event_factor;  // per scene event: excitement · exp(-age / decay)
   std::vector<uint32_t> tally;       // per FSM state, for picking a contagious candidate
 
-  // Counters since Reset() (docs/crowd-behaviour.md reports them).
+  // Counters since reset() (docs/crowd-behaviour.md reports them).
   struct Counters {
     uint64_t lone_starts = 0;       // started with no neighbour reacting in that state
     uint64_t social_starts = 0;     // started with some neighbours reacting, below threshold
@@ -71,7 +71,7 @@ struct SpectatorState {
 struct SpectatorUpdateJob {
   const BehaviourFsm* fsm = nullptr;      // not null
   const SpectatorScene* scene = nullptr;  // not null, built against *fsm
-  SpectatorState* state = nullptr;        // not null; Reset() for this scene
+  SpectatorState* state = nullptr;        // not null; reset() for this scene
   double time_s = 0.0;                    // target time; finite and >= state->time_s
   // Outputs, each of scene->size() entries; may be null (that output is skipped).
   uint16_t* out_state = nullptr;
@@ -80,7 +80,7 @@ struct SpectatorUpdateJob {
   size_t out_count = 0;            // entries in each non-null output; must equal scene->size()
 
   // False when a pointer is null, the state's arrays do not match the scene, the outputs are
-  // too small, or time_s is not finite or goes backwards (Reset() to rewind).
+  // too small, or time_s is not finite or goes backwards (reset() to rewind).
   bool Validate() const;
   // Validates, advances the state to time_s and writes the outputs. Never allocates.
   bool Run() const;
