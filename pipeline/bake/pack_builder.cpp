@@ -212,7 +212,7 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
   const ProgressiveMesh pm = simplify(asset, settings.simplify, &report.simplify);
   report.warnings.insert(report.warnings.end(), report.simplify.warnings.begin(),
                          report.simplify.warnings.end());
-  pack.progressive = {pm.collapse_to, pm.triangle_count, pm.group_start, pm.min_vertices};
+  pack.progressive = pm;  // note: the PackProgressive part, as stored
   clock.done("simplify");
 #if defined(__GLIBC__)
   // note: the simplifier's hundreds of megabytes on a hero character are free now; hand them

@@ -111,7 +111,8 @@ struct PackGeometry {
   uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
 };
 
-// ProgressiveMesh arrays (pipeline/include/crowdbake/pipeline/progressive_mesh.h).
+// The progressive mesh's levels (docs/pack-format.md §3.6; rules, views and reconstruction in
+// progressive.h). The pipeline's ProgressiveMesh is one of these plus what built it.
 struct PackProgressive {
   std::vector<uint32_t> collapse_to;     // ECol', one per vertex
   std::vector<uint32_t> triangle_count;  // Map, vertex_count + 1 entries

@@ -25,7 +25,16 @@
 
 namespace crowdbake {
 
-struct ProgressiveMesh {
+// The levels' arrays are formats' PackProgressive (what a pack stores: collapse_to,
+// triangle_count, group_start, min_vertices); the builder adds where each vertex came from and
+// the triangles in progressive order.
+//   collapse_to: ECol', collapse_to[i] < i for every removable vertex, collapse_to[i] == i
+//     for vertices kept at the coarsest level (i < min_vertices);
+//   triangle_count: Map, triangle_count[n] for n in [0, vertex_count]; entries below
+//     min_vertices equal triangle_count[min_vertices];
+//   group_start: first index of the collapse group vertex i belongs to (== i for single-wedge
+//     groups and for vertices below min_vertices).
+struct ProgressiveMesh : PackProgressive {
   // vertex_source[i]: the original vertex (index into the concatenated primitives of the
   // SkinnedAsset it was built from) stored at permuted index i.
   std::vector<uint32_t> vertex_source;
@@ -34,16 +43,6 @@ struct ProgressiveMesh {
   std::vector<uint32_t> triangles;
   // Primitive (material slot) of each permuted triangle.
   std::vector<uint16_t> triangle_primitive;
-  // ECol': collapse_to[i] < i for every removable vertex, collapse_to[i] == i for
-  // vertices kept at the coarsest level (i < min_vertices).
-  std::vector<uint32_t> collapse_to;
-  // Map: triangle_count[n] for n in [0, vertex_count]; entries below min_vertices equal
-  // triangle_count[min_vertices].
-  std::vector<uint32_t> triangle_count;
-  // First index of the collapse group vertex i belongs to (== i for single-wedge groups
-  // and for vertices below min_vertices).
-  std::vector<uint32_t> group_start;
-  uint32_t min_vertices = 0;
 
   uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_source.size()); }
   uint32_t max_triangles() const { return static_cast<uint32_t>(triangles.size() / 3); }
