@@ -70,7 +70,7 @@ int run_bake(const BakeCommandSettings& s) {
   const PackContents pack = build_pack(asset, settings, report, &animation);
   progress.say("writing " + s.output);
   const auto write_start = std::chrono::steady_clock::now();
-  const std::vector<uint8_t> bytes = write_pack(pack, settings.pack, animation);
+  const std::vector<uint8_t> bytes = write_baked_pack(pack, settings.pack, &animation, s.output);
   write_file_atomically(s.output, bytes);
   report.stages.push_back(
       {"write",

@@ -28,7 +28,7 @@ void bake_sample_pack(const std::string& path) {
   BakeSettings settings;
   BakeReport report;
   const PackContents pack = build_pack(asset, settings, report);
-  write_file_atomically(path, write_pack(pack, settings.pack));
+  write_file_atomically(path, write_baked_pack(pack, settings.pack, nullptr, path));
 }
 
 StandLayout stand_layout(uint32_t instances, float aspect) {

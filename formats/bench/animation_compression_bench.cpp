@@ -81,8 +81,14 @@ int main(int argc, char** argv) {
       return 1;
     }
     StoredAnimation stored;
-    const double code = time_ms([&] { stored = stored_animation(pack, bounded); });
-    const std::vector<uint8_t> coded = write_pack(pack, bounded);
+    Status coding;
+    const double code = time_ms([&] { coding = stored_animation(pack, bounded, stored); });
+    std::vector<uint8_t> coded;
+    if (coding) coding = write_pack(pack, bounded, coded);
+    if (!coding) {
+      std::fprintf(stderr, "%s: %s\n", argv[a], coding.message().c_str());
+      return 1;
+    }
     std::vector<PackChunk> chunks;
     read_pack_chunks(coded.data(), coded.size(), chunks);
     PackChunk anim;

@@ -135,8 +135,9 @@ void codec_table(const std::vector<Input>& inputs, double min_seconds) {
     const double decoded_mb = layout.decoded_bytes() / 1e6;
     for (const Setting& s : settings) {
       std::vector<uint8_t> bytes;
-      const double encode =
-          median_seconds([&] { bytes = write_pack(in.contents, s.options); }, min_seconds / 4);
+      const double encode = median_seconds(
+          [&] { bytes = write_baked_pack(in.contents, s.options, nullptr, "bench"); },
+          min_seconds / 4);
       const PackChunk geom = geom_chunk(bytes);
       const double decode = median_seconds(
           [&] {
@@ -173,7 +174,8 @@ void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
     for (GeometryCodec codec : {GeometryCodec::kDraco, GeometryCodec::kMeshopt}) {
       std::printf("| %s | %s |", in.name.c_str(), geometry_codec_name(codec));
       for (int b : position_bits) {
-        const std::vector<uint8_t> bytes = write_pack(in.contents, {codec, b, 10, 12});
+        const std::vector<uint8_t> bytes =
+            write_baked_pack(in.contents, {codec, b, 10, 12}, nullptr, "bench");
         const PackGeometry out = decode_geom(bytes);
         std::printf(" %.2e (%llu B) |", max_abs_difference(g.positions, out.positions) / diag,
                     static_cast<unsigned long long>(geom_chunk(bytes).size));
@@ -199,7 +201,8 @@ void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
       std::string normals = "| " + in.name + " | " + geometry_codec_name(codec) + " | normal ° |";
       std::string uvs = "| " + in.name + " | " + geometry_codec_name(codec) + " | uv |";
       for (int b : bits) {
-        const PackGeometry out = decode_geom(write_pack(in.contents, {codec, 16, b, b}));
+        const PackGeometry out =
+            decode_geom(write_baked_pack(in.contents, {codec, 16, b, b}, nullptr, "bench"));
         char cell[64];
         std::snprintf(cell, sizeof cell, " %.3f |", max_angle_degrees(g.normals, out.normals));
         normals += cell;
@@ -220,7 +223,7 @@ void chunk_table(const std::vector<Input>& inputs) {
   for (size_t i = 0; i < std::size(tags); ++i) std::printf("---:|");
   std::printf("---:|\n");
   for (const Input& in : inputs) {
-    const std::vector<uint8_t> bytes = write_pack(in.contents);
+    const std::vector<uint8_t> bytes = write_baked_pack(in.contents, {}, nullptr, "bench");
     std::vector<PackChunk> chunks;
     read_pack_chunks(bytes.data(), bytes.size(), chunks);
     std::printf("| %s | %ju |", in.name.c_str(), in.source_bytes);

@@ -101,9 +101,23 @@ AnimationChoice choose_animation(const PackContents& contents, const PackWriteOp
   return choice;
 }
 
-}  // namespace
+// The writer's checks and codecs throw inside this file; callers get a Status (kInvalidArgument
+// for contents or options that break a rule, kInternal when a codec fails).
+template <typename Write>
+Status guarded(Write&& write) {
+  try {
+    write();
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return {StatusCode::kInvalidArgument, e.what()};
+  } catch (const std::bad_alloc&) {
+    return {StatusCode::kOutOfMemory, "write_pack: out of memory"};
+  } catch (const std::exception& e) {
+    return {StatusCode::kInternal, e.what()};
+  }
+}
 
-StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options) {
+StoredAnimation store_animation(const PackContents& contents, const PackWriteOptions& options) {
   check_options(options);
   check_contents(contents);
   StoredAnimation stored;
@@ -121,6 +135,13 @@ StoredAnimation stored_animation(const PackContents& contents, const PackWriteOp
   stored.mean_error = choice.code.mean_error;
   stored.coded = std::move(choice.frame);
   return stored;
+}
+
+}  // namespace
+
+Status stored_animation(const PackContents& contents, const PackWriteOptions& options,
+                        StoredAnimation& out) {
+  return guarded([&] { out = store_animation(contents, options); });
 }
 
 const char* alpha_mode_name(AlphaMode mode) {
@@ -254,24 +275,30 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
 
 }  // namespace
 
-std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options) {
-  check_options(options);
-  check_contents(contents);
-  const AnimationChoice animation = choose_animation(contents, options);
-  return write_pack_chunks(contents, options, animation.bounded ? &animation.frame : nullptr);
+Status write_pack(const PackContents& contents, const PackWriteOptions& options,
+                  std::vector<uint8_t>& out) {
+  return guarded([&] {
+    check_options(options);
+    check_contents(contents);
+    const AnimationChoice animation = choose_animation(contents, options);
+    out = write_pack_chunks(contents, options, animation.bounded ? &animation.frame : nullptr);
+  });
 }
 
-std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options,
-                                const StoredAnimation& animation) {
-  check_options(options);
-  check_contents(contents);
-  if (animation.error_bounded &&
-      (animation.coded.empty() || animation.texture.rows != contents.animation.rows ||
-       animation.texture.joints != contents.animation.joints))
-    throw std::invalid_argument(
-        "write_pack: the stored animation does not fit the contents; pass what "
-        "stored_animation() returned for them");
-  return write_pack_chunks(contents, options, animation.error_bounded ? &animation.coded : nullptr);
+Status write_pack(const PackContents& contents, const PackWriteOptions& options,
+                  const StoredAnimation& animation, std::vector<uint8_t>& out) {
+  return guarded([&] {
+    check_options(options);
+    check_contents(contents);
+    if (animation.error_bounded &&
+        (animation.coded.empty() || animation.texture.rows != contents.animation.rows ||
+         animation.texture.joints != contents.animation.joints))
+      throw std::invalid_argument(
+          "write_pack: the stored animation does not fit the contents; pass what "
+          "stored_animation() returned for them");
+    out =
+        write_pack_chunks(contents, options, animation.error_bounded ? &animation.coded : nullptr);
+  });
 }
 
 }  // namespace crowdbake

@@ -13,6 +13,7 @@
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/animation_bake.h"
 #include "crowdbake/pipeline/bake.h"
+#include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "import/node_transform.h"
 
@@ -280,7 +281,9 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
     pack.bounds.min[k] = static_cast<float>(lo[k]), pack.bounds.max[k] = static_cast<float>(hi[k]);
   // note: the bake measures what a reader will get.
   const double diagonal = std::max(glm::length(hi - lo), 1e-30);
-  StoredAnimation stored = stored_animation(pack, settings.pack);
+  StoredAnimation stored;
+  if (const Status s = stored_animation(pack, settings.pack, stored); !s)
+    throw Error(Error::Kind::kUsage, asset.source, s.message());
   report.animation_coding = stored.error_bounded ? "error-bounded" : "lossless";
   report.animation_coding_max_error = stored.max_error / diagonal;
   report.animation_coding_mean_error = stored.mean_error / diagonal;
@@ -296,6 +299,15 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
   if (stored_out) *stored_out = std::move(stored);
   clock.done("measure");
   return pack;
+}
+
+std::vector<uint8_t> write_baked_pack(const PackContents& pack, const PackWriteOptions& options,
+                                      const StoredAnimation* stored, const std::string& file) {
+  std::vector<uint8_t> bytes;
+  const Status s =
+      stored ? write_pack(pack, options, *stored, bytes) : write_pack(pack, options, bytes);
+  if (!s) throw Error(Error::Kind::kOutput, file, s.message());
+  return bytes;
 }
 
 }  // namespace crowdbake

@@ -10,6 +10,7 @@
 #include "cli/cli_runner.h"
 #include "crowdbake/formats/pack.h"
 #include "gltf_test_builder.h"
+#include "pack_bytes.h"
 #include "test_png.h"
 
 namespace crowdbake {
@@ -121,7 +122,7 @@ class PackCommands : public ::testing::Test {
     PackWriteOptions options;
     options.codec = GeometryCodec::kRaw;
     options.position_bits = options.normal_bits = options.uv_bits = 0;
-    const std::vector<uint8_t> bytes = write_pack(contents, options);
+    const std::vector<uint8_t> bytes = test::pack_bytes(contents, options);
     const fs::path out = dir_ / (name + ".crowdpack");
     std::ofstream(out, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()), bytes.size());

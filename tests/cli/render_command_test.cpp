@@ -16,6 +16,7 @@
 #include "cli/cli_runner.h"
 #include "cli/image_png.h"
 #include "crowdbake/formats/pack.h"
+#include "pack_bytes.h"
 #include "runtime/runtime_test_support.h"
 
 namespace crowdbake {
@@ -256,7 +257,7 @@ TEST_F(RenderCommand, PackWithoutLevelErrorsRendersByBudgetWithANote) {
     ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok());
   }
   contents.level_errors = {};
-  const std::vector<uint8_t> bytes = write_pack(contents, {});
+  const std::vector<uint8_t> bytes = test::pack_bytes(contents, {});
   const std::string old_pack = out("old.crowdpack");
   std::ofstream(old_pack, std::ios::binary)
       .write(reinterpret_cast<const char*>(bytes.data()),

@@ -14,6 +14,7 @@
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/formats/pack_format.h"
+#include "pack_bytes.h"
 #include "pack_compare.h"
 #include "pack_test_contents.h"
 
@@ -108,7 +109,7 @@ TEST(PackCompression, PacksStoreAnimV2AndStillWriteV1OnRequest) {
   for (PackCompression compression : {PackCompression::kZstd, PackCompression::kNone}) {
     PackWriteOptions options;
     options.compression = compression;
-    const std::vector<uint8_t> bytes = write_pack(in, options);
+    const std::vector<uint8_t> bytes = test::pack_bytes(in, options);
     std::vector<PackChunk> chunks;
     ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok());
     for (const PackChunk& c : chunks)
@@ -134,7 +135,7 @@ TEST(PackCompression, TableChunksWrappedAndReadBack) {
   for (PackCompression compression : {PackCompression::kZstd, PackCompression::kNone}) {
     PackWriteOptions options{GeometryCodec::kRaw};  // note: exact geometry, to compare
     options.compression = compression;
-    const std::vector<uint8_t> bytes = write_pack(in, options);
+    const std::vector<uint8_t> bytes = test::pack_bytes(in, options);
     std::vector<PackChunk> chunks;
     ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), chunks).ok());
     for (const PackChunk& c : chunks) versions[pack_format::tag_name(c.tag)].push_back(c.version);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "pack_bytes.h"
 #include "pack_test_contents.h"
 
 namespace crowdbake {
@@ -17,7 +18,7 @@ namespace {
 PackFile pack_of(const PackContents& contents) {
   PackWriteOptions options;
   options.codec = GeometryCodec::kRaw;  // note: exact floats, so a moved vertex is what differs
-  const std::vector<uint8_t> bytes = write_pack(contents, options);
+  const std::vector<uint8_t> bytes = test::pack_bytes(contents, options);
   PackFile pack;
   const Status read = read_pack_file(bytes.data(), bytes.size(), pack);
   EXPECT_TRUE(read) << read.message();

@@ -11,6 +11,7 @@
 
 #include "allocation_tracker.h"
 #include "crowdbake/formats/pack.h"
+#include "pack_bytes.h"
 #include "pack_compare.h"
 #include "pack_compression.h"
 #include "pack_surgery.h"
@@ -53,7 +54,7 @@ std::vector<uint8_t> small_pack(GeometryCodec codec,
                                 PackCompression compression = PackCompression::kZstd) {
   PackWriteOptions options{codec};
   options.compression = compression;
-  return write_pack(test::make_test_contents(4, 21), options);
+  return test::pack_bytes(test::make_test_contents(4, 21), options);
 }
 
 class Hostile : public ::testing::TestWithParam<GeometryCodec> {};
@@ -173,7 +174,7 @@ TEST(PackReader, UnsupportedMajorVersionMessage) {
 TEST(PackReader, NewerMinorVersionStillReads) {
   const PackContents in = test::make_test_contents(4, 22);
   PackContents out;
-  const Status s = read(test::assemble_pack(test::split_pack(write_pack(in)), 1, 9), out);
+  const Status s = read(test::assemble_pack(test::split_pack(test::pack_bytes(in)), 1, 9), out);
   ASSERT_TRUE(s.ok()) << s.message();
   test::expect_same_contents(in, out, {1e-3, 1e-2, 1e-3, 1e-4});
 }
@@ -188,7 +189,7 @@ TEST(PackReader, RequiredFlagsRejectedOptionalFlagsIgnored) {
 
 TEST(PackReader, UnknownChunksAreSkipped) {
   const PackContents in = test::make_test_contents(4, 23);
-  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kRaw}));
+  auto chunks = test::split_pack(test::pack_bytes(in, {GeometryCodec::kRaw}));
   chunks.insert(chunks.begin() + 4,
                 RawChunk{make_tag('X', 'T', 'R', 'A'), 7, std::vector<uint8_t>(37, 0xab)});
   chunks.push_back(RawChunk{0xdeadbeef, 1, {}});
@@ -242,7 +243,7 @@ TEST(PackReader, QuantisedWeightsNeedGeomVersion2) {
   PackWriteOptions exact{GeometryCodec::kDraco};
   exact.weight_bits = 0;
   const PackChunk v1 =
-      test::find_chunk(write_pack(test::make_test_contents(4, 21), exact), kTagGeom);
+      test::find_chunk(test::pack_bytes(test::make_test_contents(4, 21), exact), kTagGeom);
   EXPECT_EQ(v1.version, 1u) << "exact weights stay readable by 1.3 readers";
 }
 
@@ -260,7 +261,7 @@ TEST(PackReader, MissingOrDuplicateChunksRejected) {
 
 TEST(PackReader, ChunksInAnyFileOrderRead) {
   const PackContents in = test::make_test_contents(4, 24);
-  auto chunks = test::split_pack(write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0}));
+  auto chunks = test::split_pack(test::pack_bytes(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0}));
   std::reverse(chunks.begin(), chunks.end());
   PackContents out;
   const Status s = read(test::assemble_pack(chunks), out);
@@ -442,7 +443,7 @@ TEST(PackReader, HugeCountsRejectedBeforeAllocating) {
 
 TEST(PackReader, ReadOneChunkForStreaming) {
   const PackContents in = test::make_test_contents(5, 25);
-  const std::vector<uint8_t> bytes = write_pack(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0});
+  const std::vector<uint8_t> bytes = test::pack_bytes(in, {GeometryCodec::kMeshopt, 0, 0, 0, 0});
   const PackChunk geom = test::find_chunk(bytes, kTagGeom);
   PackContents out;
   Status s = read_pack_chunk(geom, bytes.data() + geom.offset, out);

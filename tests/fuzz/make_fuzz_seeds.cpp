@@ -22,7 +22,11 @@ using namespace crowdbake;
 int write_packs(const std::string& dir) {
   int written = 0;
   const auto emit = [&](const std::string& name, const PackContents& c, const PackWriteOptions& o) {
-    const std::vector<uint8_t> bytes = write_pack(c, o);
+    std::vector<uint8_t> bytes;
+    if (const Status s = write_pack(c, o, bytes); !s) {
+      std::fprintf(stderr, "make_fuzz_seeds: %s: %s\n", name.c_str(), s.message().c_str());
+      return;
+    }
     std::ofstream(dir + "/" + name + ".crowdpack", std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));

@@ -4,6 +4,7 @@
 // and can be written again.
 #include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 #include "crowdbake/formats/pack.h"
 
@@ -11,6 +12,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   crowdbake::PackContents contents;
   if (!crowdbake::read_pack(data, size, contents)) return 0;
   if (!crowdbake::validate_pack_contents(contents)) std::abort();
-  (void)crowdbake::write_pack(contents, {crowdbake::GeometryCodec::kRaw, 0, 0, 0});
+  // note: what the reader accepts, the writer writes again.
+  std::vector<uint8_t> bytes;
+  if (!crowdbake::write_pack(contents, {crowdbake::GeometryCodec::kRaw, 0, 0, 0}, bytes))
+    std::abort();
   return 0;
 }

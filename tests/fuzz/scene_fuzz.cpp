@@ -23,8 +23,8 @@ constexpr uint32_t kFrameInstances = 20000;
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  const std::vector<uint8_t> pack =
-      crowdbake::write_pack(crowdbake::fuzz::small_pack_contents(3, 7), {});
+  std::vector<uint8_t> pack;
+  if (!crowdbake::write_pack(crowdbake::fuzz::small_pack_contents(3, 7), {}, pack)) std::abort();
   crowdbake::fuzz::write_input("type.crowdpack", pack.data(), pack.size());
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "crowdbake/runtime/frame.h"
 #include "crowdbake/runtime/reconstruct_job.h"
 #include "crowdbake/runtime/skin_job.h"
+#include "pack_bytes.h"
 #include "runtime/runtime_test_support.h"
 #include "temp_dir.h"
 
@@ -194,7 +195,7 @@ TEST(UpdateFrame, ErrorModeAndItsFallbackWithoutLevelErrors) {
   test::TempDir dir;
   const std::string old_pack = (dir.path() / "old.crowdpack").string();
   {
-    const std::vector<uint8_t> bytes = write_pack(contents, {});
+    const std::vector<uint8_t> bytes = test::pack_bytes(contents, {});
     std::ofstream(old_pack, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));

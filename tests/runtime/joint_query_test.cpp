@@ -10,6 +10,7 @@
 
 #include "crowdbake/runtime/cpu_reference.h"
 #include "crowdbake/runtime/frame.h"
+#include "pack_bytes.h"
 #include "runtime/runtime_test_support.h"
 
 namespace crowdbake::runtime {
@@ -169,7 +170,7 @@ TEST(JointQuery, Errors) {
   PackWriteOptions raw;
   raw.codec = GeometryCodec::kRaw;
   Pack pack;
-  ASSERT_TRUE(Pack::open(make_memory_source(write_pack(contents, raw)), pack, kPackAll));
+  ASSERT_TRUE(Pack::open(make_memory_source(test::pack_bytes(contents, raw)), pack, kPackAll));
   EXPECT_EQ(pack.bind_matrix(1), nullptr);
   Scene singular;
   ASSERT_TRUE(add_character_type(singular, "s", std::move(pack)));

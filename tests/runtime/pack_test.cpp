@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "crowdbake/formats/pack_format.h"
+#include "pack_bytes.h"
 #include "runtime/runtime_test_support.h"
 #include "temp_dir.h"
 
@@ -238,7 +239,7 @@ TEST(Pack, DerivedValues) {
   PackWriteOptions raw;
   raw.codec = GeometryCodec::kRaw;
   Pack flat_pack;
-  ASSERT_TRUE(open_bytes(write_pack(flat, raw), flat_pack, kPackTables));
+  ASSERT_TRUE(open_bytes(test::pack_bytes(flat, raw), flat_pack, kPackTables));
   EXPECT_EQ(flat_pack.min_vertices(), flat_pack.max_vertices());
 }
 
@@ -364,7 +365,7 @@ TEST(Pack, HeadCountsMustMatchEveryChunk) {
   flat.progressive = PackProgressive{};
   PackWriteOptions raw;
   raw.codec = GeometryCodec::kRaw;
-  bytes = write_pack(flat, raw);
+  bytes = test::pack_bytes(flat, raw);
   set_head_count(bytes, 3, 37);
   ASSERT_TRUE(open_bytes(bytes, pack, kPackTables));
   s = pack.load(kPackGeometry);

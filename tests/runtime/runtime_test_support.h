@@ -21,6 +21,7 @@
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/runtime/byte_source.h"
+#include "pack_bytes.h"
 
 namespace crowdbake::test {
 
@@ -280,7 +281,7 @@ inline PackContents make_small_pack(uint32_t grid = 6, uint32_t seed = 7) {
 inline std::vector<uint8_t> small_pack_bytes(uint32_t grid = 6, uint32_t seed = 7) {
   PackWriteOptions options;
   options.codec = GeometryCodec::kRaw;
-  return write_pack(make_small_pack(grid, seed), options);
+  return test::pack_bytes(make_small_pack(grid, seed), options);
 }
 
 }  // namespace crowdbake::test

@@ -13,6 +13,7 @@
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pack_bytes.h"
 #include "spectator_character.h"
 
 namespace crowdbake {
@@ -70,7 +71,7 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   const BakeSettings settings;
   BakeReport report;
   const PackContents pack = build_pack(asset, settings, report);
-  const std::vector<uint8_t> bytes = write_pack(pack, settings.pack);
+  const std::vector<uint8_t> bytes = test::pack_bytes(pack, settings.pack);
   PackContents back;
   const Status status = read_pack(bytes.data(), bytes.size(), back);
   ASSERT_TRUE(status.ok()) << status.message();
@@ -108,7 +109,7 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   ASSERT_EQ(back.joints.size(), asset.skeleton.joints.size());
   EXPECT_EQ(back.clips.size(), std::max<size_t>(asset.clips.size(), 1));
   // The animation as stored_animation() said it would be, and the coding within its bound.
-  const StoredAnimation stored = stored_animation(pack, settings.pack);
+  const StoredAnimation stored = test::stored_or_fail(pack, settings.pack);
   EXPECT_EQ(back.animation.data, stored.texture.data);
   EXPECT_EQ(report.animation_coding, stored.error_bounded ? "error-bounded" : "lossless");
   EXPECT_LE(report.animation_coding_max_error, settings.pack.animation_error);
@@ -143,7 +144,7 @@ TEST(PackBuilder, SameInputGivesTheSameBytesWhateverTheThreads) {
     settings.simplify.threads = threads;
     BakeReport report;
     const std::vector<uint8_t> bytes =
-        write_pack(build_pack(asset, settings, report), settings.pack);
+        test::pack_bytes(build_pack(asset, settings, report), settings.pack);
     if (first.empty())
       first = bytes;
     else

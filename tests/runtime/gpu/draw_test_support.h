@@ -14,6 +14,7 @@
 #include "crowdbake/runtime/byte_source.h"
 #include "crowdbake/runtime/pack.h"
 #include "crowdbake/runtime/scene.h"
+#include "pack_bytes.h"
 #include "runtime/runtime_test_support.h"
 
 namespace crowdbake::test {
@@ -33,7 +34,7 @@ inline std::vector<uint8_t> small_pack_bytes_encoded(AnimationEncoding encoding,
       encode_animation_texture(encoding, c.animation.joints, c.animation.rows, matrices.data());
   PackWriteOptions options;
   options.codec = GeometryCodec::kRaw;
-  return write_pack(c, options);
+  return test::pack_bytes(c, options);
 }
 
 inline runtime::Status add_pack_bytes(runtime::Scene& scene, const std::string& name,

@@ -11,6 +11,7 @@
 #include "crowdbake/formats/pack_image.h"
 #include "crowdbake/runtime/gpu/crowd_draw.h"
 #include "crowdbake/runtime/gpu/renderer.h"
+#include "pack_bytes.h"
 #include "runtime/gpu/draw_test_support.h"
 #include "runtime/gpu/gpu_test_support.h"
 #include "test_png.h"
@@ -99,7 +100,7 @@ class MaterialShadingTest : public test::GpuTest {
     EXPECT_TRUE(read_pack(bytes.data(), bytes.size(), contents).ok());
     edit(contents);
     Scene scene;
-    EXPECT_TRUE(test::add_pack_bytes(scene, "spectator", write_pack(contents)).ok());
+    EXPECT_TRUE(test::add_pack_bytes(scene, "spectator", test::pack_bytes(contents)).ok());
     scene.types[0].shading = shading;
     test::add_grid(scene, 0, 1, 1, 1.0f);
     scene.instances.color.assign(3 * scene.instances.size(), 0.0f);

@@ -189,10 +189,11 @@ struct PackWriteOptions {
 // docs/pack-format.md "Validity rules" lists them.
 Status validate_pack_contents(const PackContents& contents);
 
-// Serialises deterministically: equal contents and options give identical bytes.
-// Throws std::invalid_argument when validate_pack_contents() fails or an option is out
-// of range (the message names the rule), std::runtime_error if a codec fails.
-std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options = {});
+// Serialises deterministically into `out`: equal contents and options give identical bytes.
+// kInvalidArgument when validate_pack_contents() fails or an option is out of range (the
+// message names the rule), kInternal if a codec fails; `out` is left as it was then.
+Status write_pack(const PackContents& contents, const PackWriteOptions& options,
+                  std::vector<uint8_t>& out);
 
 // The animation texture read_pack() gives back for a pack written with `options`, and what
 // the coding cost: contents.animation itself unless options.animation_error asks for the
@@ -207,14 +208,16 @@ struct StoredAnimation {
   bool lossless_smaller = false;  // the reason is only that the lossless texels are smaller
   std::vector<uint8_t> coded;     // the coding as ANIM v3 stores it (empty when lossless)
 };
-StoredAnimation stored_animation(const PackContents& contents, const PackWriteOptions& options);
+// Fails like write_pack().
+Status stored_animation(const PackContents& contents, const PackWriteOptions& options,
+                        StoredAnimation& out);
 
 // write_pack() with the animation's storage already chosen: `animation` must be what
 // stored_animation(contents, options) returned. The same bytes, without coding the animation
 // a second time (the coding measures every vertex at every row: seconds on a large character).
-// Throws std::invalid_argument when `animation` does not fit the contents.
-std::vector<uint8_t> write_pack(const PackContents& contents, const PackWriteOptions& options,
-                                const StoredAnimation& animation);
+// kInvalidArgument also when `animation` does not fit the contents.
+Status write_pack(const PackContents& contents, const PackWriteOptions& options,
+                  const StoredAnimation& animation, std::vector<uint8_t>& out);
 
 // The pack's summary counts, as HEAD records them before the bulky chunks: what a streaming
 // reader sizes its buffers by, and what every chunk loaded later must agree with.

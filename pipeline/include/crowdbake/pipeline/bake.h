@@ -82,4 +82,10 @@ struct BakeReport {
 PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
                         StoredAnimation* stored = nullptr);
 
+// write_pack() of a built pack (with its stored animation when given), as the pipeline reports
+// failures: a crowdbake::Error naming `file` (a pack the bake built breaks no rule, so a
+// failure here is a codec's).
+std::vector<uint8_t> write_baked_pack(const PackContents& pack, const PackWriteOptions& options,
+                                      const StoredAnimation* stored, const std::string& file);
+
 }  // namespace crowdbake
