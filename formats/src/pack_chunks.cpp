@@ -522,6 +522,10 @@ bool decode_animation(ByteReader& in, uint32_t version, AnimationTexture& out) {
   if (!in.ok()) return false;
   if (encoding > 2) return in.fail("unknown encoding " + std::to_string(encoding));
   out.encoding = static_cast<AnimationEncoding>(encoding);
+  // note: before any size is computed from it (a row's width is joints x texels per joint).
+  if (out.joints > kMaxJoints)
+    return in.fail("joint count " + std::to_string(out.joints) + " exceeds the limit of " +
+                   std::to_string(kMaxJoints));
   if (params > kMaxDecodeParams)
     return in.fail("decode parameter count " + std::to_string(params) + " exceeds the limit");
   if (compression >
