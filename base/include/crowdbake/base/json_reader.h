@@ -60,7 +60,7 @@ inline std::string show(double v) {
   return buffer;
 }
 
-// What was found instead of what a key wants: "string \"abc\"", "number 3", "array", ...
+// What was found instead of what a key wants: "string \"abc\"", "number 3", "an array of 2".
 inline std::string describe(const Json& v) {
   if (v.is_string()) {
     std::string text = v.get<std::string>();
