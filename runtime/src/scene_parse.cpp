@@ -2,19 +2,16 @@
 // reported before any pack is opened: (1) read every key into plain structs, checking types,
 // ranges and unknown keys; (2) open the packs; (3) resolve names against the packs (clips)
 // and build the instance arrays, listed instances first, then each generator in order; then
-// every section in SceneLoadOptions::sections resolves its key. Stage 1 is scene_file.cpp. Problems are thrown as json_reader::JsonError (kInvalidScene) and
-// returned as a Status at the boundary.
+// every section in SceneLoadOptions::sections resolves its key. Stage 1 is scene_file.cpp.
+// Problems are thrown as json_reader::JsonError (kInvalidScene) and returned as a Status at the
+// boundary.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <new>
-#include <nlohmann/json.hpp>
-#include <optional>
 #include <sstream>
 
 #include "crowdbake/base/json_reader.h"
