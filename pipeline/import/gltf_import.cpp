@@ -3,6 +3,7 @@
 // inverse bind matrices default to identity.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -22,6 +23,14 @@
 
 namespace crowdbake {
 namespace {
+
+// A JOINTS_n value as the message shows it: a float accessor can hold any value,
+// and casting one beyond long long's range to an integer is undefined.
+std::string joint_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
 
 class GltfImporter {
  public:
@@ -474,7 +483,7 @@ class GltfImporter {
           const double local = joint_sets[set].at(v, k);
           if (!(local >= 0.0) || local >= static_cast<double>(s.joints.size()))
             throw input_error(path_, who + ": vertex " + std::to_string(v) + " references joint " +
-                                         std::to_string(static_cast<long long>(local)) +
+                                         joint_number(local) +
                                          " but its skin has " + std::to_string(s.joints.size()) +
                                          " joints; re-export the skin");
           influences.push_back(

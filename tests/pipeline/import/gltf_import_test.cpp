@@ -313,6 +313,16 @@ TEST(GltfImportErrors, JointIndexOutOfRange) {
             std::string::npos);
 }
 
+// A float JOINTS_0 (out of spec, but read) can hold any value; the message prints it
+// without an integer conversion (one beyond long long's range was undefined).
+TEST(GltfImportErrors, HugeFloatJointIndex) {
+  TempDir dir;
+  GltfBuilder b = test::two_bone_character();
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+      b.floats({0, 0, 0, 0, 7.0e28f, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+  EXPECT_NE(error_of(b, dir).find("references joint 7.0"), std::string::npos) << error_of(b, dir);
+}
+
 TEST(GltfImportErrors, NanPosition) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
