@@ -483,8 +483,8 @@ class GltfImporter {
           const double local = joint_sets[set].at(v, k);
           if (!(local >= 0.0) || local >= static_cast<double>(s.joints.size()))
             throw input_error(path_, who + ": vertex " + std::to_string(v) + " references joint " +
-                                         joint_number(local) +
-                                         " but its skin has " + std::to_string(s.joints.size()) +
+                                         joint_number(local) + " but its skin has " +
+                                         std::to_string(s.joints.size()) +
                                          " joints; re-export the skin");
           influences.push_back(
               {joint_of_node_[s.joints[static_cast<size_t>(local)]], static_cast<float>(w)});
