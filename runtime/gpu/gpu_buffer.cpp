@@ -14,44 +14,36 @@ GpuBuffer::GpuBuffer(GpuBuffer&& o) noexcept { *this = std::move(o); }
 GpuBuffer& GpuBuffer::operator=(GpuBuffer&& o) noexcept {
   if (this != &o) {
     reset();
-    context_ = std::exchange(o.context_, nullptr);
-    buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
-    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
-    size_ = std::exchange(o.size_, 0);
-    mapped_ = std::exchange(o.mapped_, nullptr);
+    h_ = std::exchange(o.h_, Owned{});
   }
   return *this;
 }
 
 void GpuBuffer::reset() {
-  if (context_ == nullptr) return;
-  VkDevice d = context_->device();
-  if (mapped_) vkUnmapMemory(d, memory_);
-  if (buffer_) vkDestroyBuffer(d, buffer_, nullptr);
-  if (memory_) vkFreeMemory(d, memory_, nullptr);
-  context_ = nullptr;
-  buffer_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
-  size_ = 0;
-  mapped_ = nullptr;
+  if (h_.context == nullptr) return;
+  VkDevice d = h_.context->device();
+  if (h_.mapped) vkUnmapMemory(d, h_.memory);
+  if (h_.buffer) vkDestroyBuffer(d, h_.buffer, nullptr);
+  if (h_.memory) vkFreeMemory(d, h_.memory, nullptr);
+  h_ = Owned{};
 }
 
 Status GpuBuffer::create(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
                          MemoryKind memory, GpuBuffer& out) {
   out.reset();
   GpuBuffer b;
-  b.context_ = &context;
-  b.size_ = size == 0 ? 4 : size;
+  b.h_.context = &context;
+  b.h_.size = size == 0 ? 4 : size;
   VkBufferCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  info.size = b.size_;
+  info.size = b.h_.size;
   info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkDevice d = context.device();
-  VkResult r = vkCreateBuffer(d, &info, nullptr, &b.buffer_);
+  VkResult r = vkCreateBuffer(d, &info, nullptr, &b.h_.buffer);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateBuffer", r);
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(d, b.buffer_, &req);
+  vkGetBufferMemoryRequirements(d, b.h_.buffer, &req);
   uint32_t type = UINT32_MAX;
   if (memory == MemoryKind::kHostVisible) {
     type = context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
@@ -66,9 +58,9 @@ Status GpuBuffer::create(VulkanContext& context, VkDeviceSize size, VkBufferUsag
   alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
-  r = vkAllocateMemory(d, &alloc, nullptr, &b.memory_);
+  r = vkAllocateMemory(d, &alloc, nullptr, &b.h_.memory);
   if (r != VK_SUCCESS) return vulkan_error("vkAllocateMemory (buffer)", r);
-  r = vkBindBufferMemory(d, b.buffer_, b.memory_, 0);
+  r = vkBindBufferMemory(d, b.h_.buffer, b.h_.memory, 0);
   if (r != VK_SUCCESS) return vulkan_error("vkBindBufferMemory", r);
   // note: device-local memory that is also host-visible (lavapipe, integrated GPUs) is mapped
   // too, so uploads skip the staging copy.
@@ -78,7 +70,7 @@ Status GpuBuffer::create(VulkanContext& context, VkDeviceSize size, VkBufferUsag
   const VkMemoryPropertyFlags mappable =
       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   if ((flags & mappable) == mappable) {
-    r = vkMapMemory(d, b.memory_, 0, VK_WHOLE_SIZE, 0, &b.mapped_);
+    r = vkMapMemory(d, b.h_.memory, 0, VK_WHOLE_SIZE, 0, &b.h_.mapped);
     if (r != VK_SUCCESS) return vulkan_error("vkMapMemory", r);
   }
   out = std::move(b);
@@ -87,36 +79,36 @@ Status GpuBuffer::create(VulkanContext& context, VkDeviceSize size, VkBufferUsag
 
 Status GpuBuffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (bytes == 0) return Status();
-  if (buffer_ == VK_NULL_HANDLE || offset > size_ || bytes > size_ - offset)
+  if (h_.buffer == VK_NULL_HANDLE || offset > h_.size || bytes > h_.size - offset)
     return Status(StatusCode::kInvalidArgument, "GpuBuffer::upload: out of range");
-  if (mapped_) {
-    std::memcpy(static_cast<uint8_t*>(mapped_) + offset, data, static_cast<size_t>(bytes));
+  if (h_.mapped) {
+    std::memcpy(static_cast<uint8_t*>(h_.mapped) + offset, data, static_cast<size_t>(bytes));
     return Status();
   }
   GpuBuffer staging;
-  Status s = create(*context_, bytes, 0, MemoryKind::kHostVisible, staging);
+  Status s = create(*h_.context, bytes, 0, MemoryKind::kHostVisible, staging);
   if (!s.ok()) return s;
   std::memcpy(staging.mapped(), data, static_cast<size_t>(bytes));
-  return context_->submit_and_wait([&](VkCommandBuffer cmd) {
+  return h_.context->submit_and_wait([&](VkCommandBuffer cmd) {
     const VkBufferCopy copy{0, offset, bytes};
-    vkCmdCopyBuffer(cmd, staging.buffer(), buffer_, 1, &copy);
+    vkCmdCopyBuffer(cmd, staging.buffer(), h_.buffer, 1, &copy);
   });
 }
 
 Status GpuBuffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
   if (bytes == 0) return Status();
-  if (buffer_ == VK_NULL_HANDLE || offset > size_ || bytes > size_ - offset)
+  if (h_.buffer == VK_NULL_HANDLE || offset > h_.size || bytes > h_.size - offset)
     return Status(StatusCode::kInvalidArgument, "GpuBuffer::download: out of range");
-  if (mapped_) {
-    std::memcpy(data, static_cast<const uint8_t*>(mapped_) + offset, static_cast<size_t>(bytes));
+  if (h_.mapped) {
+    std::memcpy(data, static_cast<const uint8_t*>(h_.mapped) + offset, static_cast<size_t>(bytes));
     return Status();
   }
   GpuBuffer staging;
-  Status s = create(*context_, bytes, 0, MemoryKind::kHostVisible, staging);
+  Status s = create(*h_.context, bytes, 0, MemoryKind::kHostVisible, staging);
   if (!s.ok()) return s;
-  s = context_->submit_and_wait([&](VkCommandBuffer cmd) {
+  s = h_.context->submit_and_wait([&](VkCommandBuffer cmd) {
     const VkBufferCopy copy{offset, 0, bytes};
-    vkCmdCopyBuffer(cmd, buffer_, staging.buffer(), 1, &copy);
+    vkCmdCopyBuffer(cmd, h_.buffer, staging.buffer(), 1, &copy);
   });
   if (!s.ok()) return s;
   std::memcpy(data, staging.mapped(), static_cast<size_t>(bytes));
@@ -132,32 +124,25 @@ GpuImage::GpuImage(GpuImage&& o) noexcept { *this = std::move(o); }
 GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
   if (this != &o) {
     reset();
-    context_ = std::exchange(o.context_, nullptr);
-    image_ = std::exchange(o.image_, VK_NULL_HANDLE);
-    view_ = std::exchange(o.view_, VK_NULL_HANDLE);
-    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
-    desc_ = o.desc_;
+    h_ = std::exchange(o.h_, Owned{});
   }
   return *this;
 }
 
 void GpuImage::reset() {
-  if (context_ == nullptr) return;
-  VkDevice d = context_->device();
-  if (view_) vkDestroyImageView(d, view_, nullptr);
-  if (image_) vkDestroyImage(d, image_, nullptr);
-  if (memory_) vkFreeMemory(d, memory_, nullptr);
-  context_ = nullptr;
-  image_ = VK_NULL_HANDLE;
-  view_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
+  if (h_.context == nullptr) return;
+  VkDevice d = h_.context->device();
+  if (h_.view) vkDestroyImageView(d, h_.view, nullptr);
+  if (h_.image) vkDestroyImage(d, h_.image, nullptr);
+  if (h_.memory) vkFreeMemory(d, h_.memory, nullptr);
+  h_ = Owned{};
 }
 
 Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage& out) {
   out.reset();
   GpuImage img;
-  img.context_ = &context;
-  img.desc_ = desc;
+  img.h_.context = &context;
+  img.h_.desc = desc;
   VkImageCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
   info.imageType = VK_IMAGE_TYPE_2D;
@@ -171,10 +156,10 @@ Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage&
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VkDevice d = context.device();
-  VkResult r = vkCreateImage(d, &info, nullptr, &img.image_);
+  VkResult r = vkCreateImage(d, &info, nullptr, &img.h_.image);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateImage", r);
   VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(d, img.image_, &req);
+  vkGetImageMemoryRequirements(d, img.h_.image, &req);
   uint32_t type = context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   if (type == UINT32_MAX) type = context.find_memory_type(req.memoryTypeBits, 0);
   if (type == UINT32_MAX)
@@ -183,18 +168,18 @@ Status GpuImage::create(VulkanContext& context, const ImageDesc& desc, GpuImage&
   alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
-  r = vkAllocateMemory(d, &alloc, nullptr, &img.memory_);
+  r = vkAllocateMemory(d, &alloc, nullptr, &img.h_.memory);
   if (r != VK_SUCCESS) return vulkan_error("vkAllocateMemory (image)", r);
-  r = vkBindImageMemory(d, img.image_, img.memory_, 0);
+  r = vkBindImageMemory(d, img.h_.image, img.h_.memory, 0);
   if (r != VK_SUCCESS) return vulkan_error("vkBindImageMemory", r);
   VkImageViewCreateInfo view{};
   view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  view.image = img.image_;
+  view.image = img.h_.image;
   view.viewType =
       desc.layers > 1 || desc.array_view ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   view.format = desc.format;
   view.subresourceRange = {desc.aspect, 0, desc.mip_levels, 0, desc.layers};
-  r = vkCreateImageView(d, &view, nullptr, &img.view_);
+  r = vkCreateImageView(d, &view, nullptr, &img.h_.view);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateImageView", r);
   out = std::move(img);
   return Status();
@@ -271,18 +256,14 @@ TimestampQueries::TimestampQueries(TimestampQueries&& o) noexcept { *this = std:
 TimestampQueries& TimestampQueries::operator=(TimestampQueries&& o) noexcept {
   if (this != &o) {
     reset();
-    context_ = std::exchange(o.context_, nullptr);
-    pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
-    count_ = std::exchange(o.count_, 0);
+    h_ = std::exchange(o.h_, Owned{});
   }
   return *this;
 }
 
 void TimestampQueries::reset() {
-  if (context_ && pool_) vkDestroyQueryPool(context_->device(), pool_, nullptr);
-  context_ = nullptr;
-  pool_ = VK_NULL_HANDLE;
-  count_ = 0;
+  if (h_.context && h_.pool) vkDestroyQueryPool(h_.context->device(), h_.pool, nullptr);
+  h_ = Owned{};
 }
 
 Status TimestampQueries::create(VulkanContext& context, uint32_t count, TimestampQueries& out) {
@@ -294,32 +275,32 @@ Status TimestampQueries::create(VulkanContext& context, uint32_t count, Timestam
   VkQueryPool pool = VK_NULL_HANDLE;
   const VkResult r = vkCreateQueryPool(context.device(), &info, nullptr, &pool);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateQueryPool", r);
-  out.context_ = &context;
-  out.pool_ = pool;
-  out.count_ = count;
+  out.h_.context = &context;
+  out.h_.pool = pool;
+  out.h_.count = count;
   return Status();
 }
 
 void TimestampQueries::reset(VkCommandBuffer cmd) const {
-  vkCmdResetQueryPool(cmd, pool_, 0, count_);
+  vkCmdResetQueryPool(cmd, h_.pool, 0, h_.count);
 }
 
 void TimestampQueries::write(VkCommandBuffer cmd, uint32_t index,
                              VkPipelineStageFlagBits stage) const {
-  vkCmdWriteTimestamp(cmd, stage, pool_, index);
+  vkCmdWriteTimestamp(cmd, stage, h_.pool, index);
 }
 
 Status TimestampQueries::elapsed_ms(uint32_t from, uint32_t to, double& ms) const {
-  if (pool_ == VK_NULL_HANDLE || from >= count_ || to >= count_)
+  if (h_.pool == VK_NULL_HANDLE || from >= h_.count || to >= h_.count)
     return Status(StatusCode::kInvalidArgument, "timestamp query index out of range");
   uint64_t t[2] = {0, 0};
-  VkResult r = vkGetQueryPoolResults(context_->device(), pool_, from, 1, sizeof(uint64_t), &t[0],
-                                     sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+  VkResult r = vkGetQueryPoolResults(h_.context->device(), h_.pool, from, 1, sizeof(uint64_t),
+                                     &t[0], sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
   if (r == VK_SUCCESS)
-    r = vkGetQueryPoolResults(context_->device(), pool_, to, 1, sizeof(uint64_t), &t[1],
+    r = vkGetQueryPoolResults(h_.context->device(), h_.pool, to, 1, sizeof(uint64_t), &t[1],
                               sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
   if (r != VK_SUCCESS) return vulkan_error("vkGetQueryPoolResults", r);
-  ms = static_cast<double>(t[1] - t[0]) * context_->limits().timestampPeriod * 1e-6;
+  ms = static_cast<double>(t[1] - t[0]) * h_.context->limits().timestampPeriod * 1e-6;
   return Status();
 }
 
@@ -332,32 +313,19 @@ ComputeKernel::ComputeKernel(ComputeKernel&& o) noexcept { *this = std::move(o);
 ComputeKernel& ComputeKernel::operator=(ComputeKernel&& o) noexcept {
   if (this != &o) {
     reset();
-    context_ = std::exchange(o.context_, nullptr);
-    set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
-    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
-    pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
-    pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
-    sets_ = std::move(o.sets_);
-    buffers_ = o.buffers_;
-    push_bytes_ = o.push_bytes_;
-    uniform_mask_ = o.uniform_mask_;
+    h_ = std::exchange(o.h_, Owned{});
   }
   return *this;
 }
 
 void ComputeKernel::reset() {
-  if (context_ == nullptr) return;
-  VkDevice d = context_->device();
-  if (pipeline_) vkDestroyPipeline(d, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(d, layout_, nullptr);
-  if (pool_) vkDestroyDescriptorPool(d, pool_, nullptr);
-  if (set_layout_) vkDestroyDescriptorSetLayout(d, set_layout_, nullptr);
-  context_ = nullptr;
-  pipeline_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
-  pool_ = VK_NULL_HANDLE;
-  set_layout_ = VK_NULL_HANDLE;
-  sets_.clear();
+  if (h_.context == nullptr) return;
+  VkDevice d = h_.context->device();
+  if (h_.pipeline) vkDestroyPipeline(d, h_.pipeline, nullptr);
+  if (h_.layout) vkDestroyPipelineLayout(d, h_.layout, nullptr);
+  if (h_.pool) vkDestroyDescriptorPool(d, h_.pool, nullptr);
+  if (h_.set_layout) vkDestroyDescriptorSetLayout(d, h_.set_layout, nullptr);
+  h_ = Owned{};
 }
 
 Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_t buffers,
@@ -365,10 +333,10 @@ Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_
                              uint32_t uniform_mask) {
   out.reset();
   ComputeKernel k;
-  k.context_ = &context;
-  k.buffers_ = buffers;
-  k.push_bytes_ = push_bytes;
-  k.uniform_mask_ = uniform_mask;
+  k.h_.context = &context;
+  k.h_.buffers = buffers;
+  k.h_.push_bytes = push_bytes;
+  k.h_.uniform_mask = uniform_mask;
   VkDevice d = context.device();
 
   std::vector<VkDescriptorSetLayoutBinding> bindings(buffers);
@@ -384,17 +352,17 @@ Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_
   set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
   set_info.bindingCount = buffers;
   set_info.pBindings = bindings.data();
-  VkResult r = vkCreateDescriptorSetLayout(d, &set_info, nullptr, &k.set_layout_);
+  VkResult r = vkCreateDescriptorSetLayout(d, &set_info, nullptr, &k.h_.set_layout);
   if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorSetLayout", r);
 
   VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
   VkPipelineLayoutCreateInfo layout_info{};
   layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
   layout_info.setLayoutCount = 1;
-  layout_info.pSetLayouts = &k.set_layout_;
+  layout_info.pSetLayouts = &k.h_.set_layout;
   layout_info.pushConstantRangeCount = push_bytes > 0 ? 1 : 0;
   layout_info.pPushConstantRanges = &range;
-  r = vkCreatePipelineLayout(d, &layout_info, nullptr, &k.layout_);
+  r = vkCreatePipelineLayout(d, &layout_info, nullptr, &k.h_.layout);
   if (r != VK_SUCCESS) return vulkan_error("vkCreatePipelineLayout", r);
 
   VkShaderModule module = VK_NULL_HANDLE;
@@ -407,8 +375,8 @@ Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_
   pipe.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pipe.stage.module = module;
   pipe.stage.pName = "main";
-  pipe.layout = k.layout_;
-  r = vkCreateComputePipelines(d, VK_NULL_HANDLE, 1, &pipe, nullptr, &k.pipeline_);
+  pipe.layout = k.h_.layout;
+  r = vkCreateComputePipelines(d, VK_NULL_HANDLE, 1, &pipe, nullptr, &k.h_.pipeline);
   vkDestroyShaderModule(d, module, nullptr);
   if (r != VK_SUCCESS) return vulkan_error(shader, r);
 
@@ -422,16 +390,16 @@ Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_
     pool_info.maxSets = sets;
     pool_info.poolSizeCount = static_cast<uint32_t>(sizes.size());
     pool_info.pPoolSizes = sizes.data();
-    r = vkCreateDescriptorPool(d, &pool_info, nullptr, &k.pool_);
+    r = vkCreateDescriptorPool(d, &pool_info, nullptr, &k.h_.pool);
     if (r != VK_SUCCESS) return vulkan_error("vkCreateDescriptorPool", r);
-    std::vector<VkDescriptorSetLayout> layouts(sets, k.set_layout_);
+    std::vector<VkDescriptorSetLayout> layouts(sets, k.h_.set_layout);
     VkDescriptorSetAllocateInfo alloc{};
     alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-    alloc.descriptorPool = k.pool_;
+    alloc.descriptorPool = k.h_.pool;
     alloc.descriptorSetCount = sets;
     alloc.pSetLayouts = layouts.data();
-    k.sets_.resize(sets);
-    r = vkAllocateDescriptorSets(d, &alloc, k.sets_.data());
+    k.h_.sets.resize(sets);
+    r = vkAllocateDescriptorSets(d, &alloc, k.h_.sets.data());
     if (r != VK_SUCCESS) return vulkan_error("vkAllocateDescriptorSets", r);
   }
   out = std::move(k);
@@ -441,28 +409,28 @@ Status ComputeKernel::create(VulkanContext& context, const char* shader, uint32_
 void ComputeKernel::bind_buffers(uint32_t set, const std::vector<const GpuBuffer*>& buffers) const {
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
-  for (size_t b = 0; b < buffers.size() && b < buffers_; ++b) {
+  for (size_t b = 0; b < buffers.size() && b < h_.buffers; ++b) {
     infos[b] = buffers[b]->descriptor();
     writes[b] = {};
     writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    writes[b].dstSet = sets_[set];
+    writes[b].dstSet = h_.sets[set];
     writes[b].dstBinding = static_cast<uint32_t>(b);
     writes[b].descriptorCount = 1;
-    writes[b].descriptorType = ((uniform_mask_ >> b) & 1u) ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                                           : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].descriptorType = ((h_.uniform_mask >> b) & 1u) ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                             : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[b].pBufferInfo = &infos[b];
   }
-  vkUpdateDescriptorSets(context_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0,
-                         nullptr);
+  vkUpdateDescriptorSets(h_.context->device(), static_cast<uint32_t>(writes.size()), writes.data(),
+                         0, nullptr);
 }
 
 void ComputeKernel::bind(VkCommandBuffer cmd, uint32_t set, const void* push) const {
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  if (!sets_.empty())
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &sets_[set], 0,
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, h_.pipeline);
+  if (!h_.sets.empty())
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, h_.layout, 0, 1, &h_.sets[set], 0,
                             nullptr);
-  if (push != nullptr && push_bytes_ > 0)
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push);
+  if (push != nullptr && h_.push_bytes > 0)
+    vkCmdPushConstants(cmd, h_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, h_.push_bytes, push);
 }
 
 }  // namespace crowdbake::runtime::gpu

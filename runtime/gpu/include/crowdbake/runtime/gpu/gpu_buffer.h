@@ -33,13 +33,13 @@ class GpuBuffer {
   static Status create(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
                        MemoryKind memory, GpuBuffer& out);
 
-  VkBuffer buffer() const { return buffer_; }
-  VkDeviceSize size() const { return size_; }
-  bool valid() const { return buffer_ != VK_NULL_HANDLE; }
+  VkBuffer buffer() const { return h_.buffer; }
+  VkDeviceSize size() const { return h_.size; }
+  bool valid() const { return h_.buffer != VK_NULL_HANDLE; }
   // Host pointer of a kHostVisible buffer (null for device-local memory that is not
   // host-visible; on lavapipe every buffer is).
-  void* mapped() const { return mapped_; }
-  VkDescriptorBufferInfo descriptor() const { return {buffer_, 0, VK_WHOLE_SIZE}; }
+  void* mapped() const { return h_.mapped; }
+  VkDescriptorBufferInfo descriptor() const { return {h_.buffer, 0, VK_WHOLE_SIZE}; }
 
   // Copies bytes into the buffer at `offset`: memcpy when mapped, otherwise through a
   // staging buffer and submit_and_wait. Returns kInvalidArgument when out of range.
@@ -51,11 +51,16 @@ class GpuBuffer {
   void reset();
 
  private:
-  VulkanContext* context_ = nullptr;
-  VkBuffer buffer_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
-  VkDeviceSize size_ = 0;
-  void* mapped_ = nullptr;
+  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
+  // one exchange with a default Owned, and reset() ends by assigning one.
+  struct Owned {
+    VulkanContext* context = nullptr;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;
+  };
+  Owned h_;
 };
 
 // Reads a whole buffer into a vector of T (size / sizeof(T) elements).
@@ -88,18 +93,23 @@ class GpuImage {
   // 2D_ARRAY when layers > 1). Returns kInvalidArgument when creation fails.
   static Status create(VulkanContext& context, const ImageDesc& desc, GpuImage& out);
 
-  VkImage image() const { return image_; }
-  VkImageView view() const { return view_; }
-  const ImageDesc& desc() const { return desc_; }
-  bool valid() const { return image_ != VK_NULL_HANDLE; }
+  VkImage image() const { return h_.image; }
+  VkImageView view() const { return h_.view; }
+  const ImageDesc& desc() const { return h_.desc; }
+  bool valid() const { return h_.image != VK_NULL_HANDLE; }
   void reset();
 
  private:
-  VulkanContext* context_ = nullptr;
-  VkImage image_ = VK_NULL_HANDLE;
-  VkImageView view_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
-  ImageDesc desc_;
+  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
+  // one exchange with a default Owned, and reset() ends by assigning one.
+  struct Owned {
+    VulkanContext* context = nullptr;
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    ImageDesc desc;
+  };
+  Owned h_;
 };
 
 // Records an image layout transition of all mips/layers (a full pipeline barrier between
@@ -133,13 +143,18 @@ class TimestampQueries {
   // Milliseconds between queries `from` and `to` (both written and completed). Returns
   // kInvalidArgument when the results are not available.
   Status elapsed_ms(uint32_t from, uint32_t to, double& ms) const;
-  uint32_t count() const { return count_; }
+  uint32_t count() const { return h_.count; }
   void reset();
 
  private:
-  VulkanContext* context_ = nullptr;
-  VkQueryPool pool_ = VK_NULL_HANDLE;
-  uint32_t count_ = 0;
+  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
+  // one exchange with a default Owned, and reset() ends by assigning one.
+  struct Owned {
+    VulkanContext* context = nullptr;
+    VkQueryPool pool = VK_NULL_HANDLE;
+    uint32_t count = 0;
+  };
+  Owned h_;
 };
 
 // A compute pipeline whose set 0 is `buffers` storage buffers at bindings 0..buffers-1 (and
@@ -167,18 +182,23 @@ class ComputeKernel {
     vkCmdDispatch(cmd, x, y, z);
   }
 
-  VkPipeline pipeline() const { return pipeline_; }
-  VkPipelineLayout layout() const { return layout_; }
+  VkPipeline pipeline() const { return h_.pipeline; }
+  VkPipelineLayout layout() const { return h_.layout; }
   void reset();
 
  private:
-  VulkanContext* context_ = nullptr;
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  std::vector<VkDescriptorSet> sets_;
-  uint32_t buffers_ = 0, push_bytes_ = 0, uniform_mask_ = 0;
+  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
+  // one exchange with a default Owned, and reset() ends by assigning one.
+  struct Owned {
+    VulkanContext* context = nullptr;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> sets;
+    uint32_t buffers = 0, push_bytes = 0, uniform_mask = 0;
+  };
+  Owned h_;
 };
 
 }  // namespace crowdbake::runtime::gpu
