@@ -225,25 +225,14 @@ Status CrowdEffects::Impl::build_behaviour(const Scene& scene) {
   }
   for (const EffectEvent& e : decl.events)
     sdef.events.push_back({e.kind, e.time, e.team, e.excitement});
-  const EffectSpectatorParams& p = decl.params;
+  sdef.params = decl.params;
   crowd::SpectatorParams& sp = sdef.params;
-  sp.home_state = p.home_state;
   if (sp.home_state.empty())
     for (const EffectState& st : decl.states)
       if (st.rest) {
         sp.home_state = st.name;
         break;
       }
-  sp.tick_s = p.tick;
-  sp.neighbour_radius_m = p.neighbour_radius;
-  sp.contagion_threshold = p.contagion_threshold;
-  sp.social_gain = p.social_gain;
-  sp.fatigue_per_s = p.fatigue_per_s;
-  sp.recovery_per_s = p.recovery_per_s;
-  sp.start_delay_max_s = p.start_delay_max;
-  sp.min_reaction_s = p.min_reaction;
-  sp.restart_delay_s = p.restart_delay;
-  sp.seed = p.seed;
   crowd = std::make_unique<crowd::SpectatorScene>();
   if (crowd::Status s = crowd::build_spectator_scene(*fsm, sdef, *crowd); !s.ok())
     return invalid("effects.spectators: " + s.message());

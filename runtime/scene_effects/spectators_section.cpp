@@ -140,7 +140,7 @@ void read_events(const Json& v, SceneEffects& e) {
 
 void read_parameters(const Json& v, SceneEffects& e) {
   const std::string path = kPath;
-  EffectSpectatorParams& pr = e.params;
+  crowd::SpectatorParams& pr = e.params;
   if (const Json* p = find(v, "home_state")) {
     pr.home_state = string(*p, path + ".home_state");
     const uint32_t h = known_state(e, pr.home_state, path + ".home_state");
@@ -159,15 +159,15 @@ void read_parameters(const Json& v, SceneEffects& e) {
       float* value;
       bool positive;
     };
-    const Field fields[] = {{"tick", &pr.tick, true},
-                            {"neighbour_radius", &pr.neighbour_radius, true},
+    if (const Json* q = find(*p, "tick")) pr.tick_s = number_at_least(*q, pp + ".tick", 0.0, false);
+    const Field fields[] = {{"neighbour_radius", &pr.neighbour_radius_m, true},
                             {"contagion_threshold", &pr.contagion_threshold, true},
                             {"social_gain", &pr.social_gain, false},
                             {"fatigue_per_s", &pr.fatigue_per_s, false},
                             {"recovery_per_s", &pr.recovery_per_s, false},
-                            {"start_delay_max", &pr.start_delay_max, false},
-                            {"min_reaction", &pr.min_reaction, false},
-                            {"restart_delay", &pr.restart_delay, false}};
+                            {"start_delay_max", &pr.start_delay_max_s, false},
+                            {"min_reaction", &pr.min_reaction_s, false},
+                            {"restart_delay", &pr.restart_delay_s, false}};
     for (const Field& f : fields)
       if (const Json* q = find(*p, f.key))
         *f.value = static_cast<float>(number_at_least(*q, pp + "." + f.key, 0.0, !f.positive));

@@ -111,7 +111,7 @@ TEST(SceneEffects, FullDeclarationIsRead) {
   ASSERT_EQ(e.events.size(), 1u);
   EXPECT_FLOAT_EQ(e.events[0].time, 2.5f);
   EXPECT_EQ(e.events[0].team, "A");
-  EXPECT_FLOAT_EQ(e.params.tick, 0.05f);
+  EXPECT_DOUBLE_EQ(e.params.tick_s, 0.05);
   EXPECT_EQ(e.params.seed, 9u);
   EXPECT_FALSE(e.crossfade);
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/runtime/crowd/spectator_scene.h"
 #include "crowdbake/runtime/scene.h"
 
 namespace crowdbake::effects {
@@ -67,21 +68,6 @@ struct EffectEvent {
   float excitement = 1.0f;
 };
 
-// SpectatorParams (runtime/crowd/include/crowdbake/runtime/crowd/spectator_scene.h) as declared.
-struct EffectSpectatorParams {
-  std::string home_state;  // "" = the first rest state
-  float tick = 0.1f;
-  float neighbour_radius = 1.5f;
-  float contagion_threshold = 0.25f;
-  float social_gain = 0.3f;
-  float fatigue_per_s = 0.06f;
-  float recovery_per_s = 0.1f;
-  float start_delay_max = 0.6f;
-  float min_reaction = 1.0f;
-  float restart_delay = 2.0f;
-  uint64_t seed = 1;
-};
-
 struct SceneEffects {
   bool declared = false;  // the scene has an "effects" object
 
@@ -112,7 +98,9 @@ struct SceneEffects {
   std::vector<EffectReaction> reactions;
   std::vector<EffectTeam> teams;
   std::vector<EffectEvent> events;
-  EffectSpectatorParams params;
+  // The behaviour's parameters as declared (effects.spectators.parameters, seed, home_state;
+  // the rest keep crowd::SpectatorParams' defaults). home_state "" = the first rest state.
+  crowd::SpectatorParams params{""};
 
   // GPU crossfade of clip changes (without animation_sharing: the FSM's changes fade).
   bool crossfade = false;
