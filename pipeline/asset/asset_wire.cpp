@@ -97,11 +97,25 @@ class WireReader {
   bool ok_ = true;
 };
 
-template <typename Wire, typename Track>
-void transfer_track(Wire& w, Track& t) {
-  w.pod(t.interpolation);
-  w.array(t.times);
-  w.array(t.values);
+template <typename T>
+struct IsVector : std::false_type {};
+template <typename T>
+struct IsVector<std::vector<T>> : std::true_type {};
+
+// One call per struct: strings travel as text, vectors of plain values as arrays, and
+// everything else as its bytes.
+template <typename Wire, typename... T>
+void fields(Wire& w, T&... values) {
+  auto one = [&w](auto& v) {
+    using U = std::remove_const_t<std::remove_reference_t<decltype(v)>>;
+    if constexpr (std::is_same_v<U, std::string>)
+      w.text(v);
+    else if constexpr (IsVector<U>::value)
+      w.array(v);
+    else
+      w.pod(v);
+  };
+  (one(values), ...);
 }
 
 // `Asset` is `const SkinnedAsset` for the writer and `SkinnedAsset` for the reader.
@@ -109,47 +123,23 @@ template <typename Wire, typename Asset>
 void transfer_asset(Wire& w, Asset& a) {
   w.text(a.source);
   w.list(a.files, [&](auto& f) { w.text(f); });
-  w.list(a.skeleton.joints, [&](auto& j) {
-    w.text(j.name);
-    w.pod(j.parent);
-    w.pod(j.rest);
-    w.pod(j.pre_transform);
-    w.pod(j.inverse_bind);
-  });
+  w.list(a.skeleton.joints,
+         [&](auto& j) { fields(w, j.name, j.parent, j.rest, j.pre_transform, j.inverse_bind); });
   w.list(a.materials, [&](auto& m) {
-    w.text(m.name);
-    w.pod(m.base_color);
-    w.text(m.base_color_texture);
-    w.pod(m.base_color_image);
-    w.pod(m.uv_transform);
-    w.pod(m.alpha_mode);
-    w.pod(m.alpha_cutoff);
-    w.pod(m.double_sided);
+    fields(w, m.name, m.base_color, m.base_color_texture, m.base_color_image, m.uv_transform,
+           m.alpha_mode, m.alpha_cutoff, m.double_sided);
   });
-  w.list(a.images, [&](auto& i) {
-    w.text(i.name);
-    w.text(i.mime_type);
-    w.pod(i.width);
-    w.pod(i.height);
-    w.array(i.data);
-  });
+  w.list(a.images, [&](auto& i) { fields(w, i.name, i.mime_type, i.width, i.height, i.data); });
   w.list(a.primitives, [&](auto& p) {
-    w.text(p.name);
-    w.pod(p.material);
-    w.array(p.positions);
-    w.array(p.normals);
-    w.array(p.uvs);
-    w.array(p.joints);
-    w.array(p.weights);
-    w.array(p.indices);
+    fields(w, p.name, p.material, p.positions, p.normals, p.uvs, p.joints, p.weights, p.indices);
   });
   w.list(a.clips, [&](auto& c) {
-    w.text(c.name);
-    w.pod(c.duration);
+    fields(w, c.name, c.duration);
     w.list(c.channels, [&](auto& ch) {
-      transfer_track(w, ch.translation);
-      transfer_track(w, ch.rotation);
-      transfer_track(w, ch.scale);
+      auto track = [&](auto& t) { fields(w, t.interpolation, t.times, t.values); };
+      track(ch.translation);
+      track(ch.rotation);
+      track(ch.scale);
     });
   });
   w.pod(a.stats);

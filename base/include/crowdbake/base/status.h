@@ -4,6 +4,8 @@
 // One type for all of them: a crowd module's failure passes up through the runtime unchanged.
 #pragma once
 
+#include <cstddef>
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -24,29 +26,13 @@ enum class StatusCode {
 
 // Short lower-case name of a code: "ok", "io error", "invalid pack", ...
 inline const char* status_code_name(StatusCode code) {
-  switch (code) {
-    case StatusCode::kOk:
-      return "ok";
-    case StatusCode::kIoError:
-      return "io error";
-    case StatusCode::kInvalidPack:
-      return "invalid pack";
-    case StatusCode::kInvalidScene:
-      return "invalid scene";
-    case StatusCode::kInvalidArgument:
-      return "invalid argument";
-    case StatusCode::kNotLoaded:
-      return "not loaded";
-    case StatusCode::kOutOfMemory:
-      return "out of memory";
-    case StatusCode::kInvalidFsm:
-      return "invalid behaviour fsm";
-    case StatusCode::kInfeasible:
-      return "infeasible";
-    case StatusCode::kInternal:
-      return "internal error";
-  }
-  return "unknown";
+  // In StatusCode's order.
+  constexpr const char* kNames[] = {
+      "ok",         "io error",      "invalid pack",          "invalid scene", "invalid argument",
+      "not loaded", "out of memory", "invalid behaviour fsm", "infeasible",    "internal error"};
+  static_assert(std::size(kNames) == static_cast<size_t>(StatusCode::kInternal) + 1);
+  const auto i = static_cast<size_t>(code);
+  return i < std::size(kNames) ? kNames[i] : "unknown";
 }
 
 class Status {
