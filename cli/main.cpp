@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/render_plan.h"
+#include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
 
 namespace {
@@ -48,9 +49,9 @@ void add_import_options(CLI::App& command, crowdbake::ImportOptions& options) {
 struct Commands {
   crowdbake::cli::InspectSettings inspect;
   crowdbake::cli::LodSettings lod;
-  crowdbake::cli::BenchSettings bench;
-  crowdbake::cli::BenchScaleSettings bench_scale;
-  crowdbake::cli::BenchRenderSettings bench_render;
+  crowdbake::bench::BenchSettings bench;
+  crowdbake::bench::BenchScaleSettings bench_scale;
+  crowdbake::bench::BenchRenderSettings bench_render;
   crowdbake::cli::BakeCommandSettings bake;
   std::string bake_preview;
   crowdbake::cli::DiffSettings diff;
@@ -108,7 +109,7 @@ void add_lod(CLI::App& app, Commands& c) {
 // "bench render" (a subcommand of "bench").
 void add_bench_render(Commands& c) {
   CLI::App* bench_cmd = c.bench_cmd;
-  crowdbake::cli::BenchRenderSettings& bench_render = c.bench_render;
+  crowdbake::bench::BenchRenderSettings& bench_render = c.bench_render;
   CLI::App* bench_render_cmd = c.bench_render_cmd = bench_cmd->add_subcommand(
       "render",
       "Frame time, triangles and image error of continuous/discrete LoD vs. full resolution on "
@@ -161,7 +162,7 @@ void add_bench_render(Commands& c) {
 }
 
 void add_bench(CLI::App& app, Commands& c) {
-  crowdbake::cli::BenchSettings& bench = c.bench;
+  crowdbake::bench::BenchSettings& bench = c.bench;
   CLI::App* bench_cmd = c.bench_cmd =
       app.add_subcommand("bench", "Benchmarks (see docs/accuracy.md)");
   bench_cmd->require_subcommand(1);
@@ -185,7 +186,7 @@ void add_bench(CLI::App& app, Commands& c) {
                    "Measure every k-th frame of 30 fps (default 1; 6 with --quick)")
       ->check(CLI::Range(1, 1000));
 
-  crowdbake::cli::BenchScaleSettings& bench_scale = c.bench_scale;
+  crowdbake::bench::BenchScaleSettings& bench_scale = c.bench_scale;
   CLI::App* bench_scale_cmd = c.bench_scale_cmd = bench_cmd->add_subcommand(
       "scale", "Simplify time and peak memory of big characters, against meshoptimizer");
   bench_scale_cmd->add_option("files", bench_scale.files, "Characters (make_limb_chain)")
@@ -337,9 +338,9 @@ int run_command(Commands& c) {
     return crowdbake::cli::run_preview(c.preview);
   }
   if (*c.diff_cmd) return crowdbake::cli::run_diff(c.diff);
-  if (*c.bench_simplify_cmd) return crowdbake::cli::run_bench_simplify(c.bench);
-  if (*c.bench_scale_cmd) return crowdbake::cli::run_bench_scale(c.bench_scale);
-  if (*c.bench_render_cmd) return crowdbake::cli::run_bench_render(c.bench_render);
+  if (*c.bench_simplify_cmd) return crowdbake::bench::run_bench_simplify(c.bench);
+  if (*c.bench_scale_cmd) return crowdbake::bench::run_bench_scale(c.bench_scale);
+  if (*c.bench_render_cmd) return crowdbake::bench::run_bench_render(c.bench_render);
   if (*c.render_cmd) {
     c.render.frames_given = c.frames_opt->count() > 0;
     c.render.fps_given = c.fps_opt->count() > 0;

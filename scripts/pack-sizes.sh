@@ -85,6 +85,6 @@ PY
   echo "chunk back (zstd and the expansion). Times are medians of 5 runs on this machine"
   echo "(\`animation_compression_bench\`)."
   echo
-  (cd "$work/lossless" && "$OLDPWD/$build/formats/animation_compression_bench" *.crowdpack)
+  (cd "$work/lossless" && "$OLDPWD/$build/bench/animation_compression_bench" *.crowdpack)
 } > "$out"
 echo "wrote $out"

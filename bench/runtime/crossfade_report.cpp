@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "crossfade_metrics.h"
+#include "runtime/effects/crossfade_metrics.h"
 
 using crowdbake::effects::CrossfadeBlend;
 using namespace crowdbake::effects::testing;

@@ -1,4 +1,4 @@
-#include "cli/bench_report.h"
+#include "commands/report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "crowdbake/pipeline/error.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 const BenchLevel* level_at(const BenchRow& row, double target) {
@@ -252,4 +252,4 @@ void write_plot_data(const BenchResult& result, const std::string& path) {
   write_file(path, out.str());
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

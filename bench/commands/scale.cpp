@@ -4,14 +4,14 @@
 #include <chrono>
 #include <cstdio>
 
-#include "bench_child.h"
-#include "bench_peers.h"
-#include "commands.h"
+#include "commands/child.h"
+#include "commands/peers.h"
+#include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/simplify.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 int run_bench_scale(const BenchScaleSettings& settings) {
   std::printf("%-28s %9s %9s | %-9s %9s %9s %9s | %9s %9s\n", "character", "triangles", "positions",
@@ -55,4 +55,4 @@ int run_bench_scale(const BenchScaleSettings& settings) {
   return 0;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -13,20 +13,31 @@
 #include <iostream>
 #include <limits>
 
-#include "cli/bench_child.h"
-#include "cli/bench_render_report.h"
-#include "cli/bench_render_scene.h"
-#include "cli/commands.h"
 #include "cli/image_compare.h"
 #include "cli/image_png.h"
 #include "cli/image_sheet.h"
 #include "cli/render_device.h"
 #include "cli/render_plan.h"
+#include "commands/child.h"
+#include "commands/render_report.h"
+#include "commands/render_scene.h"
+#include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/runtime/cpu_reference.h"
 #include "crowdbake/runtime/reconstruct_job.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
+
+// The render command's pieces (cli/render_plan.h, cli/render_device.h) and images (cli/image_*.h).
+using cli::check_output_file;
+using cli::check_validation;
+using cli::make_renderer;
+using cli::open_vulkan;
+using cli::parse_resolution;
+using cli::psnr;
+using cli::RgbaImage;
+using cli::to_rgba;
+using cli::write_png;
 namespace fs = std::filesystem;
 namespace gpu = runtime::gpu;
 namespace {
@@ -492,4 +503,4 @@ int run_bench_render(const BenchRenderSettings& settings) {
   return 0;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

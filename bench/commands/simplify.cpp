@@ -3,6 +3,8 @@
 // 16, 64, 256} × {pullback, exact}, clip frames as the pose source at S = 64, and the two
 // peers (bench_peers.h), each at 50/25/10/5% kept positions; the animated error of every
 // level is measured by animated_error() with the original's clips at 30 fps.
+#include "crowdbake/pipeline/simplify.h"
+
 #include <unistd.h>
 
 #include <chrono>
@@ -13,19 +15,18 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "cli/bench_child.h"
-#include "cli/bench_levels.h"
-#include "cli/bench_peers.h"
-#include "cli/bench_report.h"
-#include "cli/commands.h"
+#include "commands/child.h"
+#include "commands/levels.h"
+#include "commands/peers.h"
+#include "commands/report.h"
+#include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
-#include "crowdbake/pipeline/simplify.h"
 #include "spectator_character.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -291,4 +292,4 @@ int run_bench_simplify(const BenchSettings& settings) {
   return 0;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

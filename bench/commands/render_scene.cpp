@@ -1,4 +1,4 @@
-#include "cli/bench_render_scene.h"
+#include "commands/render_scene.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -9,7 +9,7 @@
 #include "crowdbake/pipeline/output_file.h"
 #include "spectator_character.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 constexpr float kSeatSpacing = 0.55f, kRowSpacing = 0.85f, kRowRise = 0.4f;
@@ -115,4 +115,4 @@ std::vector<runtime::Camera> dolly_cameras(const runtime::Scene& scene, uint32_t
   return cameras;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_child.h"
+#include "commands/child.h"
 
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -16,7 +16,7 @@
 
 #include "crowdbake/pipeline/child_process.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -115,4 +115,4 @@ void plot_gnuplot(const std::string& script, const std::string& variables,
   fs::rename(tmp, plot, ignored);
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

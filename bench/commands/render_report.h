@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 struct RenderBenchRow {
   uint32_t instances = 0, visible = 0, drawn = 0, overflow = 0;
@@ -67,4 +67,4 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
 // gnuplot data of the popping pairs: pair, then per PopRow its change_4x and its error jump.
 void write_pop_plot_data(const RenderBenchResult& result, const std::string& path);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

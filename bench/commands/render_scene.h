@@ -9,7 +9,7 @@
 
 #include "crowdbake/runtime/scene.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 // Bakes the generated spectator (samples/spectator, default bake settings) into `path`.
 void bake_sample_pack(const std::string& path);
@@ -40,4 +40,4 @@ std::vector<runtime::Camera> dolly_cameras(const runtime::Scene& scene, uint32_t
                                            uint32_t frames, float far_factor = 1.6f,
                                            float near_factor = 0.6f);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_levels.h"
+#include "commands/levels.h"
 
 #include <cstring>
 #include <map>
@@ -6,7 +6,7 @@
 #include <tuple>
 #include <unordered_set>
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 uint32_t count_positions_at(const ProgressiveMesh& pm, const std::vector<uint32_t>& position_of,
@@ -119,4 +119,4 @@ ProgressiveMesh deserialize_progressive_mesh(const std::string& bytes) {
   return pm;
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -1,7 +1,7 @@
 // Prints the measurements of docs/crowd-behaviour.md as Markdown tables: the goal timeline,
 // applause contagion against the share of eager clappers, embarrassment, per-frame cost,
 // and the placement's convergence and timing. Not a test; run it by hand:
-//   build-p/tests/runtime/crowd/crowd_report [section...]
+//   build-p/bench/crowd_report [section...]
 // Sections: goal contagion embarrassment cost placement (default: all).
 #include <chrono>
 #include <cmath>

@@ -13,7 +13,7 @@
 #include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/skinned_asset.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 struct LodCounts {
   uint32_t positions = 0;  // distinct bind positions referenced by triangles
@@ -35,4 +35,4 @@ uint32_t level_for_positions(const ProgressiveMesh& pm, const std::vector<uint32
 std::string serialize(const ProgressiveMesh& pm);
 ProgressiveMesh deserialize_progressive_mesh(const std::string& bytes);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_render_report.h"
+#include "commands/render_report.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 
 #include "crowdbake/pipeline/output_file.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 std::string num(double x, const char* format = "%.2f") {
@@ -134,4 +134,4 @@ void write_pop_plot_data(const RenderBenchResult& result, const std::string& pat
   write_file_atomically(path, out.str());
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -18,7 +18,7 @@
 
 #include "crowdbake/pipeline/skinned_asset.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 struct PeerLod {
   bool ok = false;
@@ -46,4 +46,4 @@ PeerLod gltfpack_lod(const SkinnedAsset& asset, const std::string& gltfpack,
 // else `gltfpack` on PATH; empty when none is found.
 std::string find_gltfpack();
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -19,7 +19,7 @@
 #include "crowdbake/runtime/effects/anim_sharing.h"
 #include "crowdbake/runtime/effects/crossfade.h"
 #include "crowdbake/runtime/effects/pose_jobs.h"
-#include "test_rigs.h"
+#include "runtime/effects/test_rigs.h"
 
 namespace crowdbake::effects {
 namespace {

@@ -1,4 +1,4 @@
-#include "cli/bench_peers.h"
+#include "commands/peers.h"
 
 #include <meshoptimizer.h>
 #include <unistd.h>
@@ -10,11 +10,11 @@
 #include <cstring>
 #include <filesystem>
 
-#include "cli/bench_child.h"
-#include "cli/bench_levels.h"
+#include "commands/child.h"
+#include "commands/levels.h"
 #include "crowdbake/pipeline/import.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 namespace {
 
 constexpr int kMaxTrials = 24;
@@ -229,4 +229,4 @@ std::string find_gltfpack() {
   return {};
 }
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 struct ChildResult {
   bool ok = false;
@@ -35,4 +35,4 @@ ChildResult run_program(const std::vector<std::string>& argv, const std::string&
 // variables: gnuplot assignments without `outfile`, e.g. "datafile='a.dat'; assets='x y'"
 void plot_gnuplot(const std::string& script, const std::string& variables, const std::string& plot);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench

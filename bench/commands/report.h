@@ -8,7 +8,7 @@
 
 #include "crowdbake/pipeline/animated_error.h"
 
-namespace crowdbake::cli {
+namespace crowdbake::bench {
 
 struct BenchLevel {
   double target = 0.0;          // requested kept fraction of positions
@@ -60,4 +60,4 @@ void write_json(const BenchResult& result, const std::string& path);
 // diagonal); one gnuplot data block (two blank lines apart) per asset, in result order.
 void write_plot_data(const BenchResult& result, const std::string& path);
 
-}  // namespace crowdbake::cli
+}  // namespace crowdbake::bench
