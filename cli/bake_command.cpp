@@ -55,23 +55,29 @@ class Progress {
 }  // namespace
 
 int run_bake(const BakeCommandSettings& s) {
-  BakeSettings settings = s.config.empty() ? BakeSettings{} : read_bake_config(s.config);
+  BakeSettings settings;
+  if (!s.config.empty()) throw_if_failed(read_bake_config(s.config, settings));
   settings.simplify.threads = s.jobs;
   const Progress progress(!s.quiet && ::isatty(STDERR_FILENO));
   const auto start = std::chrono::steady_clock::now();
 
   progress.say("importing " + s.input);
-  const SkinnedAsset asset = import_asset(s.input, s.import);
+  SkinnedAsset asset;
+  throw_if_failed(import_asset(s.input, s.import, asset));
   progress.say("baking " + std::to_string(asset.vertex_count()) + " vertices, " +
                std::to_string(asset.skeleton.joints.size()) + " joints, " +
                std::to_string(asset.clips.size()) + " clips");
   BakeReport report;
   StoredAnimation animation;
-  const PackContents pack = build_pack(asset, settings, report, &animation);
+  PackContents pack;
+  throw_if_failed(build_pack(asset, settings, report, pack, &animation));
   progress.say("writing " + s.output);
   const auto write_start = std::chrono::steady_clock::now();
-  const std::vector<uint8_t> bytes = write_baked_pack(pack, settings.pack, &animation, s.output);
-  write_file_atomically(s.output, bytes);
+  std::vector<uint8_t> bytes;
+  // note: a pack the bake built breaks no rule, so a failure here is a codec's.
+  if (const Status w = write_pack(pack, settings.pack, animation, bytes); !w.ok())
+    throw Error(Error::Kind::kOutput, s.output, w.message());
+  throw_if_failed(write_file_atomically(s.output, bytes));
   report.stages.push_back(
       {"write",
        std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count()});
@@ -85,7 +91,7 @@ int run_bake(const BakeCommandSettings& s) {
     std::vector<std::string> files = asset.files;
     if (!s.config.empty()) files.push_back(s.config);
     if (!settings.simplify.ranges_file.empty()) files.push_back(settings.simplify.ranges_file);
-    write_file_atomically(s.depfile, depfile_text(s.output, files));
+    throw_if_failed(write_file_atomically(s.depfile, depfile_text(s.output, files)));
   }
   if (!s.report.empty()) {
     nlohmann::ordered_json j;
@@ -122,7 +128,7 @@ int run_bake(const BakeCommandSettings& s) {
     j["partition"] = {{"heights", report.partition_heights},
                       {"neck_height", pack.partition.neck_height},
                       {"waist_height", pack.partition.waist_height}};
-    write_file_atomically(s.report, j.dump(2) + "\n");
+    throw_if_failed(write_file_atomically(s.report, j.dump(2) + "\n"));
   }
 
   if (!s.quiet && ::isatty(STDOUT_FILENO)) {

@@ -83,7 +83,7 @@ int run_diff(const DiffSettings& settings) {
       print_text(settings, diff);
     return diff.equal() ? 0 : 1;
   } catch (const Error& e) {
-    std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
+    std::cerr << "error: " << crowdbake::status_of(e).message() << "\n";
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory\n";
   } catch (const std::exception& e) {

@@ -38,7 +38,7 @@ void write_png(const std::string& path, const RgbaImage& image) {
   } catch (const Error& e) {
     throw Error(Error::Kind::kOutput, path, e.what());
   }
-  write_file_atomically(path, bytes);
+  throw_if_failed(write_file_atomically(path, bytes));
 }
 
 RgbaImage read_png(const std::string& path) {

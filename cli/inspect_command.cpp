@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/pack_file.h"
+#include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 
 namespace crowdbake::cli {
@@ -86,7 +87,8 @@ void print_text(const SkinnedAsset& asset) {
 
 int run_inspect(const InspectSettings& settings) {
   if (looks_like_pack(settings.input)) return run_inspect_pack(settings);
-  const SkinnedAsset asset = import_asset(settings.input, settings.import);
+  SkinnedAsset asset;
+  throw_if_failed(import_asset(settings.input, settings.import, asset));
   if (settings.json)
     std::cout << to_json(asset).dump(2) << "\n";
   else

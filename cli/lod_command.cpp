@@ -22,7 +22,8 @@ int run_lod(const LodSettings& settings) {
   if (settings.simplify.samples < 1)
     throw usage("--samples must be at least 1 (1 = classic QEM on the bind pose)");
 
-  const SkinnedAsset asset = import_asset(settings.input, settings.import);
+  SkinnedAsset asset;
+  throw_if_failed(import_asset(settings.input, settings.import, asset));
   const uint32_t total = static_cast<uint32_t>(asset.vertex_count());
   if (settings.vertices > static_cast<int64_t>(total))
     throw usage("--vertices " + std::to_string(settings.vertices) +
@@ -32,10 +33,11 @@ int run_lod(const LodSettings& settings) {
                               : static_cast<uint32_t>(std::lround(settings.ratio * total));
 
   SimplifyReport report;
-  const ProgressiveMesh pm = simplify(asset, settings.simplify, &report);
+  ProgressiveMesh pm;
+  throw_if_failed(simplify(asset, settings.simplify, pm, &report));
   const uint32_t used = pm.usable_vertices(wanted);
   const SkinnedAsset lod = extract_lod(asset, pm, used);
-  export_glb(lod, settings.output);
+  throw_if_failed(export_glb(lod, settings.output));
 
   if (!settings.quiet) {
     std::printf("%s -> %s\n", settings.input.c_str(), settings.output.c_str());

@@ -381,7 +381,7 @@ int main(int argc, char** argv) {
   try {
     return run_command(c);
   } catch (const crowdbake::Error& e) {
-    std::cerr << "error: " << e.file() << ": " << e.what() << "\n";
+    std::cerr << "error: " << crowdbake::status_of(e).message() << "\n";
     return e.exit_code();
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory\n";

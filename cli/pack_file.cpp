@@ -25,7 +25,8 @@ bool looks_like_pack(const std::string& path) {
 }
 
 PackFile load_pack_file(const std::string& path) {
-  const std::vector<uint8_t> data = read_input_file(path, "a .crowdpack file");
+  std::vector<uint8_t> data;
+  throw_if_failed(read_input_file(path, "a .crowdpack file", data));
 
   PackFile pack;
   pack.path = path;

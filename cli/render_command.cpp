@@ -121,7 +121,8 @@ int run_render(const RenderSettings& s) {
     write_png(s.contact_sheet, contact_sheet(sheet_frames, options));
   }
   if (!s.stats.empty())
-    write_file_atomically(s.stats, stats_json(profiles, plan.times, context->device_name()));
+    throw_if_failed(
+        write_file_atomically(s.stats, stats_json(profiles, plan.times, context->device_name())));
   written.keep();
 
   const double seconds =

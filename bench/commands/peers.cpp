@@ -12,6 +12,7 @@
 
 #include "commands/child.h"
 #include "commands/levels.h"
+#include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 
 namespace crowdbake::bench {
@@ -180,7 +181,7 @@ PeerLod gltfpack_lod(const SkinnedAsset& asset, const std::string& gltfpack,
     gltf.importer = ImporterKind::kGltf;
     SkinnedAsset lod;
     try {
-      lod = import_asset(out, gltf);
+      throw_if_failed(import_asset(out, gltf, lod));
       adopt_skeleton(lod, asset);
     } catch (const std::exception& e) {
       r.error = std::string("gltfpack output unusable: ") + e.what();

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/output_file.h"
 
 namespace crowdbake::bench {
@@ -75,7 +76,7 @@ void write_render_csv(const RenderBenchResult& result, const std::string& path) 
         << r.overflow << ',' << num(r.psnr, "%.3f") << ',' << num(r.psnr_4x, "%.3f") << ','
         << num(r.mean_abs_diff, "%.4f") << ',' << num(r.speedup, "%.3f") << ',' << csv_field(r.note)
         << '\n';
-  write_file_atomically(path, out.str());
+  throw_if_failed(write_file_atomically(path, out.str()));
 }
 
 void write_pop_csv(const RenderBenchResult& result, const std::string& path) {
@@ -93,7 +94,7 @@ void write_pop_csv(const RenderBenchResult& result, const std::string& path) {
         << num(p.mean_jump, "%.5f") << ',' << num(p.max_jump, "%.5f") << ','
         << num(p.mean_pop_pixels, "%.5f") << ',' << num(p.max_pop_pixels, "%.5f") << ','
         << num(p.mean_psnr, "%.3f") << '\n';
-  write_file_atomically(path, out.str());
+  throw_if_failed(write_file_atomically(path, out.str()));
 }
 
 void write_render_plot_data(const RenderBenchResult& result, const std::string& path) {
@@ -114,7 +115,7 @@ void write_render_plot_data(const RenderBenchResult& result, const std::string& 
         << (std::isfinite(r.psnr) ? num(r.psnr, "%.3f") : std::string("60")) << ' ' << r.triangles
         << ' ' << (std::isfinite(r.psnr_4x) ? num(r.psnr_4x, "%.3f") : std::string("60")) << '\n';
   }
-  write_file_atomically(path, out.str());
+  throw_if_failed(write_file_atomically(path, out.str()));
 }
 
 void write_pop_plot_data(const RenderBenchResult& result, const std::string& path) {
@@ -131,7 +132,7 @@ void write_pop_plot_data(const RenderBenchResult& result, const std::string& pat
           << num(p.pop_pixels[k], "%.5f");
     out << '\n';
   }
-  write_file_atomically(path, out.str());
+  throw_if_failed(write_file_atomically(path, out.str()));
 }
 
 }  // namespace crowdbake::bench

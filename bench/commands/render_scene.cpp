@@ -27,8 +27,11 @@ void bake_sample_pack(const std::string& path) {
   const SkinnedAsset asset = samples::make_spectator_character();
   BakeSettings settings;
   BakeReport report;
-  const PackContents pack = build_pack(asset, settings, report);
-  write_file_atomically(path, write_baked_pack(pack, settings.pack, nullptr, path));
+  PackContents pack;
+  throw_if_failed(build_pack(asset, settings, report, pack));
+  std::vector<uint8_t> bytes;
+  throw_if_failed(write_pack(pack, settings.pack, bytes));
+  throw_if_failed(write_file_atomically(path, bytes));
 }
 
 StandLayout stand_layout(uint32_t instances, float aspect) {

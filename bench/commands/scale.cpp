@@ -18,7 +18,8 @@ int run_bench_scale(const BenchScaleSettings& settings) {
               "form", "DQEM s", "peak MB", "min tris", "meshopt s", "peak MB");
   for (const std::string& file : settings.files) {
     const auto start = std::chrono::steady_clock::now();
-    const SkinnedAsset asset = import_asset(file);
+    SkinnedAsset asset;
+    throw_if_failed(import_asset(file, {}, asset));
     const double import_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // note: the child's results come back as text, parsed below.
@@ -26,7 +27,8 @@ int run_bench_scale(const BenchScaleSettings& settings) {
       SimplifyReport report;
       SimplifyOptions options;
       options.threads = settings.threads;
-      const ProgressiveMesh pm = simplify(asset, options, &report);
+      ProgressiveMesh pm;
+      throw_if_failed(simplify(asset, options, pm, &report));
       return std::to_string(report.positions) + " " +
              (report.form == DqemForm::kExact ? "exact" : "pullback") + " " +
              std::to_string(pm.triangle_count[pm.min_vertices]);

@@ -93,8 +93,9 @@ std::vector<Input> load_inputs(const BenchSettings& settings, const Progress& pr
   for (const auto& entry : j["assets"]) {
     const std::string path = entry.value("path", "");
     progress.say("importing " + path);
-    inputs.push_back({fs::path(path).parent_path().string(), path,
-                      import_asset((fs::path(settings.assets) / path).string())});
+    SkinnedAsset asset;
+    throw_if_failed(import_asset((fs::path(settings.assets) / path).string(), {}, asset));
+    inputs.push_back({fs::path(path).parent_path().string(), path, std::move(asset)});
   }
   return inputs;
 }
@@ -116,7 +117,11 @@ BenchRow run_dqem(const SkinnedAsset& asset, const Config& config, const BenchSe
   options.form = config.form;
   options.pose_source = config.source;
   options.threads = settings.threads;
-  const ChildResult run = run_in_child([&] { return serialize(simplify(asset, options)); });
+  const ChildResult run = run_in_child([&] {
+    ProgressiveMesh pm;
+    throw_if_failed(simplify(asset, options, pm));
+    return serialize(pm);
+  });
   row.seconds = run.seconds;
   row.peak_rss_mb = run.peak_rss_mb;
   for (double f : fractions) row.levels.push_back(unmeasured(f));
@@ -151,7 +156,7 @@ BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const st
       return row;
     }
     input_glb = work_dir + "/gltfpack-in.glb";
-    export_glb(asset, input_glb);
+    throw_if_failed(export_glb(asset, input_glb));
   }
   int trials = 0;
   double peak = -1.0;

@@ -16,6 +16,7 @@
 
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/pipeline/bake.h"
+#include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 #include "geometry_codec.h"
 #include "pack_chunks.h"
@@ -93,6 +94,12 @@ double max_angle_degrees(const std::vector<float>& a, const std::vector<float>& 
   return worst;
 }
 
+std::vector<uint8_t> packed(const PackContents& contents, const PackWriteOptions& options) {
+  std::vector<uint8_t> bytes;
+  throw_if_failed(write_pack(contents, options, bytes));
+  return bytes;
+}
+
 PackGeometry decode_geom(const std::vector<uint8_t>& bytes) {
   const PackChunk geom = geom_chunk(bytes);
   PackContents out;
@@ -135,9 +142,8 @@ void codec_table(const std::vector<Input>& inputs, double min_seconds) {
     const double decoded_mb = layout.decoded_bytes() / 1e6;
     for (const Setting& s : settings) {
       std::vector<uint8_t> bytes;
-      const double encode = median_seconds(
-          [&] { bytes = write_baked_pack(in.contents, s.options, nullptr, "bench"); },
-          min_seconds / 4);
+      const double encode =
+          median_seconds([&] { bytes = packed(in.contents, s.options); }, min_seconds / 4);
       const PackChunk geom = geom_chunk(bytes);
       const double decode = median_seconds(
           [&] {
@@ -174,8 +180,7 @@ void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
     for (GeometryCodec codec : {GeometryCodec::kDraco, GeometryCodec::kMeshopt}) {
       std::printf("| %s | %s |", in.name.c_str(), geometry_codec_name(codec));
       for (int b : position_bits) {
-        const std::vector<uint8_t> bytes =
-            write_baked_pack(in.contents, {codec, b, 10, 12}, nullptr, "bench");
+        const std::vector<uint8_t> bytes = packed(in.contents, {codec, b, 10, 12});
         const PackGeometry out = decode_geom(bytes);
         std::printf(" %.2e (%llu B) |", max_abs_difference(g.positions, out.positions) / diag,
                     static_cast<unsigned long long>(geom_chunk(bytes).size));
@@ -201,8 +206,7 @@ void accuracy_tables(const std::vector<Input>& inputs, bool quick) {
       std::string normals = "| " + in.name + " | " + geometry_codec_name(codec) + " | normal ° |";
       std::string uvs = "| " + in.name + " | " + geometry_codec_name(codec) + " | uv |";
       for (int b : bits) {
-        const PackGeometry out =
-            decode_geom(write_baked_pack(in.contents, {codec, 16, b, b}, nullptr, "bench"));
+        const PackGeometry out = decode_geom(packed(in.contents, {codec, 16, b, b}));
         char cell[64];
         std::snprintf(cell, sizeof cell, " %.3f |", max_angle_degrees(g.normals, out.normals));
         normals += cell;
@@ -223,7 +227,7 @@ void chunk_table(const std::vector<Input>& inputs) {
   for (size_t i = 0; i < std::size(tags); ++i) std::printf("---:|");
   std::printf("---:|\n");
   for (const Input& in : inputs) {
-    const std::vector<uint8_t> bytes = write_baked_pack(in.contents, {}, nullptr, "bench");
+    const std::vector<uint8_t> bytes = packed(in.contents, {});
     std::vector<PackChunk> chunks;
     read_pack_chunks(bytes.data(), bytes.size(), chunks);
     std::printf("| %s | %ju |", in.name.c_str(), in.source_bytes);
@@ -261,7 +265,9 @@ int main(int argc, char** argv) {
                        const SkinnedAsset& asset) {
     const auto start = Clock::now();
     BakeReport report;
-    inputs.push_back({name, source, bytes, build_pack(asset, settings, report)});
+    PackContents contents;
+    throw_if_failed(build_pack(asset, settings, report, contents));
+    inputs.push_back({name, source, bytes, std::move(contents)});
     std::fprintf(stderr, "baked %s in %.1f s\n", name.c_str(), seconds_since(start));
   };
   for (int detail : quick ? std::vector<int>{0} : std::vector<int>{1, 2}) {
@@ -280,8 +286,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "skipping %s (not found)\n", path.string().c_str());
       continue;
     }
-    add(path.stem().string(), path.string(), std::filesystem::file_size(path),
-        import_asset(path.string()));
+    SkinnedAsset asset;
+    throw_if_failed(import_asset(path.string(), {}, asset));
+    add(path.stem().string(), path.string(), std::filesystem::file_size(path), asset);
   }
   std::printf("## geometry_codec_bench%s\n", quick ? " (--quick)" : "");
   codec_table(inputs, min_seconds);

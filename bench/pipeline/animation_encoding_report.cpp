@@ -22,6 +22,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "pack_compression.h"
+#include "pipeline_calls.h"
 #include "spectator_character.h"
 
 namespace {
@@ -222,7 +223,7 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
     AnimationBakeOptions o = base;
     o.encoding = encodings[i];
     const auto start = std::chrono::steady_clock::now();
-    const AnimationBake bake = bake_animation(a, o);
+    const AnimationBake bake = test::bake_animation_or_throw(a, o);
     const double ms =
         1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Errors e = measure(a, bake, diagonal);
@@ -320,7 +321,7 @@ int main(int argc, char** argv) {
       const nlohmann::json manifest = nlohmann::json::parse(in);
       for (const auto& entry : manifest.at("assets")) {
         const std::string path = entry.at("path").get<std::string>();
-        report(path, import_asset(assets + "/" + path), base, totals);
+        report(path, test::import_or_throw(assets + "/" + path), base, totals);
       }
     }
   } catch (const std::exception& e) {

@@ -100,7 +100,7 @@ void validate_track(const SkinnedAsset& asset, const Clip& clip, const Track<T>&
 
 }  // namespace
 
-void validate_asset(const SkinnedAsset& asset) {
+static void validate_or_throw(const SkinnedAsset& asset) {
   const auto fail = [&](const std::string& why) { throw input_error(asset.source, why); };
   const size_t joint_count = asset.skeleton.joints.size();
   if (joint_count == 0) fail("the character has no joints");
@@ -170,6 +170,10 @@ void validate_asset(const SkinnedAsset& asset) {
       validate_track(asset, clip, clip.channels[j].scale, who + " scale");
     }
   }
+}
+
+Status validate_asset(const SkinnedAsset& asset) {
+  return capture_errors([&] { validate_or_throw(asset); });
 }
 
 }  // namespace crowdbake

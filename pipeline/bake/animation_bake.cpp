@@ -270,7 +270,8 @@ std::vector<double> baked_matrices(const SkinnedAsset& asset, const AnimationBak
   return rows;
 }
 
-AnimationBake bake_animation(const SkinnedAsset& asset, const AnimationBakeOptions& options) {
+static AnimationBake animation_or_throw(const SkinnedAsset& asset,
+                                        const AnimationBakeOptions& options) {
   if (!(options.fps > 0.0) || !std::isfinite(options.fps))
     throw Error(Error::Kind::kUsage, asset.source,
                 format("animation bake rate must be a positive number of frames per second, "
@@ -378,6 +379,11 @@ AnimationBake bake_animation(const SkinnedAsset& asset, const AnimationBakeOptio
              ? "; joints with non-uniform scale or shear lose it in this encoding"
              : ""));
   return bake;
+}
+
+Status bake_animation(const SkinnedAsset& asset, const AnimationBakeOptions& options,
+                      AnimationBake& out) {
+  return capture_errors([&] { out = animation_or_throw(asset, options); });
 }
 
 }  // namespace crowdbake

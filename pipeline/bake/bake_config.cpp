@@ -158,9 +158,7 @@ class ConfigReader {
   BakeSettings& out_;
 };
 
-}  // namespace
-
-BakeSettings read_bake_config(const std::string& path) {
+BakeSettings read_or_throw(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw input_error(path, "bake config: cannot open the file; check the path");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -172,6 +170,12 @@ BakeSettings read_bake_config(const std::string& path) {
                                [&] { ConfigReader(path, settings).read(doc); });
   if (!s.ok()) throw input_error(path, s.message() + "; see docs/bake-config.md");
   return settings;
+}
+
+}  // namespace
+
+Status read_bake_config(const std::string& path, BakeSettings& out) {
+  return capture_errors([&] { out = read_or_throw(path); });
 }
 
 std::string bake_settings_json(const BakeSettings& s) {

@@ -202,15 +202,18 @@ std::vector<uint32_t> level_error_samples(uint32_t min_vertices, uint32_t vertex
   return out;
 }
 
-PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
-                        StoredAnimation* stored_out) {
+namespace {
+
+PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& settings,
+                            BakeReport& report, StoredAnimation* stored_out) {
   StageClock clock(report);
   PackContents pack;
   pack.name = std::filesystem::path(asset.source).stem().string();
   pack.settings_json = bake_settings_json(settings);
   report.warnings = asset.warnings;
 
-  const ProgressiveMesh pm = simplify(asset, settings.simplify, &report.simplify);
+  ProgressiveMesh pm;
+  throw_if_failed(simplify(asset, settings.simplify, pm, &report.simplify));
   report.warnings.insert(report.warnings.end(), report.simplify.warnings.begin(),
                          report.simplify.warnings.end());
   pack.progressive = pm;  // note: the PackProgressive part, as stored
@@ -225,14 +228,16 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
       measure_level_errors(asset, pm, settings.level_errors, settings.simplify.threads);
   clock.done("level errors");
 
-  AnimationBake animation = bake_animation(asset, settings.animation);
+  AnimationBake animation;
+  throw_if_failed(bake_animation(asset, settings.animation, animation));
   pack.animation = std::move(animation.texture);
   pack.clips = std::move(animation.clips);
   report.warnings.insert(report.warnings.end(), animation.warnings.begin(),
                          animation.warnings.end());
   clock.done("animation");
 
-  PartitionBake partition = bake_partition(asset, settings.partition);
+  PartitionBake partition;
+  throw_if_failed(bake_partition(asset, settings.partition, partition));
   pack.partition = std::move(partition.mask);
   report.partition_heights = partition.height_source;
   report.warnings.insert(report.warnings.end(), partition.warnings.begin(),
@@ -301,13 +306,11 @@ PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
   return pack;
 }
 
-std::vector<uint8_t> write_baked_pack(const PackContents& pack, const PackWriteOptions& options,
-                                      const StoredAnimation* stored, const std::string& file) {
-  std::vector<uint8_t> bytes;
-  const Status s =
-      stored ? write_pack(pack, options, *stored, bytes) : write_pack(pack, options, bytes);
-  if (!s) throw Error(Error::Kind::kOutput, file, s.message());
-  return bytes;
+}  // namespace
+
+Status build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
+                  PackContents& out, StoredAnimation* stored) {
+  return capture_errors([&] { out = build_or_throw(asset, settings, report, stored); });
 }
 
 }  // namespace crowdbake

@@ -140,7 +140,8 @@ Region partition_region(double height, float neck, float waist) {
   return Region::kTrousers;
 }
 
-PartitionHeights partition_heights(const SkinnedAsset& asset, const PartitionOptions& options) {
+static PartitionHeights heights_or_throw(const SkinnedAsset& asset,
+                                         const PartitionOptions& options) {
   const glm::dvec3 up = unit_up(asset, options.up_axis);
   if (options.neck_height && !std::isfinite(*options.neck_height))
     throw usage(asset, "neck height " + num(*options.neck_height) + " is not finite");
@@ -399,7 +400,8 @@ void warn_about(PartitionBake& bake) {
 
 }  // namespace
 
-PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& options) {
+static PartitionBake partition_or_throw(const SkinnedAsset& asset,
+                                        const PartitionOptions& options) {
   if (options.size < 1 || options.size > kMaxSize)
     throw usage(asset, "mask size " + std::to_string(options.size) + " is outside 1.." +
                            std::to_string(kMaxSize));
@@ -407,7 +409,7 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
     throw usage(asset, "dilation " + std::to_string(options.dilate) + " is above " +
                            std::to_string(kMaxDilate));
   const glm::dvec3 up = unit_up(asset, options.up_axis);
-  PartitionHeights heights = partition_heights(asset, options);
+  PartitionHeights heights = heights_or_throw(asset, options);
 
   PartitionBake bake;
   PartitionStats& stats = bake.stats;
@@ -431,6 +433,16 @@ PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& 
   stats.unused_texels = texel_count - stats.covered_texels - stats.dilated_texels;
   warn_about(bake);
   return bake;
+}
+
+Status partition_heights(const SkinnedAsset& asset, const PartitionOptions& options,
+                         PartitionHeights& out) {
+  return capture_errors([&] { out = heights_or_throw(asset, options); });
+}
+
+Status bake_partition(const SkinnedAsset& asset, const PartitionOptions& options,
+                      PartitionBake& out) {
+  return capture_errors([&] { out = partition_or_throw(asset, options); });
 }
 
 }  // namespace crowdbake

@@ -42,9 +42,7 @@ struct PendingFile {
   ~PendingFile() { g_has_pending = 0; }
 };
 
-}  // namespace
-
-void write_file_atomically(const std::string& path, const void* data, size_t size) {
+void write_or_throw(const std::string& path, const void* data, size_t size) {
   namespace fs = std::filesystem;
   // note: the temporary file sits next to the output so the rename never crosses file
   // systems; the process id keeps concurrent writers of one output apart.
@@ -72,6 +70,12 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
   if (ec)
     throw fail("cannot rename '" + tmp + "' to the output (" + ec.message() + ")",
                "check that the output path is not a folder and is writable");
+}
+
+}  // namespace
+
+Status write_file_atomically(const std::string& path, const void* data, size_t size) {
+  return capture_errors([&] { write_or_throw(path, data, size); });
 }
 
 }  // namespace crowdbake

@@ -556,12 +556,16 @@ std::vector<uint8_t> glb_bytes(const std::string& json, const std::vector<uint8_
 
 }  // namespace
 
-void export_glb(const SkinnedAsset& asset, const std::string& path) {
-  validate_asset(asset);
+static void export_or_throw(const SkinnedAsset& asset, const std::string& path) {
+  throw_if_failed(validate_asset(asset));
   BinaryBuilder bin;
   const Json gltf = build_json(asset, bin);
   const std::string json = gltf.dump(-1, ' ', false, Json::error_handler_t::replace);
-  write_file_atomically(path, glb_bytes(json, bin.bin(), path));
+  throw_if_failed(write_file_atomically(path, glb_bytes(json, bin.bin(), path)));
+}
+
+Status export_glb(const SkinnedAsset& asset, const std::string& path) {
+  return capture_errors([&] { export_or_throw(asset, path); });
 }
 
 }  // namespace crowdbake

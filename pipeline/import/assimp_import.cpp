@@ -563,11 +563,15 @@ const aiScene& read_scene_file(Assimp::Importer& importer, const std::string& pa
 
 }  // namespace
 
-SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options) {
+static SkinnedAsset assimp_or_throw(const std::string& path, const ImportOptions& options) {
   Assimp::Importer importer;
   std::vector<int> polygons_per_mesh;
   const aiScene& scene = read_scene_file(importer, path, polygons_per_mesh);
   return ai::convert_scene(scene, path, polygons_per_mesh, options);
+}
+
+Status import_assimp(const std::string& path, const ImportOptions& options, SkinnedAsset& out) {
+  return capture_errors([&] { out = assimp_or_throw(path, options); });
 }
 
 }  // namespace crowdbake

@@ -622,8 +622,12 @@ class GltfImporter {
 
 }  // namespace
 
-SkinnedAsset import_gltf(const std::string& path, const ImportOptions& options) {
+static SkinnedAsset gltf_or_throw(const std::string& path, const ImportOptions& options) {
   return GltfImporter(path, options).run();
+}
+
+Status import_gltf(const std::string& path, const ImportOptions& options, SkinnedAsset& out) {
+  return capture_errors([&] { out = gltf_or_throw(path, options); });
 }
 
 }  // namespace crowdbake

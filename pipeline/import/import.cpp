@@ -63,7 +63,10 @@ class StdoutToStderr {
 
 SkinnedAsset import_here(const std::string& path, ImporterKind kind, const ImportOptions& options) {
   const StdoutToStderr quiet;
-  return kind == ImporterKind::kGltf ? import_gltf(path, options) : import_assimp(path, options);
+  SkinnedAsset asset;
+  throw_if_failed(kind == ImporterKind::kGltf ? import_gltf(path, options, asset)
+                                              : import_assimp(path, options, asset));
+  return asset;
 }
 
 std::string number(double value) {
@@ -122,8 +125,8 @@ SkinnedAsset import_isolated(const std::string& path, ImporterKind kind,
 
 }  // namespace
 
-SkinnedAsset import_asset(const std::string& path, const ImportOptions& options) {
-  check_input_file(path, "a character file (.gltf, .glb, .fbx, ...)");
+static SkinnedAsset import_or_throw(const std::string& path, const ImportOptions& options) {
+  throw_if_failed(check_input_file(path, "a character file (.gltf, .glb, .fbx, ...)"));
   ImporterKind kind = options.importer;
   if (kind == ImporterKind::kAuto) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -133,9 +136,13 @@ SkinnedAsset import_asset(const std::string& path, const ImportOptions& options)
   }
   SkinnedAsset asset = options.limits.isolate ? import_isolated(path, kind, options)
                                               : import_here(path, kind, options);
-  validate_asset(asset);
+  throw_if_failed(validate_asset(asset));
   if (options.weld) asset.stats.vertices_welded = static_cast<int>(weld_identical_vertices(asset));
   return asset;
+}
+
+Status import_asset(const std::string& path, const ImportOptions& options, SkinnedAsset& out) {
+  return capture_errors([&] { out = import_or_throw(path, options); });
 }
 
 }  // namespace crowdbake

@@ -21,8 +21,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options,
-                         SimplifyReport* report) {
+static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const SimplifyOptions& options,
+                                         SimplifyReport* report) {
   if (options.samples < 1)
     throw Error(Error::Kind::kUsage, asset.source,
                 "samples must be at least 1 (S = 1 is classic QEM on the bind pose)");
@@ -135,6 +135,11 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
                                       [](const Primitive& p) { return p.indices.empty(); }),
                        lod.primitives.end());
   return lod;
+}
+
+Status simplify(const SkinnedAsset& asset, const SimplifyOptions& options, ProgressiveMesh& out,
+                SimplifyReport* report) {
+  return capture_errors([&] { out = simplify_or_throw(asset, options, report); });
 }
 
 }  // namespace crowdbake

@@ -18,11 +18,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     const crowdbake::SkinnedAsset asset = crowdbake::samples::make_limb_chain(options);
-    crowdbake::export_glb(asset, output);
+    crowdbake::throw_if_failed(crowdbake::export_glb(asset, output));
     std::printf("%s: %zu vertices, %zu triangles, %d joints\n", output.c_str(),
                 asset.vertex_count(), asset.triangle_count(), options.joints);
   } catch (const crowdbake::Error& e) {
-    std::fprintf(stderr, "error: %s: %s\n", e.file().c_str(), e.what());
+    std::fprintf(stderr, "error: %s\n", crowdbake::status_of(e).message().c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", output.c_str(), e.what());

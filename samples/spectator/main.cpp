@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
 
   try {
     const crowdbake::SkinnedAsset asset = crowdbake::samples::make_spectator_character(options);
-    crowdbake::export_glb(asset, output);
+    crowdbake::throw_if_failed(crowdbake::export_glb(asset, output));
     if (!quiet) {
       std::printf("%s: %zu joints, %zu vertices, %zu triangles, %zu primitives, %zu clips\n",
                   output.c_str(), asset.skeleton.joints.size(), asset.vertex_count(),
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
                     clip.keyframes());
     }
   } catch (const crowdbake::Error& e) {
-    std::fprintf(stderr, "error: %s: %s\n", e.file().c_str(), e.what());
+    std::fprintf(stderr, "error: %s\n", crowdbake::status_of(e).message().c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", output.c_str(), e.what());

@@ -15,10 +15,11 @@ TEST(StatusCodeName, EachCodeHasItsOwnName) {
   EXPECT_STREQ(status_code_name(StatusCode::kInvalidPack), "invalid pack");
   EXPECT_STREQ(status_code_name(StatusCode::kInvalidFsm), "invalid behaviour fsm");
   EXPECT_STREQ(status_code_name(StatusCode::kInternal), "internal error");
+  EXPECT_STREQ(status_code_name(StatusCode::kOutputError), "output error");
   std::set<std::string> names;
-  for (int c = 0; c <= static_cast<int>(StatusCode::kInternal); ++c)
+  for (int c = 0; c <= static_cast<int>(StatusCode::kLast); ++c)
     names.insert(status_code_name(static_cast<StatusCode>(c)));
-  EXPECT_EQ(names.size(), static_cast<size_t>(StatusCode::kInternal) + 1);
+  EXPECT_EQ(names.size(), static_cast<size_t>(StatusCode::kLast) + 1);
   EXPECT_EQ(names.count("unknown"), 0u);
   EXPECT_STREQ(status_code_name(static_cast<StatusCode>(99)), "unknown");
 }

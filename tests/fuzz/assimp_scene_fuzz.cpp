@@ -241,15 +241,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Assimp::Importer importer;
   const aiScene* read = importer.ReadFileFromMemory(blob->data, blob->size,
                                                     aiProcess_ValidateDataStructure, "assbin");
-  try {
+  // note: prepare_scene and convert_scene are the importer's insides, which throw Error.
+  SkinnedAsset asset;
+  const Status converted = capture_errors([&] {
     std::vector<int> polygons_per_mesh;
     const aiScene& scene = ai::prepare_scene(importer, read, path, polygons_per_mesh);
-    SkinnedAsset asset = ai::convert_scene(scene, path, polygons_per_mesh, ImportOptions{});
-    validate_asset(asset);
-    SkinnedAsset back;
-    if (!decode_asset(encode_asset(asset), back)) std::abort();
-  } catch (const Error& e) {
-    fuzz::refused(e.what());
+    asset = ai::convert_scene(scene, path, polygons_per_mesh, ImportOptions{});
+  });
+  const Status s = converted.ok() ? validate_asset(asset) : converted;
+  if (!s.ok()) {
+    fuzz::refused(s);
+    return 0;
   }
+  SkinnedAsset back;
+  if (!decode_asset(encode_asset(asset), back)) std::abort();
   return 0;
 }

@@ -11,10 +11,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace crowdbake;
   const std::string path = fuzz::write_input("bake.json", data, size);
-  try {
-    if (bake_settings_json(read_bake_config(path)).empty()) std::abort();
-  } catch (const Error& e) {
-    fuzz::refused(e.what());
-  }
+  BakeSettings settings;
+  const Status s = read_bake_config(path, settings);
+  if (s.ok() && bake_settings_json(settings).empty()) std::abort();
+  if (!s.ok()) fuzz::refused(s);
   return 0;
 }

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <string>
 
+#include "crowdbake/base/status.h"
+
 namespace crowdbake::fuzz {
 
 inline const std::string& private_folder() {
@@ -35,6 +37,17 @@ inline std::string write_input(const std::string& name, const uint8_t* data, siz
 inline void refused(const std::string& why) {
   static const bool verbose = getenv("CROWDBAKE_FUZZ_VERBOSE") != nullptr;
   if (verbose) std::fprintf(stderr, "refused: %s\n", why.c_str());
+}
+
+// A pipeline function's refusal. kInternal stands for an exception other than the pipeline's
+// own Error (a bug, which the fuzzer must see as a crash), and kOutOfMemory for a runaway
+// allocation: both abort.
+inline void refused(const Status& status) {
+  if (status.code() == StatusCode::kInternal || status.code() == StatusCode::kOutOfMemory) {
+    std::fprintf(stderr, "%s\n", status.message().c_str());
+    std::abort();
+  }
+  refused(status.message());
 }
 
 }  // namespace crowdbake::fuzz

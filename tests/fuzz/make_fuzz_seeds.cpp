@@ -13,6 +13,7 @@
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
 #include "gltf_test_builder.h"
+#include "pipeline_calls.h"
 #include "small_pack.h"
 
 namespace {
@@ -65,7 +66,7 @@ int write_gltf(const std::string& dir) {
   const std::string gltf = test::two_bone_character().write(dir + "/two_bone.gltf").string();
   ImportOptions options;
   options.limits.isolate = false;
-  export_glb(import_asset(gltf, options), dir + "/two_bone.glb");
+  test::export_glb_or_throw(test::import_or_throw(gltf, options), dir + "/two_bone.glb");
   return 2;
 }
 

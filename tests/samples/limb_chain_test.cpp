@@ -9,6 +9,7 @@
 
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "crowdbake/pipeline/simplify.h"
+#include "pipeline_calls.h"
 
 namespace crowdbake {
 namespace {
@@ -18,7 +19,7 @@ TEST(LimbChain, HasTheAskedSizeAndIsValid) {
     samples::LimbChainOptions o;
     o.triangles = triangles;
     const SkinnedAsset a = samples::make_limb_chain(o);
-    EXPECT_NO_THROW(validate_asset(a));
+    EXPECT_NO_THROW(test::validate_or_throw(a));
     EXPECT_NEAR(static_cast<double>(a.triangle_count()), triangles, 0.05 * triangles);
     EXPECT_EQ(a.skeleton.joints.size(), 8u);
     ASSERT_EQ(a.clips.size(), 1u);
@@ -37,11 +38,11 @@ TEST(LimbChain, SimplifiesWithEveryInvariant) {
   o.triangles = 20000;
   const SkinnedAsset a = samples::make_limb_chain(o);
   SimplifyReport report;
-  const ProgressiveMesh pm = simplify(a, SimplifyOptions{}, &report);
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{}, &report);
   EXPECT_EQ(check_progressive_mesh(pm).message(), "");
   EXPECT_LT(pm.triangle_count[pm.min_vertices], a.triangle_count() / 50);
   const SkinnedAsset lod = extract_lod(a, pm, static_cast<uint32_t>(a.vertex_count() / 50));
-  EXPECT_NO_THROW(validate_asset(lod));
+  EXPECT_NO_THROW(test::validate_or_throw(lod));
 }
 
 }  // namespace

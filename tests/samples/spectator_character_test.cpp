@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pipeline_calls.h"
 
 namespace crowdbake::samples {
 namespace {
@@ -55,7 +56,9 @@ int influences(const std::array<float, 4>& w) {
   return static_cast<int>(std::count_if(w.begin(), w.end(), [](float x) { return x > 0.0f; }));
 }
 
-TEST(SpectatorCharacter, PassesAssetValidation) { EXPECT_NO_THROW(validate_asset(spectator())); }
+TEST(SpectatorCharacter, PassesAssetValidation) {
+  EXPECT_NO_THROW(test::validate_or_throw(spectator()));
+}
 
 TEST(SpectatorCharacter, SkeletonHasConventionalHumanoidJoints) {
   const Skeleton& s = spectator().skeleton;
@@ -330,7 +333,7 @@ TEST(SpectatorCharacter, OptionsVaryDetailAndLook) {
   EXPECT_LT(low.triangle_count(), spectator().triangle_count());
   EXPECT_GT(high.triangle_count(), spectator().triangle_count());
   const SkinnedAsset other = make_spectator_character({1, 7});
-  EXPECT_NO_THROW(validate_asset(other));
+  EXPECT_NO_THROW(test::validate_or_throw(other));
   EXPECT_EQ(other.triangle_count(), spectator().triangle_count());
   EXPECT_NE(other.primitives[0].positions, spectator().primitives[0].positions);
   const Box b = bind_box(other);

@@ -6,6 +6,7 @@
 #include "asset_paths.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/skinned_asset.h"
+#include "pipeline_calls.h"
 
 namespace crowdbake {
 namespace {
@@ -103,10 +104,10 @@ TEST(VertexWeld, ImportMatchesAssimpJoinOnTheSharedAssets) {
     if (!entry.contains("vertices_unique_after_assimp_join")) continue;
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
     SCOPED_TRACE(path);
-    const SkinnedAsset welded = import_asset(path);
+    const SkinnedAsset welded = test::import_or_throw(path);
     ImportOptions keep;
     keep.weld = false;
-    const SkinnedAsset kept = import_asset(path, keep);
+    const SkinnedAsset kept = test::import_or_throw(path, keep);
     EXPECT_EQ(kept.vertex_count(), entry["vertices"].get<size_t>());
     const size_t assimp = entry["vertices_unique_after_assimp_join"].get<size_t>();
     EXPECT_GE(welded.vertex_count(), assimp);

@@ -9,6 +9,7 @@
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pipeline_calls.h"
 
 namespace crowdbake {
 namespace {
@@ -138,7 +139,7 @@ AnimationBakeOptions float32(bool extract) {
 TEST(AnimationBake, RowsDecodeToEvaluatorSkinningMatrices) {
   SkinnedAsset a = two_joints();
   a.clips = {bend_clip(), wave_clip()};
-  const AnimationBake bake = bake_animation(a, float32(false));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(false));
   ASSERT_TRUE(check_animation_texture(bake.texture));
   EXPECT_EQ(bake.texture.joints, 2u);
   for (size_t c = 0; c < a.clips.size(); ++c) {
@@ -165,7 +166,7 @@ TEST(AnimationBake, ClipTableStacksRows) {
   odd.duration = 0.7083;  // 21.249 frames at 30 fps
   odd.channels[1].rotation.times = {0.0, 0.35, 0.7083};
   a.clips = {bend_clip(), walk_clip(), odd};
-  const AnimationBake bake = bake_animation(a, float32(true));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(true));
   ASSERT_EQ(bake.clips.size(), 3u);
   EXPECT_EQ(bake.clips[0].name, "bend");
   EXPECT_EQ(bake.clips[0].first_row, 0u);
@@ -192,7 +193,7 @@ TEST(AnimationBake, LastFrameIsTheClipEnd) {
   a.clips = {bend_clip()};
   a.clips[0].duration = 0.99;  // 29.7 frames: 30 frames, the last at 0.99 s
   a.clips[0].channels[1].rotation.times = {0.0, 0.99};
-  const AnimationBake bake = bake_animation(a, float32(false));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(false));
   ASSERT_EQ(bake.clips[0].frame_count, 30u);
   const std::vector<double> end = evaluator_matrices(a, &a.clips[0], 0.99);
   float m[12];
@@ -203,7 +204,7 @@ TEST(AnimationBake, LastFrameIsTheClipEnd) {
 TEST(AnimationBake, RootMotionBakesTheWalkInPlace) {
   SkinnedAsset a = two_joints();
   a.clips = {walk_clip()};
-  const AnimationBake bake = bake_animation(a, float32(true));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(true));
   EXPECT_EQ(bake.root_joint, 0);
   const PackClip& clip = bake.clips[0];
   ASSERT_EQ(clip.root_motion.size(), 3u * clip.frame_count);
@@ -245,7 +246,7 @@ TEST(AnimationBake, ReapplyingRootMotionReproducesTheOriginal) {
   for (AnimationEncoding e : kEncodings) {
     AnimationBakeOptions o;
     o.encoding = e;
-    const AnimationBake bake = bake_animation(a, o);
+    const AnimationBake bake = test::bake_animation_or_throw(a, o);
     for (size_t c = 0; c < a.clips.size(); ++c) {
       const PackClip& clip = bake.clips[c];
       for (uint32_t k = 0; k < clip.frame_count; ++k) {
@@ -267,7 +268,7 @@ TEST(AnimationBake, ReapplyingRootMotionReproducesTheOriginal) {
 TEST(AnimationBake, KeepingRootMotionBakesItIn) {
   SkinnedAsset a = two_joints();
   a.clips = {walk_clip()};
-  const AnimationBake bake = bake_animation(a, float32(false));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(false));
   EXPECT_EQ(bake.root_joint, -1);
   EXPECT_TRUE(bake.clips[0].root_motion.empty());
   EXPECT_FALSE(bake.clips[0].looping);  // it ends 2 m away
@@ -288,7 +289,7 @@ TEST(AnimationBake, YawUnwrapsAcrossTurns) {
     spin.channels[0].rotation.values.push_back(yaw(-kPi / 2 * k));  // three turns clockwise
   }
   a.clips = {spin};
-  const AnimationBake bake = bake_animation(a, float32(true));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(true));
   const PackClip& clip = bake.clips[0];
   for (uint32_t k = 1; k < clip.frame_count; ++k)
     ASSERT_LT(std::abs(clip.root_motion[3 * k + 2] - clip.root_motion[3 * (k - 1) + 2]), kPi / 4);
@@ -304,7 +305,7 @@ TEST(AnimationBake, SingleFrameClip) {
   pose.channels[1].rotation.times = {0.0};
   pose.channels[1].rotation.values = {glm::angleAxis(0.3, glm::dvec3(1, 0, 0))};
   a.clips = {pose, bend_clip()};
-  const AnimationBake bake = bake_animation(a, float32(true));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(true));
   EXPECT_EQ(bake.clips[0].frame_count, 1u);
   EXPECT_EQ(bake.clips[0].fps, 30.0f);
   EXPECT_TRUE(bake.clips[0].looping);
@@ -322,7 +323,7 @@ TEST(AnimationBake, NoClipsBakesTheRestPose) {
   SkinnedAsset a = two_joints();
   // Rest differs from bind: the spine is bent in its stored transform.
   a.skeleton.joints[1].rest.rotation = glm::angleAxis(0.5, glm::dvec3(0, 0, 1));
-  const AnimationBake bake = bake_animation(a, float32(true));
+  const AnimationBake bake = test::bake_animation_or_throw(a, float32(true));
   ASSERT_EQ(bake.clips.size(), 1u);
   EXPECT_EQ(bake.clips[0].name, "rest");
   EXPECT_EQ(bake.clips[0].frame_count, 1u);
@@ -342,7 +343,8 @@ TEST(AnimationBake, Deterministic) {
   for (AnimationEncoding e : kEncodings) {
     AnimationBakeOptions o;
     o.encoding = e;
-    const AnimationBake x = bake_animation(a, o), y = bake_animation(a, o);
+    const AnimationBake x = test::bake_animation_or_throw(a, o),
+                        y = test::bake_animation_or_throw(a, o);
     EXPECT_EQ(x.texture.data, y.texture.data);
     EXPECT_EQ(x.texture.decode_params, y.texture.decode_params);
     ASSERT_EQ(x.clips.size(), y.clips.size());
@@ -369,7 +371,7 @@ TEST(AnimationBake, ExtremeInputsNeverWriteNaN) {
       AnimationBakeOptions o;
       o.encoding = e;
       o.extract_root_motion = extract;
-      const AnimationBake bake = bake_animation(a, o);
+      const AnimationBake bake = test::bake_animation_or_throw(a, o);
       const Status checked = check_animation_texture(bake.texture);
       EXPECT_TRUE(checked) << checked.message();
       for (float v : bake.clips[0].root_motion) EXPECT_TRUE(std::isfinite(v));
@@ -399,7 +401,7 @@ TEST(AnimationBake, PositionErrorBoundHolds) {
   for (AnimationEncoding e : kEncodings) {
     AnimationBakeOptions o;
     o.encoding = e;
-    const AnimationBake bake = bake_animation(a, o);
+    const AnimationBake bake = test::bake_animation_or_throw(a, o);
     for (size_t c = 0; c < a.clips.size(); ++c) {
       const PackClip& clip = bake.clips[c];
       for (uint32_t k = 0; k < clip.frame_count; ++k) {
@@ -445,17 +447,17 @@ TEST(AnimationBake, RootJointChoice) {
     for (auto& j : p.joints)
       for (auto& i : j) i = static_cast<uint16_t>(i + 1);
   armature.clips[0].channels.insert(armature.clips[0].channels.begin(), JointChannels{});
-  EXPECT_EQ(bake_animation(armature).root_joint, 1);
+  EXPECT_EQ(test::bake_animation_or_throw(armature).root_joint, 1);
   // Two children (an IK target beside the hips): the top joint stays the root.
   SkinnedAsset ik = armature;
   ik.skeleton.joints.push_back({"ik_foot", 0, {}, glm::dmat4(1.0), glm::dmat4(1.0)});
   ik.clips[0].channels.push_back(JointChannels{});
-  EXPECT_EQ(bake_animation(ik).root_joint, 0);
+  EXPECT_EQ(test::bake_animation_or_throw(ik).root_joint, 0);
   AnimationBakeOptions named;
   named.root_joint = "spine";
-  EXPECT_EQ(bake_animation(a, named).root_joint, 1);
+  EXPECT_EQ(test::bake_animation_or_throw(a, named).root_joint, 1);
   named.root_joint = "tail";
-  EXPECT_THROW(bake_animation(a, named), Error);
+  EXPECT_THROW(test::bake_animation_or_throw(a, named), Error);
 }
 
 TEST(AnimationBake, RejectsBadOptions) {
@@ -463,7 +465,7 @@ TEST(AnimationBake, RejectsBadOptions) {
   AnimationBakeOptions o;
   for (double fps : {0.0, -30.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     o.fps = fps;
-    EXPECT_THROW(bake_animation(a, o), Error) << fps;
+    EXPECT_THROW(test::bake_animation_or_throw(a, o), Error) << fps;
   }
 }
 

@@ -14,6 +14,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "pack_bytes.h"
+#include "pipeline_calls.h"
 #include "spectator_character.h"
 
 namespace crowdbake {
@@ -70,14 +71,14 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   SCOPED_TRACE(name);
   const BakeSettings settings;
   BakeReport report;
-  const PackContents pack = build_pack(asset, settings, report);
+  const PackContents pack = test::build_pack_or_throw(asset, settings, report);
   const std::vector<uint8_t> bytes = test::pack_bytes(pack, settings.pack);
   PackContents back;
   const Status status = read_pack(bytes.data(), bytes.size(), back);
   ASSERT_TRUE(status.ok()) << status.message();
 
   // The progressive arrays exactly, and equal to what simplify() gives.
-  const ProgressiveMesh pm = simplify(asset, settings.simplify);
+  const ProgressiveMesh pm = test::simplify_or_throw(asset, settings.simplify);
   EXPECT_EQ(back.progressive.collapse_to, pm.collapse_to);
   EXPECT_EQ(back.progressive.triangle_count, pm.triangle_count);
   EXPECT_EQ(back.progressive.group_start, pm.group_start);
@@ -132,7 +133,7 @@ TEST(PackBuilder, EverySharedAssetRoundTrips) {
       nlohmann::json::parse(std::ifstream(test::shared_assets() / "MANIFEST.json"));
   for (const nlohmann::json& entry : manifest["assets"]) {
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
-    expect_pack_round_trip(import_asset(path), path);
+    expect_pack_round_trip(test::import_or_throw(path), path);
   }
 }
 
@@ -144,7 +145,7 @@ TEST(PackBuilder, SameInputGivesTheSameBytesWhateverTheThreads) {
     settings.simplify.threads = threads;
     BakeReport report;
     const std::vector<uint8_t> bytes =
-        test::pack_bytes(build_pack(asset, settings, report), settings.pack);
+        test::pack_bytes(test::build_pack_or_throw(asset, settings, report), settings.pack);
     if (first.empty())
       first = bytes;
     else

@@ -17,6 +17,7 @@
 #include "bake/uv_rasterizer.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
+#include "pipeline_calls.h"
 #include "spectator_character.h"
 
 namespace crowdbake {
@@ -109,8 +110,8 @@ TEST(PartitionRegion, EqualityGoesToTheRegionAbove) {
 TEST(PartitionBake, QuadRowsAreExactlyWhereExpected) {
   for (uint32_t n : {1u, 2u, 7u, 10u, 12u, 37u, 256u}) {
     SCOPED_TRACE(n);
-    const PartitionBake b =
-        bake_partition(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), explicit_heights(n, 1.5f, 0.5f));
+    const PartitionBake b = test::bake_partition_or_throw(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}),
+                                                          explicit_heights(n, 1.5f, 0.5f));
     ASSERT_EQ(b.mask.width, n);
     ASSERT_EQ(b.mask.height, n);
     ASSERT_EQ(b.mask.texels.size(), size_t(n) * n);
@@ -126,8 +127,8 @@ TEST(PartitionBake, QuadRowsAreExactlyWhereExpected) {
     }
   }
   // N = 10: row 2 samples v = 0.25, height exactly 1.5, which belongs to the head.
-  const PartitionBake b =
-      bake_partition(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), explicit_heights(10, 1.5f, 0.5f));
+  const PartitionBake b = test::bake_partition_or_throw(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}),
+                                                        explicit_heights(10, 1.5f, 0.5f));
   EXPECT_EQ(at(b.mask, 4, 2), kHead);
   EXPECT_EQ(at(b.mask, 4, 3), kUpper);
   EXPECT_EQ(at(b.mask, 4, 7), kUpper);  // v = 0.75, height exactly 0.5
@@ -139,7 +140,8 @@ TEST(PartitionBake, VertexRegionsFollowTheSameRule) {
   add_vertex(p, {0, 1.5f, 0}, {0, 0});
   add_vertex(p, {0, 0.5f, 0}, {0, 0});
   add_vertex(p, {0, 0.4999f, 0}, {0, 0});
-  const PartitionBake b = bake_partition(asset_of({p}), explicit_heights(4, 1.5f, 0.5f));
+  const PartitionBake b =
+      test::bake_partition_or_throw(asset_of({p}), explicit_heights(4, 1.5f, 0.5f));
   ASSERT_EQ(b.vertex_regions.size(), 1u);
   EXPECT_EQ(b.vertex_regions[0],
             (std::vector<uint8_t>{kHead, kHead, kTrousers, kTrousers, kHead, kUpper, kTrousers}));
@@ -213,7 +215,8 @@ SkinnedAsset standing(std::vector<Joint> joints) {
 
 TEST(PartitionHeights, FromJointNamesNeckAndHips) {
   PartitionOptions o;
-  const PartitionHeights h = partition_heights(standing(rig("", "Hips", "Neck", "Head")), o);
+  const PartitionHeights h =
+      test::partition_heights_or_throw(standing(rig("", "Hips", "Neck", "Head")), o);
   EXPECT_FLOAT_EQ(h.neck, 1.5f);
   EXPECT_FLOAT_EQ(h.waist, 1.0f);
   EXPECT_EQ(h.source, "joints 'Neck' and 'Hips'");
@@ -222,23 +225,24 @@ TEST(PartitionHeights, FromJointNamesNeckAndHips) {
 
 TEST(PartitionHeights, FromMixamoAndBipedNames) {
   PartitionOptions o;
-  PartitionHeights h = partition_heights(standing(rig("mixamorig:", "Hips", "Neck", "Head")), o);
+  PartitionHeights h =
+      test::partition_heights_or_throw(standing(rig("mixamorig:", "Hips", "Neck", "Head")), o);
   EXPECT_FLOAT_EQ(h.neck, 1.5f);
   EXPECT_FLOAT_EQ(h.waist, 1.0f);
   EXPECT_EQ(h.source, "joints 'mixamorig:Neck' and 'mixamorig:Hips'");
 
-  h = partition_heights(standing(rig("Bip01 ", "Pelvis", "Neck", "Head")), o);
+  h = test::partition_heights_or_throw(standing(rig("Bip01 ", "Pelvis", "Neck", "Head")), o);
   EXPECT_FLOAT_EQ(h.neck, 1.5f);
   EXPECT_FLOAT_EQ(h.waist, 1.0f);
   EXPECT_EQ(h.source, "joints 'Bip01 Neck' and 'Bip01 Pelvis'");
 
-  h = partition_heights(standing(rig("Armature|", "pelvis", "neck_01", "head")), o);
+  h = test::partition_heights_or_throw(standing(rig("Armature|", "pelvis", "neck_01", "head")), o);
   EXPECT_EQ(h.source, "joints 'Armature|neck_01' and 'Armature|pelvis'");
 
   // A deeper "neck" (Neck1 below Neck) loses to the one closer to the root.
   std::vector<Joint> j = rig("", "HIPS", "NECK", "HEAD");
   j.push_back(joint_at("Neck1", 2, {0, 1.55, 0}));
-  h = partition_heights(standing(j), o);
+  h = test::partition_heights_or_throw(standing(j), o);
   EXPECT_FLOAT_EQ(h.neck, 1.5f);
   EXPECT_EQ(h.source, "joints 'NECK' and 'HIPS'");
 }
@@ -247,7 +251,7 @@ TEST(PartitionHeights, HeadAndSpineFallbacks) {
   // No neck: 0.05 H below the head joint (H = 1.8). No hips/pelvis: the spine joint.
   std::vector<Joint> j = {joint_at("root", -1, {0, 0, 0}), joint_at("Spine", 0, {0, 1.1, 0}),
                           joint_at("Head", 1, {0, 1.6, 0})};
-  const PartitionHeights h = partition_heights(standing(j), {});
+  const PartitionHeights h = test::partition_heights_or_throw(standing(j), {});
   EXPECT_FLOAT_EQ(h.neck, 1.6f - 0.05f * 1.8f);
   EXPECT_FLOAT_EQ(h.waist, 1.1f);
   EXPECT_EQ(h.source, "neck: joint 'Head' - 0.05 H; waist: joint 'Spine'");
@@ -264,7 +268,7 @@ TEST(PartitionHeights, UsesTheBindPoseNotTheRestPose) {
                                       glm::scale(glm::dmat4(1.0), glm::dvec3(0.01)));
     joint.rest.translation = glm::dvec3(5.0);
   }
-  const PartitionHeights h = partition_heights(standing(j), {});
+  const PartitionHeights h = test::partition_heights_or_throw(standing(j), {});
   EXPECT_NEAR(h.neck, 1.5f, 1e-6);
   EXPECT_NEAR(h.waist, 1.0f, 1e-6);
 }
@@ -277,7 +281,7 @@ TEST(PartitionHeights, AlongAnotherUpAxis) {
   PartitionOptions o;
   o.up_axis = {0, 0, 2};  // normalised
   o.size = 8;
-  const PartitionBake b = bake_partition(asset_of({p}, j), o);
+  const PartitionBake b = test::bake_partition_or_throw(asset_of({p}, j), o);
   EXPECT_FLOAT_EQ(b.mask.neck_height, 1.5f);
   EXPECT_FLOAT_EQ(b.mask.waist_height, 1.0f);
   EXPECT_EQ(b.mask.up_axis, (std::array<float, 3>{0, 0, 1}));
@@ -287,7 +291,7 @@ TEST(PartitionHeights, AlongAnotherUpAxis) {
 
   // Read with the default Y up, the same character lies down: a warning says so.
   o.up_axis = {0, 1, 0};
-  const PartitionBake lying = bake_partition(asset_of({p}, j), o);
+  const PartitionBake lying = test::bake_partition_or_throw(asset_of({p}, j), o);
   EXPECT_TRUE(has_warning(lying, "is the up axis right?"));
 }
 
@@ -295,7 +299,7 @@ TEST(PartitionHeights, BoundingBoxFallback) {
   // No joint name matches; the mesh spans -1..3 along y.
   const SkinnedAsset a = asset_of({uv_rect({0, 0}, {1, 1}, 3.0f, -1.0f)},
                                   {joint_at("root", -1, {0, 0, 0}), joint_at("arm", 0, {1, 1, 0})});
-  const PartitionHeights h = partition_heights(a, {});
+  const PartitionHeights h = test::partition_heights_or_throw(a, {});
   EXPECT_FLOAT_EQ(h.neck, -1.0f + 0.84f * 4.0f);
   EXPECT_FLOAT_EQ(h.waist, -1.0f + 0.53f * 4.0f);
   EXPECT_EQ(h.source, "bounding box");
@@ -307,7 +311,7 @@ TEST(PartitionHeights, BadJointsFallBackWithWarnings) {
   j[2] = joint_at("Neck", 1, {0, 7.0, 0});
   j[3] = joint_at("Skull", 2, {0, 7.5, 0});
   j[4] = joint_at("Top_End", 3, {0, 7.7, 0});
-  PartitionHeights h = partition_heights(standing(j), {});
+  PartitionHeights h = test::partition_heights_or_throw(standing(j), {});
   EXPECT_FLOAT_EQ(h.neck, 0.84f * 1.8f);
   EXPECT_FLOAT_EQ(h.waist, 1.0f);
   EXPECT_EQ(h.source, "neck: bounding box; waist: joint 'Hips'");
@@ -317,7 +321,7 @@ TEST(PartitionHeights, BadJointsFallBackWithWarnings) {
   // Neck below the hips (an upside-down or odd rig): both from the bounding box.
   j = rig("", "Hips", "Neck", "Head");
   j[0] = joint_at("Hips", -1, {0, 1.55, 0});
-  h = partition_heights(standing(j), {});
+  h = test::partition_heights_or_throw(standing(j), {});
   EXPECT_EQ(h.source, "bounding box");
   EXPECT_FLOAT_EQ(h.neck, 0.84f * 1.8f);
   EXPECT_FLOAT_EQ(h.waist, 0.53f * 1.8f);
@@ -327,7 +331,7 @@ TEST(PartitionHeights, BadJointsFallBackWithWarnings) {
   // A singular inverse bind matrix is skipped.
   j = rig("", "Hips", "Neck", "Head");
   j[0].inverse_bind = glm::dmat4(0.0);
-  h = partition_heights(standing(j), {});
+  h = test::partition_heights_or_throw(standing(j), {});
   EXPECT_EQ(h.source, "joints 'Neck' and 'Spine'");
 }
 
@@ -336,13 +340,13 @@ TEST(PartitionHeights, ExplicitHeightsOverride) {
   o.neck_height = 1.7f;
   o.waist_height = 0.2f;
   const SkinnedAsset a = standing(rig("", "Hips", "Neck", "Head"));
-  PartitionHeights h = partition_heights(a, o);
+  PartitionHeights h = test::partition_heights_or_throw(a, o);
   EXPECT_EQ(h.neck, 1.7f);
   EXPECT_EQ(h.waist, 0.2f);
   EXPECT_EQ(h.source, "given");
 
   o.waist_height.reset();
-  h = partition_heights(a, o);
+  h = test::partition_heights_or_throw(a, o);
   EXPECT_EQ(h.neck, 1.7f);
   EXPECT_FLOAT_EQ(h.waist, 1.0f);
   EXPECT_EQ(h.source, "neck: given; waist: joint 'Hips'");
@@ -351,7 +355,7 @@ TEST(PartitionHeights, ExplicitHeightsOverride) {
   o.neck_height = 10.0f;
   o.waist_height = -10.0f;
   o.size = 4;
-  const PartitionBake b = bake_partition(a, o);
+  const PartitionBake b = test::bake_partition_or_throw(a, o);
   EXPECT_TRUE(has_warning(b, "no vertex in the head region"));
   EXPECT_TRUE(has_warning(b, "no vertex in the trousers region"));
   for (uint8_t t : b.mask.texels) EXPECT_EQ(t, kUpper);
@@ -359,7 +363,7 @@ TEST(PartitionHeights, ExplicitHeightsOverride) {
 
 TEST(PartitionHeights, BadOptionsThrowUsage) {
   const SkinnedAsset a = standing(rig("", "Hips", "Neck", "Head"));
-  auto bake = [&](PartitionOptions o) { return [&a, o] { bake_partition(a, o); }; };
+  auto bake = [&](PartitionOptions o) { return [&a, o] { test::bake_partition_or_throw(a, o); }; };
   PartitionOptions o;
   o.neck_height = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(usage_kind(bake(o)), Error::Kind::kUsage);
@@ -394,7 +398,7 @@ TEST(PartitionBake, OverlappingUvsResolveToTheHighestSurface) {
   const Primitive high = uv_rect({0, 0}, {0.5f, 1}, 1.9f, 1.8f, "high");
   const Primitive low = uv_rect({0, 0}, {1, 1}, 0.2f, 0.1f, "low");
   const PartitionOptions o = explicit_heights(16, 1.5f, 0.5f);
-  const PartitionBake b = bake_partition(asset_of({high, low}), o);
+  const PartitionBake b = test::bake_partition_or_throw(asset_of({high, low}), o);
   for (uint32_t y = 0; y < 16; ++y)
     for (uint32_t x = 0; x < 16; ++x) ASSERT_EQ(at(b.mask, x, y), x < 8 ? kHead : kTrousers);
   EXPECT_EQ(b.stats.conflict_texels, 8u * 16u);
@@ -403,25 +407,26 @@ TEST(PartitionBake, OverlappingUvsResolveToTheHighestSurface) {
   // Any order of primitives and of triangles bakes the same mask.
   Primitive low_reversed = low;
   low_reversed.indices = {0, 3, 2, 2, 1, 0};
-  const PartitionBake swapped = bake_partition(asset_of({low_reversed, high}), o);
+  const PartitionBake swapped = test::bake_partition_or_throw(asset_of({low_reversed, high}), o);
   EXPECT_EQ(swapped.mask.texels, b.mask.texels);
   EXPECT_EQ(swapped.stats.conflict_texels, b.stats.conflict_texels);
 }
 
 TEST(PartitionBake, UvsOutsideTheSquareWrap) {
   const PartitionOptions o = explicit_heights(16, 1.5f, 0.5f);
-  const PartitionBake inside = bake_partition(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), o);
+  const PartitionBake inside =
+      test::bake_partition_or_throw(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), o);
   // Whole tiles away, in any direction: the same mask.
   for (glm::vec2 shift : {glm::vec2(3, 0), glm::vec2(-2, 5), glm::vec2(-7, -1)}) {
     const PartitionBake moved =
-        bake_partition(asset_of({uv_rect(shift, shift + glm::vec2(1, 1), 2, 0)}), o);
+        test::bake_partition_or_throw(asset_of({uv_rect(shift, shift + glm::vec2(1, 1), 2, 0)}), o);
     EXPECT_EQ(moved.mask.texels, inside.mask.texels) << shift.x << ", " << shift.y;
   }
   // Straddling the u = 1 edge: u in [0.75, 1.25] covers columns 12..15 and 0..3.
   const PartitionBake straddle =
-      bake_partition(asset_of({uv_rect({0.75f, 0}, {1.25f, 1}, 2, 0)}), o);
+      test::bake_partition_or_throw(asset_of({uv_rect({0.75f, 0}, {1.25f, 1}, 2, 0)}), o);
   const PartitionBake negative =
-      bake_partition(asset_of({uv_rect({-0.25f, 0}, {0.25f, 1}, 2, 0)}), o);
+      test::bake_partition_or_throw(asset_of({uv_rect({-0.25f, 0}, {0.25f, 1}, 2, 0)}), o);
   EXPECT_EQ(negative.mask.texels, straddle.mask.texels);
   for (uint32_t y = 0; y < 16; ++y)
     for (uint32_t x = 0; x < 16; ++x) {
@@ -432,12 +437,14 @@ TEST(PartitionBake, UvsOutsideTheSquareWrap) {
   EXPECT_EQ(straddle.stats.covered_texels, 8u * 16u);
 
   // Spanning more than 4 tiles: skipped with a warning.
-  const PartitionBake huge = bake_partition(asset_of({uv_rect({0, 0}, {6, 1}, 2, 0)}), o);
+  const PartitionBake huge =
+      test::bake_partition_or_throw(asset_of({uv_rect({0, 0}, {6, 1}, 2, 0)}), o);
   EXPECT_EQ(huge.stats.triangles_skipped, 2u);
   EXPECT_EQ(huge.stats.covered_texels, 0u);
   EXPECT_TRUE(has_warning(huge, "4 tiles"));
   // Spanning two tiles: every texel once per tile, all covered.
-  const PartitionBake two = bake_partition(asset_of({uv_rect({0, 0}, {2, 1}, 2, 0)}), o);
+  const PartitionBake two =
+      test::bake_partition_or_throw(asset_of({uv_rect({0, 0}, {2, 1}, 2, 0)}), o);
   EXPECT_EQ(two.stats.covered_texels, 256u);
   EXPECT_EQ(two.mask.texels, inside.mask.texels);
 }
@@ -447,8 +454,8 @@ TEST(PartitionBake, PrimitivesWithoutUvsGetVertexRegionsOnly) {
   no_uv.uvs.clear();
   const Primitive with_uv = uv_rect({0, 0}, {0.5f, 0.5f}, 2, 0, "with_uv");
   const PartitionOptions o = explicit_heights(16, 1.5f, 0.5f);
-  const PartitionBake both = bake_partition(asset_of({no_uv, with_uv}), o);
-  const PartitionBake alone = bake_partition(asset_of({with_uv}), o);
+  const PartitionBake both = test::bake_partition_or_throw(asset_of({no_uv, with_uv}), o);
+  const PartitionBake alone = test::bake_partition_or_throw(asset_of({with_uv}), o);
   EXPECT_EQ(both.mask.texels, alone.mask.texels);
   ASSERT_EQ(both.vertex_regions.size(), 2u);
   EXPECT_EQ(both.vertex_regions[0], (std::vector<uint8_t>{kHead, kHead, kTrousers, kTrousers}));
@@ -457,7 +464,7 @@ TEST(PartitionBake, PrimitivesWithoutUvsGetVertexRegionsOnly) {
   EXPECT_TRUE(has_warning(both, "'no_uv' has no UVs"));
 
   // Every primitive without UVs: an all-unused mask, vertex regions still there.
-  const PartitionBake none = bake_partition(asset_of({no_uv}), o);
+  const PartitionBake none = test::bake_partition_or_throw(asset_of({no_uv}), o);
   for (uint8_t t : none.mask.texels) EXPECT_EQ(t, kUnused);
   EXPECT_EQ(none.stats.unused_texels, 256u);
   EXPECT_EQ(none.vertex_regions[0].size(), 4u);
@@ -469,13 +476,14 @@ TEST(PartitionBake, NonFiniteAndDegenerateInputsNeverLeakNan) {
   add_vertex(p, {0, 1, 0}, {std::numeric_limits<float>::infinity(), 0.5f});
   add_vertex(p, {0, 1, 0}, {0.2f, 0.2f});
   p.indices.insert(p.indices.end(), {0, 1, 4, 0, 5, 1, 6, 6, 6, 0, 1, 99});
-  const PartitionBake b = bake_partition(asset_of({p}), explicit_heights(16, 1.5f, 0.5f));
+  const PartitionBake b =
+      test::bake_partition_or_throw(asset_of({p}), explicit_heights(16, 1.5f, 0.5f));
   EXPECT_EQ(b.vertex_regions[0][4], kUnused);
   EXPECT_EQ(b.stats.vertices_non_finite, 1u);
   EXPECT_EQ(b.stats.triangles_skipped, 4u);
   EXPECT_EQ(b.stats.triangles_rasterised, 2u);
-  const PartitionBake clean =
-      bake_partition(asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), explicit_heights(16, 1.5f, 0.5f));
+  const PartitionBake clean = test::bake_partition_or_throw(
+      asset_of({uv_rect({0, 0}, {1, 1}, 2, 0)}), explicit_heights(16, 1.5f, 0.5f));
   EXPECT_EQ(b.mask.texels, clean.mask.texels);
 }
 
@@ -484,7 +492,7 @@ TEST(PartitionBake, FlatOrEmptyCharacters) {
   const Primitive flat = uv_rect({0, 0}, {1, 1}, 1.25f, 1.25f);
   PartitionOptions o;
   o.size = 8;
-  PartitionBake b = bake_partition(asset_of({flat}), o);
+  PartitionBake b = test::bake_partition_or_throw(asset_of({flat}), o);
   EXPECT_LT(b.mask.waist_height, b.mask.neck_height);
   EXPECT_TRUE(has_warning(b, "flat"));
   for (uint8_t t : b.mask.texels) EXPECT_EQ(t, kUpper);
@@ -492,12 +500,12 @@ TEST(PartitionBake, FlatOrEmptyCharacters) {
 
   // Far from the origin, where floats cannot separate 0.84 H from 0.53 H.
   const Primitive far = uv_rect({0, 0}, {1, 1}, 1e9f + 64.0f, 1e9f);
-  b = bake_partition(asset_of({far}), o);
+  b = test::bake_partition_or_throw(asset_of({far}), o);
   EXPECT_LT(b.mask.waist_height, b.mask.neck_height);
   for (float v : {b.mask.waist_height, b.mask.neck_height}) EXPECT_TRUE(std::isfinite(v));
 
   // No geometry at all.
-  b = bake_partition(asset_of({}), o);
+  b = test::bake_partition_or_throw(asset_of({}), o);
   EXPECT_LT(b.mask.waist_height, b.mask.neck_height);
   EXPECT_EQ(b.stats.unused_texels, 64u);
   EXPECT_TRUE(b.vertex_regions.empty());
@@ -507,7 +515,7 @@ TEST(PartitionBake, DilationGrowsChartsByOneRingPerPass) {
   // A 2 x 2 texel chart in the top-left corner of an 8 x 8 mask (texels 0..1).
   const Primitive chart = uv_rect({0, 0}, {0.25f, 0.25f}, 2, 0);
   PartitionOptions o = explicit_heights(8, 1.5f, 0.5f, 0);
-  const PartitionBake none = bake_partition(asset_of({chart}), o);
+  const PartitionBake none = test::bake_partition_or_throw(asset_of({chart}), o);
   EXPECT_EQ(none.stats.covered_texels, 4u);
   EXPECT_EQ(none.stats.unused_texels, 60u);
   // Row 0 samples v = 0.0625, height 2 - 8 v = 1.5 (the neck: head); row 1 samples
@@ -516,7 +524,7 @@ TEST(PartitionBake, DilationGrowsChartsByOneRingPerPass) {
   EXPECT_EQ(at(none.mask, 0, 1), kUpper);
 
   o.dilate = 1;
-  const PartitionBake one = bake_partition(asset_of({chart}), o);
+  const PartitionBake one = test::bake_partition_or_throw(asset_of({chart}), o);
   EXPECT_EQ(one.stats.covered_texels, 4u);
   EXPECT_EQ(one.stats.dilated_texels, 16u - 4u);  // a 4 x 4 block, wrapping at the borders
   EXPECT_EQ(one.stats.unused_texels, 64u - 16u);
@@ -532,7 +540,7 @@ TEST(PartitionBake, DilationGrowsChartsByOneRingPerPass) {
   EXPECT_EQ(at(one.mask, 7, 1), kHead);  // diagonal neighbour (0, 0) is higher than (0, 1)
 
   o.dilate = 64;  // stops when nothing is left to grow
-  const PartitionBake all = bake_partition(asset_of({chart}), o);
+  const PartitionBake all = test::bake_partition_or_throw(asset_of({chart}), o);
   EXPECT_EQ(all.stats.unused_texels, 0u);
   for (uint8_t t : all.mask.texels) EXPECT_NE(t, kUnused);
 }
@@ -541,7 +549,8 @@ TEST(PartitionBake, Deterministic) {
   const SkinnedAsset a = samples::make_spectator_character();
   PartitionOptions o;
   o.size = 128;
-  const PartitionBake b1 = bake_partition(a, o), b2 = bake_partition(a, o);
+  const PartitionBake b1 = test::bake_partition_or_throw(a, o),
+                      b2 = test::bake_partition_or_throw(a, o);
   EXPECT_EQ(b1.mask.texels, b2.mask.texels);
   EXPECT_EQ(b1.vertex_regions, b2.vertex_regions);
   EXPECT_EQ(b1.warnings, b2.warnings);
@@ -561,7 +570,7 @@ void write_preview(const PartitionMask& m, const std::string& path) {
 
 TEST(PartitionBake, SpectatorGetsASensibleMask) {
   const SkinnedAsset a = samples::make_spectator_character();
-  const PartitionBake b = bake_partition(a, {});
+  const PartitionBake b = test::bake_partition_or_throw(a, {});
   EXPECT_EQ(b.height_source, "joints 'neck' and 'hips'");
   EXPECT_NEAR(b.mask.neck_height, 1.47f, 1e-5);
   EXPECT_NEAR(b.mask.waist_height, 0.98f, 1e-5);
@@ -622,8 +631,8 @@ TEST(PartitionBake, EverySharedAssetBakes) {
   for (const nlohmann::json& entry : manifest["assets"]) {
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
     SCOPED_TRACE(path);
-    SkinnedAsset asset = import_asset(path);
-    const PartitionBake b = bake_partition(asset, {});
+    SkinnedAsset asset = test::import_or_throw(path);
+    const PartitionBake b = test::bake_partition_or_throw(asset, {});
     ASSERT_EQ(b.mask.texels.size(), 256u * 256u);
     EXPECT_TRUE(std::isfinite(b.mask.neck_height));
     EXPECT_LT(b.mask.waist_height, b.mask.neck_height);
@@ -645,7 +654,7 @@ TEST(PartitionBake, EverySharedAssetBakes) {
         (unsigned long long)s.region_vertices[2], b.warnings.size());
     for (const std::string& w : b.warnings) std::printf("  %s\n", w.c_str());
     std::reverse(asset.primitives.begin(), asset.primitives.end());
-    EXPECT_EQ(bake_partition(asset, {}).mask.texels, b.mask.texels);
+    EXPECT_EQ(test::bake_partition_or_throw(asset, {}).mask.texels, b.mask.texels);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "crowdbake/pipeline/gltf_export.h"
 #include "edge_case_asset.h"
+#include "pipeline_calls.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -14,8 +15,10 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string dir = argv[1];
-    crowdbake::export_glb(crowdbake::test::edge_case_asset(false), dir + "/edge_small.glb");
-    crowdbake::export_glb(crowdbake::test::edge_case_asset(true), dir + "/edge_large.glb");
+    crowdbake::test::export_glb_or_throw(crowdbake::test::edge_case_asset(false),
+                                         dir + "/edge_small.glb");
+    crowdbake::test::export_glb_or_throw(crowdbake::test::edge_case_asset(true),
+                                         dir + "/edge_large.glb");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

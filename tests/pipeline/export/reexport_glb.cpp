@@ -6,6 +6,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
+#include "pipeline_calls.h"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -13,9 +14,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    crowdbake::export_glb(crowdbake::import_asset(argv[1]), argv[2]);
+    crowdbake::test::export_glb_or_throw(crowdbake::test::import_or_throw(argv[1]), argv[2]);
   } catch (const crowdbake::Error& e) {
-    std::fprintf(stderr, "error: %s: %s\n", e.file().c_str(), e.what());
+    std::fprintf(stderr, "error: %s\n", crowdbake::status_of(e).message().c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", argv[1], e.what());

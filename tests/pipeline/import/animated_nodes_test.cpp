@@ -15,6 +15,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "gltf_test_builder.h"
+#include "pipeline_calls.h"
 #include "temp_dir.h"
 
 namespace crowdbake {
@@ -220,8 +221,9 @@ TEST_P(HandMadeAnimatedNodes, SkinnedAndRigidPositionsMatchTheNodeTree) {
   test::TempDir dir;
   ImportOptions options;
   options.importer = GetParam();
-  const SkinnedAsset a = import_asset(HandMade::write(dir / "animated.gltf").string(), options);
-  ASSERT_NO_THROW(validate_asset(a));
+  const SkinnedAsset a =
+      test::import_or_throw(HandMade::write(dir / "animated.gltf").string(), options);
+  ASSERT_NO_THROW(test::validate_or_throw(a));
 
   // Armature, link and holder are kept; badge (under Armature only) now comes along.
   ASSERT_EQ(a.skeleton.joints.size(), 5u);
@@ -271,7 +273,7 @@ TEST_P(HandMadeAnimatedNodes, SkinnedAndRigidPositionsMatchTheNodeTree) {
   // Root motion sees the armature's flight: Armature is the first root and moves, so it is
   // the root-motion joint, and the last frame is 2 along +X and 4 along +Z from the first
   // (yaw is the twist about +Y of the 120° turn about (1,1,1)).
-  const AnimationBake bake = bake_animation(a);
+  const AnimationBake bake = test::bake_animation_or_throw(a);
   EXPECT_EQ(bake.root_joint, a.skeleton.find("Armature"));
   ASSERT_EQ(bake.clips.size(), 1u);
   const std::vector<float>& motion = bake.clips[0].root_motion;

@@ -18,6 +18,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "gltf_test_builder.h"
+#include "pipeline_calls.h"
 #include "temp_dir.h"
 
 namespace crowdbake {
@@ -228,7 +229,7 @@ bool mentions(const SkinnedAsset& a, const std::string& text) {
 
 Error error_of(const std::string& path, ImportOptions options = {}) {
   try {
-    import_assimp(path, options);
+    test::import_assimp_or_throw(path, options);
   } catch (const Error& e) {
     return e;
   }
@@ -237,8 +238,9 @@ Error error_of(const std::string& path, ImportOptions options = {}) {
 
 TEST(AssimpImport, RowMajorInverseBindGivesHandComputedSkinning) {
   TempDir dir;
-  const SkinnedAsset a = import_assimp(write(dir, "a.dae", collada(two_joints(), {body()})), {});
-  validate_asset(a);
+  const SkinnedAsset a =
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(two_joints(), {body()})), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.skeleton.joints.size(), 2u);
   EXPECT_EQ(a.skeleton.joints[0].name, "b0");
   EXPECT_EQ(a.skeleton.joints[1].parent, 0);
@@ -265,9 +267,9 @@ TEST(AssimpImport, AnimationKeysAreConvertedToSeconds) {
   // Collada keys are seconds; Assimp stores them as milliseconds at 1000 ticks/s.
   const DaeAnimation lift{
       "b1", {0.0f, 2.0f}, {"1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1", "1 0 0 0 0 1 0 3 0 0 1 0 0 0 0 1"}};
-  const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body()}, {lift})), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(
+      write(dir, "a.dae", collada(two_joints(), {body()}, {lift})), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.clips.size(), 1u);
   EXPECT_NEAR(a.clips[0].duration, 2.0, 1e-9);
   const Track<glm::dvec3>& t = a.clips[0].channels[1].translation;
@@ -318,8 +320,8 @@ AnimationSet walk {
   }
 }
 )";
-  const SkinnedAsset a = import_assimp(write(dir, "a.x", x), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(write(dir, "a.x", x), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.clips.size(), 1u);
   EXPECT_EQ(a.clips[0].name, "walk");
   EXPECT_NEAR(a.clips[0].duration, 2.0, 1e-9);  // 50 ticks at 25 per second
@@ -341,8 +343,9 @@ TEST(AssimpImport, SixInfluencesAreReducedToFourAndCounted) {
   m.influences = {{{0, 0.3f}, {1, 0.05f}, {2, 0.2f}, {3, 0.1f}, {4, 0.15f}, {5, 0.2f}},
                   {{0, 1.0f}},
                   {{0, 1.0f}}};
-  const SkinnedAsset a = import_assimp(write(dir, "a.dae", collada(joints, {m})), {});
-  validate_asset(a);
+  const SkinnedAsset a =
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(joints, {m})), {});
+  test::validate_or_throw(a);
   EXPECT_EQ(a.stats.max_influences, 6);
   EXPECT_EQ(a.stats.vertices_over_4_influences, 1);
   // Kept 0.3 (j0), 0.2 (j2), 0.2 (j5), 0.15 (j4), renormalised by 0.85.
@@ -363,8 +366,9 @@ TEST(AssimpImport, PolygonsAreTriangulatedAndCounted) {
   m.vcount = {4, 3};
   m.corners = {0, 1, 2, 3, 1, 4, 2};
   m.influences.assign(5, {{0, 1.0f}});
-  const SkinnedAsset a = import_assimp(write(dir, "a.dae", collada(two_joints(), {m})), {});
-  validate_asset(a);
+  const SkinnedAsset a =
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(two_joints(), {m})), {});
+  test::validate_or_throw(a);
   EXPECT_EQ(a.triangle_count(), 3u);
   EXPECT_EQ(a.stats.polygons_triangulated, 1);
   EXPECT_TRUE(mentions(a, "1 polygons with more than 3 sides were triangulated"));
@@ -383,9 +387,9 @@ TEST(AssimpImport, RigidMeshUnderAJointIsBoundToIt) {
   hat.matrix = "1 0 0 0 0 1 0 0.5 0 0 1 0 0 0 0 1";  // half a unit above it
   const DaeAnimation lift{
       "b1", {0.0f, 1.0f}, {"1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1", "1 0 0 0 0 1 0 3 0 0 1 0 0 0 0 1"}};
-  const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body(), hat}, {lift})), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(
+      write(dir, "a.dae", collada(two_joints(), {body(), hat}, {lift})), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.primitives.size(), 2u);
   EXPECT_EQ(a.stats.rigid_primitives, 1);
   EXPECT_EQ(a.primitives[1].joints[0][0], 1);
@@ -405,8 +409,8 @@ TEST(AssimpImport, MeshesBoundInAnotherSpaceShareOneInverseBind) {
   DaeMesh arm = body();
   arm.bind_shape = "1 0 0 0 0 1 0 5 0 0 1 0 0 0 0 1";
   const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body(), arm})), {});
-  validate_asset(a);
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(two_joints(), {body(), arm})), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.primitives.size(), 2u);
   EXPECT_FALSE(mentions(a, "disagree"));
   expect_near(glm::dvec3(a.primitives[1].positions[0]), {2, 6, 0});
@@ -421,8 +425,8 @@ TEST(AssimpImport, DisagreeingInverseBindsAreReported) {
   other.influences = {{{0, 1.0f}}, {{1, 1.0f}}, {{1, 1.0f}}};
   other.inverse_binds = {kIdentity, kIdentity};  // b1 bound elsewhere than in body
   const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body(), other})), {});
-  validate_asset(a);
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(two_joints(), {body(), other})), {});
+  test::validate_or_throw(a);
   EXPECT_TRUE(mentions(a, "inverse bind matrices of 1 joint(s) disagree")) << a.warnings[0];
 }
 
@@ -431,8 +435,8 @@ TEST(AssimpImport, UnskinnedMeshOutsideTheSkeletonIsLeftOut) {
   DaeMesh floor = body();
   floor.joints.clear();  // no skin, hangs under the scene root
   const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body(), floor})), {});
-  validate_asset(a);
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(two_joints(), {body(), floor})), {});
+  test::validate_or_throw(a);
   EXPECT_EQ(a.primitives.size(), 1u);
   EXPECT_EQ(a.stats.rigid_primitives, 0);
   EXPECT_TRUE(mentions(a, "1 mesh(es) without skin that hang under no joint were left out"));
@@ -442,8 +446,9 @@ TEST(AssimpImport, ShearedJointIsKeptExactlyWhenNoClipMovesIt) {
   TempDir dir;
   std::vector<DaeJoint> joints = two_joints();
   joints[1].matrix = "1 0.5 0 0 0 1 0 1 0 0 1 0 0 0 0 1";  // x += 0.5 y, then up 1
-  const SkinnedAsset a = import_assimp(write(dir, "a.dae", collada(joints, {body()})), {});
-  validate_asset(a);
+  const SkinnedAsset a =
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(joints, {body()})), {});
+  test::validate_or_throw(a);
   EXPECT_TRUE(mentions(a, "sheared stored matrix; kept exactly"));
   // (3,0,0) → IB_b1 → (0,-1,0) → shear → (-0.5,-1,0) → up 1 → (-0.5,0,0).
   expect_near(skin_asset(a, nullptr, 0.0)[1], {-0.5, 0, 0});
@@ -462,8 +467,8 @@ TEST(AssimpImport, DisjointSkeletonsPickTheLargestAndSaySo) {
   big.inverse_binds = {kIdentity};
   big.influences.assign(4, {{0, 1.0f}});
   const std::string path = write(dir, "a.dae", collada(joints, {body(), big}));
-  const SkinnedAsset a = import_assimp(path, {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(path, {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.skeleton.joints.size(), 1u);
   EXPECT_EQ(a.skeleton.joints[0].name, "c0");
   EXPECT_EQ(a.primitives.size(), 1u);
@@ -472,7 +477,7 @@ TEST(AssimpImport, DisjointSkeletonsPickTheLargestAndSaySo) {
 
   ImportOptions first;
   first.character = 0;
-  EXPECT_EQ(import_assimp(path, first).skeleton.joints.size(), 2u);
+  EXPECT_EQ(test::import_assimp_or_throw(path, first).skeleton.joints.size(), 2u);
   first.character = 2;
   EXPECT_EQ(error_of(path, first).kind(), Error::Kind::kUsage);
 }
@@ -484,9 +489,9 @@ TEST(AssimpImport, AnimatedNonJointNodeIsReportedAsIgnored) {
   const DaeAnimation slide{"n0", {0.0f, 1.0f}, {kIdentity, "1 0 0 4 0 1 0 0 0 0 1 0 0 0 0 1"}};
   const DaeAnimation still{
       "b1", {0.0f, 1.0f}, {"1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1", "1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1"}};
-  const SkinnedAsset a =
-      import_assimp(write(dir, "a.dae", collada(two_joints(), {body()}, {slide, still})), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(
+      write(dir, "a.dae", collada(two_joints(), {body()}, {slide, still})), {});
+  test::validate_or_throw(a);
   EXPECT_TRUE(mentions(a, "move no joint and no mesh is ignored ('n0')"));
   EXPECT_EQ(a.stats.animated_nodes_kept, 0);
   EXPECT_EQ(a.skeleton.joints.size(), 2u);
@@ -498,8 +503,8 @@ TEST(AssimpImport, MorphTargetsWarnAndUseBaseShape) {
   const int delta = b.floats({0, 1, 0, 0, 1, 0, 0, 1, 0}, "VEC3");
   b.doc["meshes"][0]["primitives"][0]["targets"] =
       nlohmann::json::array({nlohmann::json{{"POSITION", delta}}});
-  const SkinnedAsset a = import_assimp(b.write(dir / "a.gltf").string(), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(b.write(dir / "a.gltf").string(), {});
+  test::validate_or_throw(a);
   EXPECT_TRUE(mentions(a, "morph targets"));
   // Base shape, moved to model space by the mesh node's (10,0,0).
   expect_near(glm::dvec3(a.primitives[0].positions[2]), {10, 2, 0});
@@ -510,8 +515,8 @@ TEST(AssimpImport, MeshesWithOneNameAreAllKept) {
   test::GltfBuilder b = test::two_bone_character();
   b.doc["meshes"].push_back(b.doc["meshes"][0]);  // a second mesh called "body"
   b.node({{"name", "body2"}, {"mesh", 1}, {"skin", 0}}, true);
-  const SkinnedAsset a = import_assimp(b.write(dir / "a.gltf").string(), {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(b.write(dir / "a.gltf").string(), {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.primitives.size(), 2u);
   EXPECT_EQ(a.primitives[0].name, "body");
   EXPECT_EQ(a.primitives[1].name, "body");
@@ -521,9 +526,9 @@ TEST(AssimpImport, GltfThroughAssimpPosesLikeTheGltfImporter) {
   TempDir dir;
   test::GltfBuilder b = test::two_bone_character();
   const std::string path = b.write(dir / "a.gltf").string();
-  const SkinnedAsset a = import_assimp(path, {});
-  const SkinnedAsset g = import_gltf(path, {});
-  validate_asset(a);
+  const SkinnedAsset a = test::import_assimp_or_throw(path, {});
+  const SkinnedAsset g = test::import_gltf_or_throw(path, {});
+  test::validate_or_throw(a);
   ASSERT_EQ(a.clips.size(), 1u);
   EXPECT_EQ(a.clips[0].name, "bend");
   EXPECT_NEAR(a.clips[0].duration, 1.0, 1e-6);  // Assimp's glTF reader ticks in ms
@@ -707,8 +712,8 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
   const std::string path = (test::shared_assets() / m["path"].get<std::string>()).string();
   const std::string format = m.value("format", "");
   const bool fbx = format.find("FBX") != std::string::npos;
-  const SkinnedAsset a = import_assimp(path, {});
-  ASSERT_NO_THROW(validate_asset(a));
+  const SkinnedAsset a = test::import_assimp_or_throw(path, {});
+  ASSERT_NO_THROW(test::validate_or_throw(a));
   std::string all_warnings;
   for (const std::string& w : a.warnings) all_warnings += "\n  " + w;
   RecordProperty("warnings", all_warnings);
@@ -780,7 +785,7 @@ TEST_P(AssimpAssetTest, MatchesManifest) {
 
   if (!fbx) {
     // glTF: the glTF importer reads the same file on its own; poses must agree.
-    const SkinnedAsset g = import_gltf(path, {});
+    const SkinnedAsset g = test::import_gltf_or_throw(path, {});
     ASSERT_EQ(g.clips.size(), a.clips.size());
     ASSERT_EQ(g.vertex_count(), a.vertex_count());
     ASSERT_EQ(g.primitives.size(), a.primitives.size());

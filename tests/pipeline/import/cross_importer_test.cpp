@@ -13,6 +13,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "import_comparison.h"
+#include "pipeline_calls.h"
 #include "spectator_character.h"
 #include "temp_dir.h"
 
@@ -23,8 +24,8 @@ void expect_importers_agree(const std::string& path) {
   ImportOptions gltf_options, assimp_options;
   gltf_options.importer = ImporterKind::kGltf;
   assimp_options.importer = ImporterKind::kAssimp;
-  const SkinnedAsset a = import_asset(path, gltf_options);
-  const SkinnedAsset b = import_asset(path, assimp_options);
+  const SkinnedAsset a = test::import_or_throw(path, gltf_options);
+  const SkinnedAsset b = test::import_or_throw(path, assimp_options);
   EXPECT_EQ(a.skeleton.joints.size(), b.skeleton.joints.size());
   EXPECT_EQ(a.triangle_count(), b.triangle_count());
   ASSERT_EQ(a.clips.size(), b.clips.size());
@@ -38,7 +39,7 @@ void expect_importers_agree(const std::string& path) {
 TEST(CrossImporter, GeneratedSpectator) {
   test::TempDir dir;
   const auto path = dir / "spectator.glb";
-  export_glb(samples::make_spectator_character(), path.string());
+  test::export_glb_or_throw(samples::make_spectator_character(), path.string());
   expect_importers_agree(path.string());
 }
 
@@ -66,8 +67,8 @@ TEST(CrossImporter, BirdAfterLodRoundTrip) {
 
   ImportOptions gltf_options;
   gltf_options.importer = ImporterKind::kGltf;
-  const SkinnedAsset original = import_asset(fbx, {});
-  const SkinnedAsset exported = import_asset(glb, gltf_options);
+  const SkinnedAsset original = test::import_or_throw(fbx, {});
+  const SkinnedAsset exported = test::import_or_throw(glb, gltf_options);
   EXPECT_GT(original.stats.animated_nodes_kept, 0);
   const test::SurfaceDifference d = test::compare_skinned_surfaces(original, exported);
   EXPECT_GT(d.samples, 0);

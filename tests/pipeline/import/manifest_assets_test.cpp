@@ -10,6 +10,7 @@
 #include "asset_paths.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pipeline_calls.h"
 
 namespace crowdbake {
 namespace {
@@ -21,7 +22,7 @@ TEST(ManifestAssets, SkinnedPositionsAreFiniteAndBoundedAtEveryFrame) {
   for (const nlohmann::json& entry : manifest["assets"]) {
     const std::string path = (test::shared_assets() / entry["path"].get<std::string>()).string();
     SCOPED_TRACE(path);
-    const SkinnedAsset asset = import_asset(path);
+    const SkinnedAsset asset = test::import_or_throw(path);
     std::vector<glm::dvec3> bind;
     for (const Primitive& p : asset.primitives)
       for (const glm::vec3& v : p.positions) bind.emplace_back(v);

@@ -14,6 +14,7 @@
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/simplify.h"
+#include "pipeline_calls.h"
 #include "simplify_test_meshes.h"
 #include "spectator_character.h"
 
@@ -122,9 +123,9 @@ SkinnedAsset flat_shaded_cube(int n) {
 
 TEST(CollapseSeams, FlatShadedMultiMaterialCubeNeverCracks) {
   const SkinnedAsset cube = flat_shaded_cube(4);
-  validate_asset(cube);
+  test::validate_or_throw(cube);
   SimplifyReport report;
-  const ProgressiveMesh pm = simplify(cube, SimplifyOptions{}, &report);
+  const ProgressiveMesh pm = test::simplify_or_throw(cube, SimplifyOptions{}, &report);
   const int levels = expect_no_crack_at_any_level(cube, pm);
   EXPECT_GT(levels, 20);
   // Every corner sits on a seam (flat shading) or a material border, yet the cube goes far
@@ -135,7 +136,9 @@ TEST(CollapseSeams, FlatShadedMultiMaterialCubeNeverCracks) {
 
 TEST(CollapseSeams, SpectatorNeverCracks) {
   const SkinnedAsset spectator = samples::make_spectator_character();
-  EXPECT_GT(expect_no_crack_at_any_level(spectator, simplify(spectator, SimplifyOptions{})), 100);
+  EXPECT_GT(expect_no_crack_at_any_level(spectator,
+                                         test::simplify_or_throw(spectator, SimplifyOptions{})),
+            100);
 }
 
 TEST(CollapseSeams, PerCornerCharactersNeverCrack) {
@@ -144,8 +147,8 @@ TEST(CollapseSeams, PerCornerCharactersNeverCrack) {
   for (const char* path : {"Quaternius_Zombie/Zombie.fbx",
                            "Quaternius_FemaleCasual/Female_Casual.fbx", "Fox/Fox.glb"}) {
     SCOPED_TRACE(path);
-    const SkinnedAsset a = import_asset((test::shared_assets() / path).string());
-    EXPECT_GT(expect_no_crack_at_any_level(a, simplify(a, SimplifyOptions{})), 100);
+    const SkinnedAsset a = test::import_or_throw((test::shared_assets() / path).string());
+    EXPECT_GT(expect_no_crack_at_any_level(a, test::simplify_or_throw(a, SimplifyOptions{})), 100);
   }
 }
 
@@ -176,7 +179,7 @@ TEST(CollapseSmallParts, SmallNearPartsVanishLargeAndFarPartsStay) {
   add_sphere({0, 3.2f, 0}, 0.2f, 2);    // a head above it: 0.4 across, a fifth of the whole
   add_sphere({2.5f, 0, 0}, 0.05f, 3);   // a pebble far away: small but apart
   const SkinnedAsset a = test::bending_character(p, i);
-  const ProgressiveMesh pm = simplify(a, SimplifyOptions{});
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
   EXPECT_EQ(check_progressive_mesh(pm).message(), "");
   const std::map<int, uint32_t> kept = triangles_per_part(pm, part, pm.min_vertices);
   EXPECT_EQ(kept.count(1), 0u) << "the eye should vanish at the lowest level";
@@ -189,7 +192,7 @@ TEST(CollapseSmallParts, SmallNearPartsVanishLargeAndFarPartsStay) {
 // Every limb (a joint whose dominant vertices span at least kLimbFraction of the diagonal)
 // still has a vertex of its own in a triangle of the coarsest level.
 void expect_every_limb_at_the_minimum(const SkinnedAsset& a) {
-  const ProgressiveMesh pm = simplify(a, SimplifyOptions{});
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
   std::vector<glm::vec3> positions;
   std::vector<uint16_t> dominant;
   for (const Primitive& p : a.primitives)
@@ -229,7 +232,8 @@ TEST(CollapseLimbs, SingleMeshCharactersKeepEveryLimbAtTheirMinimum) {
   for (const char* path : {"CesiumMan/CesiumMan.glb", "Quaternius_Zebra/Zebra.fbx",
                            "Quaternius_Watermelon/Watermelon.fbx"}) {
     SCOPED_TRACE(path);
-    expect_every_limb_at_the_minimum(import_asset((test::shared_assets() / path).string()));
+    expect_every_limb_at_the_minimum(
+        test::import_or_throw((test::shared_assets() / path).string()));
   }
 }
 
@@ -244,7 +248,7 @@ TEST(CollapsePoses, MorePosesNeverHurt) {
     SimplifyOptions o;
     o.samples = samples;
     o.seed = seed;
-    const ProgressiveMesh pm = simplify(spectator, o);
+    const ProgressiveMesh pm = test::simplify_or_throw(spectator, o);
     const SkinnedAsset lod = extract_lod(spectator, pm, spectator.vertex_count() / 10);
     return animated_error(spectator, lod, measure).mean_rms;
   };

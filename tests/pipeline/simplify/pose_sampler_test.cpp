@@ -16,6 +16,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
+#include "pipeline_calls.h"
 #include "temp_dir.h"
 
 namespace crowdbake {
@@ -663,7 +664,7 @@ TEST(PoseSamplerAssets, RealCharactersGiveFiniteSkinningMatrices) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   for (const char* file : {"Fox/Fox.glb", "Quaternius_Rat/Rat.fbx"}) {
     SCOPED_TRACE(file);
-    const SkinnedAsset a = import_asset((test::shared_assets() / file).string());
+    const SkinnedAsset a = test::import_or_throw((test::shared_assets() / file).string());
     const PoseDistribution d = estimate_pose_distribution(a);
     std::cout << "[ estimate ] " << file << ": " << d.estimator << "\n";
     for (PoseSource source : {PoseSource::kSampled, PoseSource::kClips}) {

@@ -14,6 +14,7 @@
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "gltf_test_builder.h"
+#include "pipeline_calls.h"
 #include "simplify/collapse.h"
 #include "simplify/dqem.h"
 #include "simplify/pose_sampler.h"
@@ -110,7 +111,7 @@ void expect_valid(const SkinnedAsset& asset, int samples = 16) {
     EXPECT_EQ(o.pm.vertex_count(), asset.vertex_count());
     EXPECT_FALSE(o.records.empty()) << "nothing was simplified";
     // The public entry point gives the same arrays.
-    const ProgressiveMesh pm = simplify(asset, options);
+    const ProgressiveMesh pm = test::simplify_or_throw(asset, options);
     EXPECT_EQ(pm.triangles, o.pm.triangles);
     EXPECT_EQ(pm.collapse_to, o.pm.collapse_to);
     // Every level skins to finite positions in the middle of the clip.
@@ -118,7 +119,7 @@ void expect_valid(const SkinnedAsset& asset, int samples = 16) {
          n += std::max(1u, pm.vertex_count() / 7)) {
       const SkinnedAsset lod = extract_lod(asset, pm, n);
       if (lod.primitives.empty()) continue;
-      validate_asset(lod);
+      test::validate_or_throw(lod);
       for (const glm::dvec3& p : skin_asset(lod, &lod.clips[0], 0.5))
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     }
@@ -143,7 +144,8 @@ TEST(SimplifyHardCases, ClosedMeshWithoutBorder) {
   const SkinnedAsset a = from(p, i);
   expect_valid(a);
   SimplifyOptions o;
-  EXPECT_LT(simplify(a, o).min_vertices, a.vertex_count() / 4);  // a closed surface simplifies far
+  EXPECT_LT(test::simplify_or_throw(a, o).min_vertices,
+            a.vertex_count() / 4);  // a closed surface simplifies far
 }
 
 TEST(SimplifyHardCases, ZeroAreaAndSliverTriangles) {
@@ -179,7 +181,7 @@ TEST(SimplifyHardCases, CoincidentVerticesAreWeldedAndMoveTogether) {
   for (size_t v = 0; v < p.size(); ++v) a.primitives[0].uvs[v] = {v < n ? 0.0f : 1.0f, p[v].y};
   expect_valid(a);
   // Seam vertices share a position: at every level both copies are kept or both removed.
-  const ProgressiveMesh pm = simplify(a, SimplifyOptions{});
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
   std::vector<uint32_t> where(pm.vertex_count());
   for (uint32_t k = 0; k < pm.vertex_count(); ++k) where[pm.vertex_source[k]] = k;
   for (uint32_t n_used = pm.min_vertices; n_used <= pm.vertex_count(); ++n_used) {
@@ -211,7 +213,7 @@ TEST(SimplifyHardCases, AllCornersCoincident) {
   for (glm::vec3& v : p) v = glm::vec3(0.25f);
   const SkinnedAsset a = from(p, i);
   SimplifyReport report;
-  const ProgressiveMesh pm = simplify(a, SimplifyOptions{}, &report);
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{}, &report);
   EXPECT_EQ(check_progressive_mesh(pm).message(), "");
   EXPECT_EQ(report.degenerate_triangles_dropped, a.triangle_count());
   ASSERT_FALSE(report.warnings.empty());
@@ -239,7 +241,7 @@ TEST(SimplifyHardCases, NonManifoldEdgeAndVertex) {
   const SkinnedAsset a = from(p, i);
   expect_valid(a);
   SimplifyReport report;
-  simplify(a, SimplifyOptions{}, &report);
+  test::simplify_or_throw(a, SimplifyOptions{}, &report);
   EXPECT_GT(report.locked_vertices, 0u);
   ASSERT_FALSE(report.warnings.empty());
 }
@@ -260,7 +262,7 @@ TEST(SimplifyHardCases, UnnormalisedAndAllZeroWeightsFromAFile) {
       b.floats({0.1f, 0.1f, 0, 0, 1.0f, 0.7f, 0, 0, 0, 0, 0, 0}, "VEC4");
   b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
       b.u16({0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0}, "VEC4");
-  const SkinnedAsset a = import_asset(b.write(dir / "weights.gltf").string());
+  const SkinnedAsset a = test::import_or_throw(b.write(dir / "weights.gltf").string());
   EXPECT_EQ(a.stats.vertices_without_weights, 1);
   expect_valid(a);
 }
@@ -314,7 +316,7 @@ TEST(SimplifyHardCases, SingleFrameClipsAndNoClips) {
   expect_valid(a);
   a.clips.clear();
   SimplifyOptions o;
-  EXPECT_EQ(check_progressive_mesh(simplify(a, o)).message(), "");
+  EXPECT_EQ(check_progressive_mesh(test::simplify_or_throw(a, o)).message(), "");
 }
 
 TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) {
@@ -339,9 +341,9 @@ TEST(SimplifyHardCases, LevelsKeepTheMaterialsAndTheirImages) {
   a.materials.resize(1);
   a.materials[0].base_color_image = 0;
   a.primitives[0].material = 0;
-  const ProgressiveMesh pm = simplify(a, {});
+  const ProgressiveMesh pm = test::simplify_or_throw(a, {});
   const SkinnedAsset lod = extract_lod(a, pm, pm.vertex_count() / 2);
-  EXPECT_NO_THROW(validate_asset(lod));  // `crowdbake lod` exports textured characters
+  EXPECT_NO_THROW(test::validate_or_throw(lod));  // `crowdbake lod` exports textured characters
   ASSERT_EQ(lod.images.size(), 1u);
   EXPECT_EQ(lod.images[0].data, a.images[0].data);
   EXPECT_EQ(lod.materials[0].base_color_image, 0);
@@ -353,7 +355,7 @@ TEST(SimplifyOptionsErrors, ZeroSamplesIsAUsageError) {
   test::grid(2, 2, p, i);
   SimplifyOptions o;
   o.samples = 0;
-  EXPECT_THROW(simplify(from(p, i), o), Error);
+  EXPECT_THROW(test::simplify_or_throw(from(p, i), o), Error);
 }
 
 // Past the quadric budget the exact form falls back to the pull-back form, says so, and gives
@@ -366,15 +368,15 @@ TEST(SimplifyOptionsMemory, ExactFormOverTheQuadricBudgetUsesPullback) {
   SimplifyOptions tight;
   tight.max_quadric_megabytes = 1e-3;  // 81 positions x 16 poses x 80 bytes is 0.1 MB
   SimplifyReport report;
-  const ProgressiveMesh pm = simplify(a, tight, &report);
+  const ProgressiveMesh pm = test::simplify_or_throw(a, tight, &report);
   EXPECT_EQ(report.form, DqemForm::kPullback);
   ASSERT_FALSE(report.warnings.empty());
   EXPECT_NE(report.warnings.back().find("used the pull-back form"), std::string::npos);
   SimplifyOptions pullback;
   pullback.form = DqemForm::kPullback;
-  EXPECT_EQ(simplify(a, pullback).collapse_to, pm.collapse_to);
+  EXPECT_EQ(test::simplify_or_throw(a, pullback).collapse_to, pm.collapse_to);
   SimplifyReport roomy;
-  simplify(a, SimplifyOptions{}, &roomy);
+  test::simplify_or_throw(a, SimplifyOptions{}, &roomy);
   EXPECT_EQ(roomy.form, DqemForm::kExact);
 }
 
@@ -386,7 +388,7 @@ TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
   SimplifyOptions one, many;
   one.threads = 1;
   many.threads = 4;
-  const ProgressiveMesh x = simplify(a, one), y = simplify(a, many);
+  const ProgressiveMesh x = test::simplify_or_throw(a, one), y = test::simplify_or_throw(a, many);
   EXPECT_EQ(x.vertex_source, y.vertex_source);
   EXPECT_EQ(x.triangles, y.triangles);
   EXPECT_EQ(x.collapse_to, y.collapse_to);

@@ -21,16 +21,28 @@ enum class StatusCode {
   kOutOfMemory,      // an allocation failed while loading
   kInvalidFsm,       // a behaviour state machine breaks a rule (crowd/behaviour_fsm.h)
   kInfeasible,       // valid input that cannot be satisfied (a region too small, ...)
-  kInternal,         // a geometry backend failed (the message says how)
+  kInternal,         // a backend failed or a rule the code keeps broke (the message says how)
+  kInvalidInput,     // an input file (a character, a bake config, ...) breaks a rule
+  kOutputError,      // an output file could not be written
+  kLast = kOutputError,
 };
 
 // Short lower-case name of a code: "ok", "io error", "invalid pack", ...
 inline const char* status_code_name(StatusCode code) {
   // In StatusCode's order.
-  constexpr const char* kNames[] = {
-      "ok",         "io error",      "invalid pack",          "invalid scene", "invalid argument",
-      "not loaded", "out of memory", "invalid behaviour fsm", "infeasible",    "internal error"};
-  static_assert(std::size(kNames) == static_cast<size_t>(StatusCode::kInternal) + 1);
+  constexpr const char* kNames[] = {"ok",
+                                    "io error",
+                                    "invalid pack",
+                                    "invalid scene",
+                                    "invalid argument",
+                                    "not loaded",
+                                    "out of memory",
+                                    "invalid behaviour fsm",
+                                    "infeasible",
+                                    "internal error",
+                                    "invalid input",
+                                    "output error"};
+  static_assert(std::size(kNames) == static_cast<size_t>(StatusCode::kLast) + 1);
   const auto i = static_cast<size_t>(code);
   return i < std::size(kNames) ? kNames[i] : "unknown";
 }

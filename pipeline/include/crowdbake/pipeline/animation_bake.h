@@ -79,9 +79,10 @@ struct AnimationBake {
   std::vector<std::string> warnings;
 };
 
-// Throws crowdbake::Error (kUsage) for a non-positive or non-finite fps, a negative
-// loop_tolerance or an unknown root_joint name.
-AnimationBake bake_animation(const SkinnedAsset& asset, const AnimationBakeOptions& options = {});
+// kInvalidArgument for a non-positive or non-finite fps, a negative loop_tolerance or an
+// unknown root_joint name.
+[[nodiscard]] Status bake_animation(const SkinnedAsset& asset, const AnimationBakeOptions& options,
+                                    AnimationBake& out);
 
 // The exact (double precision) skinning matrices the bake encodes for row `frame` of clip
 // `clip` (index into bake.clips), as 3x4 row-major matrices, one per joint, root motion

@@ -47,9 +47,9 @@ struct BakeSettings {
 };
 
 // Reads a bake configuration (docs/bake-config.md) over the defaults. Relative paths in
-// it are resolved against the file's folder. Throws crowdbake::Error naming the file
-// and the key for anything unknown or malformed.
-BakeSettings read_bake_config(const std::string& path);
+// it are resolved against the file's folder. kInvalidInput naming the file and the key for
+// anything unknown or malformed; `out` is then unspecified.
+[[nodiscard]] Status read_bake_config(const std::string& path, BakeSettings& out);
 
 // The settings as canonical JSON (every key, fixed order): stored in the pack.
 std::string bake_settings_json(const BakeSettings& settings);
@@ -75,17 +75,13 @@ struct BakeReport {
   double animation_coding_mean_error = 0.0;
 };
 
-// Builds the pack contents. Deterministic for equal inputs and settings, whatever
-// settings.simplify.threads is.
+// Builds the pack contents into `out`. Deterministic for equal inputs and settings, whatever
+// settings.simplify.threads is. Fails for settings that break a rule (kInvalidArgument) or
+// a character the bake cannot use (kInvalidInput).
 // `stored` (may be null) receives how settings.pack stores the animation, for
-// write_pack(pack, settings.pack, *stored), which then does not code it again.
-PackContents build_pack(const SkinnedAsset& asset, const BakeSettings& settings, BakeReport& report,
-                        StoredAnimation* stored = nullptr);
-
-// write_pack() of a built pack (with its stored animation when given), as the pipeline reports
-// failures: a crowdbake::Error naming `file` (a pack the bake built breaks no rule, so a
-// failure here is a codec's).
-std::vector<uint8_t> write_baked_pack(const PackContents& pack, const PackWriteOptions& options,
-                                      const StoredAnimation* stored, const std::string& file);
+// write_pack(pack, settings.pack, *stored, bytes), which then does not code it again.
+[[nodiscard]] Status build_pack(const SkinnedAsset& asset, const BakeSettings& settings,
+                                BakeReport& report, PackContents& out,
+                                StoredAnimation* stored = nullptr);
 
 }  // namespace crowdbake

@@ -5,11 +5,13 @@
 
 #include <string>
 
+#include "crowdbake/base/status.h"
 #include "crowdbake/pipeline/skinned_asset.h"
 
 namespace crowdbake {
 
-// Throws crowdbake::Error (kind kOutput) when the file cannot be written.
-void export_glb(const SkinnedAsset& asset, const std::string& path);
+// kOutputError when the file cannot be written, kInvalidInput for an asset that breaks a
+// rule of validate_asset().
+[[nodiscard]] Status export_glb(const SkinnedAsset& asset, const std::string& path);
 
 }  // namespace crowdbake

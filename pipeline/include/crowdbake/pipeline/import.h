@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 
+#include "crowdbake/base/status.h"
 #include "crowdbake/pipeline/skinned_asset.h"
 
 namespace crowdbake {
@@ -34,11 +35,16 @@ struct ImportOptions {
   bool weld = true;
 };
 
-// Reads a character. Throws crowdbake::Error naming the file, the problem and the fix.
-// The returned asset passes validate_asset().
-SkinnedAsset import_asset(const std::string& path, const ImportOptions& options = {});
+// Reads a character into `out`, which then passes validate_asset(). A failure names the
+// file, the problem and the fix: kInvalidInput for the file, kInvalidArgument for options
+// that do not fit it (e.g. a character index it does not have).
+[[nodiscard]] Status import_asset(const std::string& path, const ImportOptions& options,
+                                  SkinnedAsset& out);
 
-SkinnedAsset import_gltf(const std::string& path, const ImportOptions& options);
-SkinnedAsset import_assimp(const std::string& path, const ImportOptions& options);
+// One importer, in this process (import_asset chooses and isolates them).
+[[nodiscard]] Status import_gltf(const std::string& path, const ImportOptions& options,
+                                 SkinnedAsset& out);
+[[nodiscard]] Status import_assimp(const std::string& path, const ImportOptions& options,
+                                   SkinnedAsset& out);
 
 }  // namespace crowdbake

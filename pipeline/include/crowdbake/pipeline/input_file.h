@@ -6,13 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/status.h"
+
 namespace crowdbake {
 
-// Throws crowdbake::Error (kind kInput) unless path names a readable regular file.
-// `expected` completes "pass <expected>" in the directory message (e.g. "a .crowdpack file").
-void check_input_file(const std::string& path, const std::string& expected);
+// kInvalidInput unless path names a readable regular file. `expected` completes
+// "pass <expected>" in the directory message (e.g. "a .crowdpack file").
+[[nodiscard]] Status check_input_file(const std::string& path, const std::string& expected);
 
-// check_input_file, then the whole file.
-std::vector<uint8_t> read_input_file(const std::string& path, const std::string& expected);
+// check_input_file, then the whole file into `out`.
+[[nodiscard]] Status read_input_file(const std::string& path, const std::string& expected,
+                                     std::vector<uint8_t>& out);
 
 }  // namespace crowdbake

@@ -8,16 +8,20 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/status.h"
+
 namespace crowdbake {
 
-// Throws crowdbake::Error (kind kOutput) naming path, what failed and what to do.
-void write_file_atomically(const std::string& path, const void* data, size_t size);
+// kOutputError naming path, what failed and what to do.
+[[nodiscard]] Status write_file_atomically(const std::string& path, const void* data, size_t size);
 
-inline void write_file_atomically(const std::string& path, const std::vector<uint8_t>& bytes) {
-  write_file_atomically(path, bytes.data(), bytes.size());
+[[nodiscard]] inline Status write_file_atomically(const std::string& path,
+                                                  const std::vector<uint8_t>& bytes) {
+  return write_file_atomically(path, bytes.data(), bytes.size());
 }
-inline void write_file_atomically(const std::string& path, const std::string& text) {
-  write_file_atomically(path, text.data(), text.size());
+[[nodiscard]] inline Status write_file_atomically(const std::string& path,
+                                                  const std::string& text) {
+  return write_file_atomically(path, text.data(), text.size());
 }
 
 }  // namespace crowdbake

@@ -126,12 +126,14 @@ struct PartitionBake {
 // height gives Region::kUnused.
 Region partition_region(double height, float neck, float waist);
 
-// The neck and waist heights the bake would use. Throws crowdbake::Error (kUsage) for
-// bad options (non-finite or out-of-order given heights, a zero or non-finite up axis).
-PartitionHeights partition_heights(const SkinnedAsset& asset, const PartitionOptions& options);
+// The neck and waist heights the bake would use. kInvalidArgument for bad options
+// (non-finite or out-of-order given heights, a zero or non-finite up axis).
+[[nodiscard]] Status partition_heights(const SkinnedAsset& asset, const PartitionOptions& options,
+                                       PartitionHeights& out);
 
-// Bakes the mask and the vertex regions. Throws crowdbake::Error (kUsage) for bad
-// options (size outside 1..16384, dilate > 64, and as partition_heights).
-PartitionBake bake_partition(const SkinnedAsset& asset, const PartitionOptions& options = {});
+// Bakes the mask and the vertex regions. kInvalidArgument for bad options (size outside
+// 1..16384, dilate > 64, and as partition_heights).
+[[nodiscard]] Status bake_partition(const SkinnedAsset& asset, const PartitionOptions& options,
+                                    PartitionBake& out);
 
 }  // namespace crowdbake

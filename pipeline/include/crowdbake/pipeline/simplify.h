@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/status.h"
 #include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/skinned_asset.h"
 
@@ -59,10 +60,11 @@ struct SimplifyReport {
   std::vector<std::string> warnings;
 };
 
-// Simplifies as far as topology allows and returns the whole progressive sequence.
-// Throws crowdbake::Error for bad options (S < 1, unreadable ranges file, unknown joints).
-ProgressiveMesh simplify(const SkinnedAsset& asset, const SimplifyOptions& options,
-                         SimplifyReport* report = nullptr);
+// Simplifies as far as topology allows into `out`, the whole progressive sequence.
+// kInvalidArgument for bad options (S < 1, unknown joints), kInvalidInput for an unreadable
+// or malformed ranges file.
+[[nodiscard]] Status simplify(const SkinnedAsset& asset, const SimplifyOptions& options,
+                              ProgressiveMesh& out, SimplifyReport* report = nullptr);
 
 // The character at LoD n (usable_vertices(n) vertices): same skeleton, clips and
 // materials, primitives holding only the kept vertices and the reconstructed triangles.

@@ -139,8 +139,8 @@ struct SkinnedAsset {
   size_t triangle_count() const;
 };
 
-// Throws crowdbake::Error (kind kInput) naming the first broken rule.
-void validate_asset(const SkinnedAsset& asset);
+// kInvalidInput naming the first broken rule.
+[[nodiscard]] Status validate_asset(const SkinnedAsset& asset);
 
 // Merges the vertices of each primitive that agree in every attribute (position, UV,
 // joints and weights bit for bit with -0 equal to +0; normals within 1e-5) into the first
