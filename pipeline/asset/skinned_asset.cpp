@@ -10,15 +10,6 @@
 
 namespace crowdbake {
 
-glm::dmat4 Transform::matrix() const {
-  glm::dmat4 m = glm::mat4_cast(rotation);
-  m[0] *= scale.x;
-  m[1] *= scale.y;
-  m[2] *= scale.z;
-  m[3] = glm::dvec4(translation, 1.0);
-  return m;
-}
-
 int Skeleton::find(const std::string& name) const {
   for (size_t i = 0; i < joints.size(); ++i)
     if (joints[i].name == name) return static_cast<int>(i);

@@ -18,7 +18,7 @@ glm::mat4 similarity(const glm::quat& unit_rotation, const glm::vec3& translatio
   t.rotation = unit_rotation;
   t.translation = translation;
   t.scale = glm::vec3(scale);
-  return to_matrix(t);
+  return t.matrix();
 }
 
 glm::quat weighted_sum(const glm::quat& a, float wa, const glm::quat& b, float wb) {

@@ -62,25 +62,4 @@ Transform blend(const Transform& a, const Transform& b, float w) {
   return out;
 }
 
-glm::mat4 to_matrix(const Transform& t) {
-  const glm::quat& q = t.rotation;
-  const float xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
-  const float xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
-  const float wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
-  glm::mat4 m(1.0f);  // column-major: m[column][row]
-  m[0][0] = (1.0f - 2.0f * (yy + zz)) * t.scale.x;
-  m[0][1] = 2.0f * (xy + wz) * t.scale.x;
-  m[0][2] = 2.0f * (xz - wy) * t.scale.x;
-  m[1][0] = 2.0f * (xy - wz) * t.scale.y;
-  m[1][1] = (1.0f - 2.0f * (xx + zz)) * t.scale.y;
-  m[1][2] = 2.0f * (yz + wx) * t.scale.y;
-  m[2][0] = 2.0f * (xz + wy) * t.scale.z;
-  m[2][1] = 2.0f * (yz - wx) * t.scale.z;
-  m[2][2] = (1.0f - 2.0f * (xx + yy)) * t.scale.z;
-  m[3][0] = t.translation.x;
-  m[3][1] = t.translation.y;
-  m[3][2] = t.translation.z;
-  return m;
-}
-
 }  // namespace crowdbake::effects

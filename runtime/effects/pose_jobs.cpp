@@ -69,7 +69,7 @@ bool LocalToModelJob::Run() const {
   const size_t joints = skeleton->joint_count();
   for (size_t j = 0; j < joints; ++j) {
     const int32_t parent = skeleton->parents[j];
-    const glm::mat4 local = to_matrix(input[j]);
+    const glm::mat4 local = input[j].matrix();
     output[j] = parent == kNoParent ? local : output[static_cast<size_t>(parent)] * local;
   }
   return true;

@@ -198,7 +198,7 @@ TEST(LocalToModelJob, ComposesParentsFirst) {
   // Joint 3 sits 0.2 along the rotated +Y, i.e. at (−0.2, 0, 0).
   EXPECT_NEAR(out[3][3][0], -0.2f, 1e-6f);
   EXPECT_NEAR(out[3][3][1], 0.0f, 1e-6f);
-  const glm::mat4 expected = out[1] * to_matrix(pose[3]);
+  const glm::mat4 expected = out[1] * pose[3].matrix();
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) EXPECT_FLOAT_EQ(out[3][c][r], expected[c][r]);
   }

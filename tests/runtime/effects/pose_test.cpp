@@ -70,7 +70,7 @@ TEST(Pose, ToMatrixIsTranslateRotateScale) {
   t.scale = {2.0f, 0.5f, 1.5f};
   const glm::mat4 expected = glm::translate(glm::mat4(1.0f), t.translation) *
                              glm::mat4_cast(t.rotation) * glm::scale(glm::mat4(1.0f), t.scale);
-  const glm::mat4 m = to_matrix(t);
+  const glm::mat4 m = t.matrix();
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], expected[c][r], 1e-5f) << c << "," << r;
   }

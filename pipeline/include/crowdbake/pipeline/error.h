@@ -65,21 +65,6 @@ Status capture_errors(Body&& body) noexcept {
   }
 }
 
-// The exit code a program gives for a failed Status (the CLI's convention: 2 for bad
-// options, 3 for an unwritable output, 1 otherwise).
-inline int exit_code_of(const Status& s) {
-  switch (s.code()) {
-    case StatusCode::kOk:
-      return 0;
-    case StatusCode::kInvalidArgument:
-      return 2;
-    case StatusCode::kOutputError:
-      return 3;
-    default:
-      return 1;
-  }
-}
-
 // For programs that report through exceptions: throws the Error a failed Status stands for
 // (its message already names the file, so the Error names none), or std::bad_alloc for
 // kOutOfMemory, so that a child process still reports running out of memory as such.

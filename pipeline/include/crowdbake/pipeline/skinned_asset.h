@@ -21,17 +21,12 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/transform.h"
 #include "crowdbake/formats/pack.h"  // AlphaMode, PackImage
 
 namespace crowdbake {
 
-struct Transform {
-  glm::dvec3 translation{0.0};
-  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
-  glm::dvec3 scale{1.0};
-
-  glm::dmat4 matrix() const;
-};
+using Transform = BasicTransform<double>;
 
 struct Joint {
   std::string name;

@@ -21,15 +21,13 @@
 #include <vector>
 
 #include "crowdbake/base/status.h"
+#include "crowdbake/base/transform.h"
 #include "crowdbake/runtime/effects/span.h"
 
 namespace crowdbake::effects {
 
-struct Transform {
-  glm::vec3 translation{0.0f};
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // glm order: (w, x, y, z)
-  glm::vec3 scale{1.0f};
-};
+// matrix(): translate(t) · rotate(r) · scale(s).
+using Transform = BasicTransform<float>;
 
 inline constexpr int32_t kNoParent = -1;
 
@@ -57,8 +55,5 @@ glm::quat nlerp_shortest(const glm::quat& a, const glm::quat& b, float w);
 
 // The pose blend described at the top of this file. w is not clamped.
 Transform blend(const Transform& a, const Transform& b, float w);
-
-// translate(t) · rotate(r) · scale(s). The rotation is used as is (callers keep it unit).
-glm::mat4 to_matrix(const Transform& transform);
 
 }  // namespace crowdbake::effects

@@ -45,8 +45,8 @@ struct BlendJob {
   bool Run() const;
 };
 
-// Local → model space: output[j] = output[parent(j)] · to_matrix(input[j]), roots use
-// to_matrix(input[j]). Validate() fails when:
+// Local → model space: output[j] = output[parent(j)] · input[j].matrix(), roots use
+// input[j].matrix(). Validate() fails when:
 // - skeleton is null or has no joints;
 // - a parent index is not kNoParent or an earlier joint;
 // - input or output holds fewer than skeleton->joint_count() elements.
