@@ -186,31 +186,19 @@ class FsmCompiler {
     return Status();
   }
 
-  // Exits: every state must reach a rest state (reverse breadth-first search from them).
+  // Exits: every state must reach a rest state (states_without_exit).
   Status check_exits() const {
     std::vector<std::string> rest_names;
-    std::vector<uint8_t> reaches_rest(n, 0);
-    std::deque<uint16_t> queue;
+    std::vector<uint8_t> rest(n, 0);
     for (size_t s = 0; s < n; ++s)
-      if (def.states[s].rest) {
-        rest_names.push_back(def.states[s].name);
-        reaches_rest[s] = 1;
-        queue.push_back(static_cast<uint16_t>(s));
-      }
+      if (def.states[s].rest) rest_names.push_back(def.states[s].name), rest[s] = 1;
     if (rest_names.empty())
       return fsm_error("the FSM has no rest state (mark the idle states, e.g. sit or stand, rest)");
-    std::vector<std::vector<uint16_t>> reverse(n);
+    std::vector<std::pair<size_t, size_t>> transitions;
     for (size_t a = 0; a < n; ++a)
-      for (uint16_t b : adjacency[a]) reverse[b].push_back(static_cast<uint16_t>(a));
-    while (!queue.empty()) {
-      const uint16_t s = queue.front();
-      queue.pop_front();
-      for (uint16_t p : reverse[s])
-        if (!reaches_rest[p]) reaches_rest[p] = 1, queue.push_back(p);
-    }
+      for (uint16_t b : adjacency[a]) transitions.emplace_back(a, b);
     std::vector<std::string> trapped;
-    for (size_t s = 0; s < n; ++s)
-      if (!reaches_rest[s]) trapped.push_back(def.states[s].name);
+    for (size_t s : states_without_exit(rest, transitions)) trapped.push_back(def.states[s].name);
     if (!trapped.empty())
       return fsm_error("cyclic FSM without exit: state" +
                        std::string(trapped.size() > 1 ? "s " : " ") + join_names(trapped) +
@@ -298,6 +286,29 @@ class FsmCompiler {
   std::vector<std::vector<uint16_t>> adjacency;  // per state, in definition order
   std::vector<std::vector<std::pair<uint16_t, double>>> idle;
 };
+
+// Reverse breadth-first search from the rest states.
+std::vector<size_t> states_without_exit(const std::vector<uint8_t>& rest,
+                                        const std::vector<std::pair<size_t, size_t>>& transitions) {
+  const size_t n = rest.size();
+  std::vector<uint8_t> reaches_rest(n, 0);
+  std::deque<size_t> queue;
+  for (size_t s = 0; s < n; ++s)
+    if (rest[s]) reaches_rest[s] = 1, queue.push_back(s);
+  std::vector<std::vector<size_t>> reverse(n);
+  for (const auto& [from, to] : transitions)
+    if (from < n && to < n) reverse[to].push_back(from);
+  while (!queue.empty()) {
+    const size_t s = queue.front();
+    queue.pop_front();
+    for (size_t p : reverse[s])
+      if (!reaches_rest[p]) reaches_rest[p] = 1, queue.push_back(p);
+  }
+  std::vector<size_t> trapped;
+  for (size_t s = 0; s < n; ++s)
+    if (!reaches_rest[s]) trapped.push_back(s);
+  return trapped;
+}
 
 Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out) {
   return FsmCompiler(def).compile(out);

@@ -2,10 +2,13 @@
 // reactions, teams, events and parameters, and the checks that the FSM has an exit and that
 // every reaction state can be reached. Part of the "effects" section reader
 // (scene_effects_section.cpp).
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "crowdbake/runtime/crowd/behaviour_fsm.h"
 #include "scene_effects_read.h"
 
 namespace crowdbake::effects {
@@ -177,30 +180,24 @@ void read_parameters(const Json& v, SceneEffects& e) {
 }
 
 void check_exits(const SceneEffects& e) {
-  const std::string path = kPath;
-  // The FSM must have an exit: every state reaches a rest state (the behaviour module checks
-  // this again when it compiles the FSM; the file gets the error first, with its key).
+  // The FSM must have an exit (the behaviour module checks this again when it compiles the
+  // FSM, with the same rule; the file gets the error first, with its key).
   const size_t n = e.states.size();
-  std::vector<uint8_t> exits(n, 0);
-  bool any_rest = false;
-  for (size_t i = 0; i < n; ++i) exits[i] = e.states[i].rest, any_rest = any_rest || exits[i];
-  if (!any_rest)
+  std::vector<uint8_t> rest(n, 0);
+  for (size_t i = 0; i < n; ++i) rest[i] = e.states[i].rest;
+  if (std::find(rest.begin(), rest.end(), 1) == rest.end())
     fail("effects.states",
          "the spectator FSM has no rest state (mark the idle states, e.g. sit "
          "or stand, \"rest\": true)");
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const EffectTransition& t : e.fsm_transitions) {
-      const size_t from = static_cast<size_t>(find_state(e.states, t.from));
-      const size_t to = static_cast<size_t>(find_state(e.states, t.to));
-      if (!exits[from] && exits[to]) exits[from] = 1, changed = true;
-    }
-  }
+  std::vector<std::pair<size_t, size_t>> transitions;
+  for (const EffectTransition& t : e.fsm_transitions)
+    transitions.emplace_back(static_cast<size_t>(find_state(e.states, t.from)),
+                             static_cast<size_t>(find_state(e.states, t.to)));
   std::string trapped;
-  for (size_t i = 0; i < n; ++i)
-    if (!exits[i]) trapped += (trapped.empty() ? "" : ", ") + in_quotes(e.states[i].name);
+  for (size_t i : crowd::states_without_exit(rest, transitions))
+    trapped += (trapped.empty() ? "" : ", ") + in_quotes(e.states[i].name);
   if (!trapped.empty())
-    fail(path + ".transitions",
+    fail(std::string(kPath) + ".transitions",
          "cyclic FSM without exit: no path from " + trapped + " to a rest state");
 }
 

@@ -239,5 +239,15 @@ TEST(BehaviourFsmErrors, EmptyFsm) {
   EXPECT_EQ(status.message(), "the FSM has no states");
 }
 
+// The exit rule alone (the scene reader uses it before clip durations are known): 0 is rest;
+// 1 → 0 exits, 2 ↔ 3 only reach each other, 4 has no transition at all.
+TEST(StatesWithoutExit, ListsTheTrappedStatesInOrder) {
+  const std::vector<uint8_t> rest = {1, 0, 0, 0, 0};
+  const std::vector<std::pair<size_t, size_t>> transitions = {{1, 0}, {2, 3}, {3, 2}, {0, 2}};
+  EXPECT_EQ(states_without_exit(rest, transitions), (std::vector<size_t>{2, 3, 4}));
+  EXPECT_TRUE(states_without_exit(rest, {{1, 0}, {2, 3}, {3, 1}, {4, 0}}).empty());
+  EXPECT_EQ(states_without_exit({0, 0}, {{0, 1}}), (std::vector<size_t>{0, 1}));
+}
+
 }  // namespace
 }  // namespace crowdbake::crowd

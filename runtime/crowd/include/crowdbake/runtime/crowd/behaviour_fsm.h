@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "crowdbake/runtime/crowd/status.h"
@@ -146,6 +147,12 @@ class BehaviourFsm {
 //    reaction state reachable from every rest state;
 //  - at most 1024 states (the routing table is states²) and 65534 clips.
 Status build_behaviour_fsm(const BehaviourFsmDef& def, BehaviourFsm& out);
+
+// The FSM's exit rule on its own, for readers that check a declaration before it can be
+// compiled (a scene's effects): the states with no path of transitions to a rest state, in
+// state order. rest[s] marks the rest states; each transition is (from, to), indices into rest.
+std::vector<size_t> states_without_exit(const std::vector<uint8_t>& rest,
+                                        const std::vector<std::pair<size_t, size_t>>& transitions);
 
 // The stadium FSM (docs/crowd-behaviour.md draws it): rest states sit and stand; sit ↔
 // look_around, look_down (seated disappointment); sit →stand_up→ stand →sit_down→ sit;
