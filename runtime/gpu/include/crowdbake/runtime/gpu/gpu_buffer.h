@@ -8,11 +8,42 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "crowdbake/runtime/gpu/vulkan_context.h"
 
 namespace crowdbake::runtime::gpu {
+
+// Owns an aggregate of Vulkan handles whose default value means "nothing": destroying or
+// assigning over it calls Owned::release(), and a moved-from one is left empty. Every GPU
+// object below keeps what it owns in one, so none writes its own destructor or moves.
+template <typename Owned>
+class UniqueOwned {
+ public:
+  UniqueOwned() = default;
+  ~UniqueOwned() { reset(); }
+  UniqueOwned(UniqueOwned&& other) noexcept : owned_(std::exchange(other.owned_, Owned{})) {}
+  UniqueOwned& operator=(UniqueOwned&& other) noexcept {
+    if (this != &other) {
+      reset();
+      owned_ = std::exchange(other.owned_, Owned{});
+    }
+    return *this;
+  }
+  UniqueOwned(const UniqueOwned&) = delete;
+  UniqueOwned& operator=(const UniqueOwned&) = delete;
+
+  void reset() {
+    owned_.release();
+    owned_ = Owned{};
+  }
+  Owned* operator->() { return &owned_; }
+  const Owned* operator->() const { return &owned_; }
+
+ private:
+  Owned owned_;
+};
 
 enum class MemoryKind {
   kDeviceLocal,  // fastest for the GPU; filled by upload() (staging) or by shaders
@@ -22,9 +53,9 @@ enum class MemoryKind {
 class GpuBuffer {
  public:
   GpuBuffer() = default;
-  ~GpuBuffer();
-  GpuBuffer(GpuBuffer&& other) noexcept;
-  GpuBuffer& operator=(GpuBuffer&& other) noexcept;
+  ~GpuBuffer() = default;
+  GpuBuffer(GpuBuffer&& other) noexcept = default;
+  GpuBuffer& operator=(GpuBuffer&& other) noexcept = default;
   GpuBuffer(const GpuBuffer&) = delete;
   GpuBuffer& operator=(const GpuBuffer&) = delete;
 
@@ -33,13 +64,13 @@ class GpuBuffer {
   static Status create(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
                        MemoryKind memory, GpuBuffer& out);
 
-  VkBuffer buffer() const { return h_.buffer; }
-  VkDeviceSize size() const { return h_.size; }
-  bool valid() const { return h_.buffer != VK_NULL_HANDLE; }
+  VkBuffer buffer() const { return h_->buffer; }
+  VkDeviceSize size() const { return h_->size; }
+  bool valid() const { return h_->buffer != VK_NULL_HANDLE; }
   // Host pointer of a kHostVisible buffer (null for device-local memory that is not
   // host-visible; on lavapipe every buffer is).
-  void* mapped() const { return h_.mapped; }
-  VkDescriptorBufferInfo descriptor() const { return {h_.buffer, 0, VK_WHOLE_SIZE}; }
+  void* mapped() const { return h_->mapped; }
+  VkDescriptorBufferInfo descriptor() const { return {h_->buffer, 0, VK_WHOLE_SIZE}; }
 
   // Copies bytes into the buffer at `offset`: memcpy when mapped, otherwise through a
   // staging buffer and submit_and_wait. Returns kInvalidArgument when out of range.
@@ -48,19 +79,19 @@ class GpuBuffer {
   // staging copy with submit_and_wait).
   Status download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;
 
-  void reset();
+  void reset() { h_.reset(); }
 
  private:
-  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
-  // one exchange with a default Owned, and reset() ends by assigning one.
+  // Everything the object owns; release() destroys it (UniqueOwned).
   struct Owned {
+    void release();
     VulkanContext* context = nullptr;
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkDeviceSize size = 0;
     void* mapped = nullptr;
   };
-  Owned h_;
+  UniqueOwned<Owned> h_;
 };
 
 // Reads a whole buffer into a vector of T (size / sizeof(T) elements).
@@ -83,9 +114,9 @@ struct ImageDesc {
 class GpuImage {
  public:
   GpuImage() = default;
-  ~GpuImage();
-  GpuImage(GpuImage&& other) noexcept;
-  GpuImage& operator=(GpuImage&& other) noexcept;
+  ~GpuImage() = default;
+  GpuImage(GpuImage&& other) noexcept = default;
+  GpuImage& operator=(GpuImage&& other) noexcept = default;
   GpuImage(const GpuImage&) = delete;
   GpuImage& operator=(const GpuImage&) = delete;
 
@@ -93,23 +124,23 @@ class GpuImage {
   // 2D_ARRAY when layers > 1). Returns kInvalidArgument when creation fails.
   static Status create(VulkanContext& context, const ImageDesc& desc, GpuImage& out);
 
-  VkImage image() const { return h_.image; }
-  VkImageView view() const { return h_.view; }
-  const ImageDesc& desc() const { return h_.desc; }
-  bool valid() const { return h_.image != VK_NULL_HANDLE; }
-  void reset();
+  VkImage image() const { return h_->image; }
+  VkImageView view() const { return h_->view; }
+  const ImageDesc& desc() const { return h_->desc; }
+  bool valid() const { return h_->image != VK_NULL_HANDLE; }
+  void reset() { h_.reset(); }
 
  private:
-  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
-  // one exchange with a default Owned, and reset() ends by assigning one.
+  // Everything the object owns; release() destroys it (UniqueOwned).
   struct Owned {
+    void release();
     VulkanContext* context = nullptr;
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     ImageDesc desc;
   };
-  Owned h_;
+  UniqueOwned<Owned> h_;
 };
 
 // Records an image layout transition of all mips/layers (a full pipeline barrier between
@@ -130,9 +161,9 @@ void full_barrier(VkCommandBuffer cmd,
 class TimestampQueries {
  public:
   TimestampQueries() = default;
-  ~TimestampQueries();
-  TimestampQueries(TimestampQueries&& other) noexcept;
-  TimestampQueries& operator=(TimestampQueries&& other) noexcept;
+  ~TimestampQueries() = default;
+  TimestampQueries(TimestampQueries&& other) noexcept = default;
+  TimestampQueries& operator=(TimestampQueries&& other) noexcept = default;
   TimestampQueries(const TimestampQueries&) = delete;
   TimestampQueries& operator=(const TimestampQueries&) = delete;
 
@@ -143,18 +174,18 @@ class TimestampQueries {
   // Milliseconds between queries `from` and `to` (both written and completed). Returns
   // kInvalidArgument when the results are not available.
   Status elapsed_ms(uint32_t from, uint32_t to, double& ms) const;
-  uint32_t count() const { return h_.count; }
-  void reset();
+  uint32_t count() const { return h_->count; }
+  void reset() { h_.reset(); }
 
  private:
-  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
-  // one exchange with a default Owned, and reset() ends by assigning one.
+  // Everything the object owns; release() destroys it (UniqueOwned).
   struct Owned {
+    void release();
     VulkanContext* context = nullptr;
     VkQueryPool pool = VK_NULL_HANDLE;
     uint32_t count = 0;
   };
-  Owned h_;
+  UniqueOwned<Owned> h_;
 };
 
 // A compute pipeline whose set 0 is `buffers` storage buffers at bindings 0..buffers-1 (and
@@ -163,9 +194,9 @@ class TimestampQueries {
 class ComputeKernel {
  public:
   ComputeKernel() = default;
-  ~ComputeKernel();
-  ComputeKernel(ComputeKernel&& other) noexcept;
-  ComputeKernel& operator=(ComputeKernel&& other) noexcept;
+  ~ComputeKernel() = default;
+  ComputeKernel(ComputeKernel&& other) noexcept = default;
+  ComputeKernel& operator=(ComputeKernel&& other) noexcept = default;
   ComputeKernel(const ComputeKernel&) = delete;
   ComputeKernel& operator=(const ComputeKernel&) = delete;
 
@@ -182,14 +213,14 @@ class ComputeKernel {
     vkCmdDispatch(cmd, x, y, z);
   }
 
-  VkPipeline pipeline() const { return h_.pipeline; }
-  VkPipelineLayout layout() const { return h_.layout; }
-  void reset();
+  VkPipeline pipeline() const { return h_->pipeline; }
+  VkPipelineLayout layout() const { return h_->layout; }
+  void reset() { h_.reset(); }
 
  private:
-  // Everything the object owns, in one aggregate whose defaults mean "nothing": a move is
-  // one exchange with a default Owned, and reset() ends by assigning one.
+  // Everything the object owns; release() destroys it (UniqueOwned).
   struct Owned {
+    void release();
     VulkanContext* context = nullptr;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -198,7 +229,7 @@ class ComputeKernel {
     std::vector<VkDescriptorSet> sets;
     uint32_t buffers = 0, push_bytes = 0, uniform_mask = 0;
   };
-  Owned h_;
+  UniqueOwned<Owned> h_;
 };
 
 }  // namespace crowdbake::runtime::gpu
