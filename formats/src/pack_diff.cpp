@@ -273,6 +273,8 @@ DiffSection diff_materials(const PackContents& a, const PackContents& b, const C
     const PackImage& ib = b.images[i];
     const std::string name = "image " + std::to_string(i);
     if (ia.name != ib.name) differ(s, name + " name " + arrow(ia.name, ib.name));
+    if (ia.mime_type != ib.mime_type)
+      differ(s, name + " type " + arrow(ia.mime_type, ib.mime_type));
     if (ia.width != ib.width || ia.height != ib.height)
       differ(s, name + " size " +
                     arrow(std::to_string(ia.width) + "x" + std::to_string(ia.height),

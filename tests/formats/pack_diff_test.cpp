@@ -96,5 +96,28 @@ TEST(PackDiff, AClipChangeIsNamed) {
   EXPECT_NE(std::find(differing.begin(), differing.end(), "clips"), differing.end());
 }
 
+// Images compare by name, type, size and stored bytes (no re-encoding: equal images are equal
+// bytes).
+TEST(PackDiff, ImagesDifferInTypeOrBytes) {
+  PackFile a;
+  a.contents = test::make_test_contents(4, 21);
+  PackImage image;
+  image.name = "skin";
+  image.mime_type = "image/png";
+  image.width = image.height = 2;
+  image.data = {1, 2, 3, 4};
+  a.contents.images.push_back(image);
+  PackFile b = a;
+  EXPECT_TRUE(diff_packs(a, b, {}).equal());
+  b.contents.images[0].mime_type = "image/jpeg";
+  PackDiff diff = diff_packs(a, b, {});
+  EXPECT_EQ(diff.differing(), std::vector<std::string>{"materials"});
+  EXPECT_NE(section(diff, "materials").differences.front().find("type"), std::string::npos);
+  b = a;
+  b.contents.images[0].data[2] = 9;
+  diff = diff_packs(a, b, {});
+  EXPECT_NE(section(diff, "materials").differences.front().find("bytes differ"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace crowdbake

@@ -11,11 +11,14 @@
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/pipeline/bake.h"
+#include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/output_file.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "pack_bytes.h"
 #include "pipeline_calls.h"
 #include "spectator_character.h"
+#include "temp_dir.h"
 
 namespace crowdbake {
 namespace {
@@ -151,6 +154,35 @@ TEST(PackBuilder, SameInputGivesTheSameBytesWhateverTheThreads) {
     else
       EXPECT_EQ(bytes, first) << threads << " threads";
   }
+}
+
+// The README's example of a build tool cooking a pack through the Status API, step for step;
+// and its first failure, a missing file, reported as the example prints it.
+TEST(PackBuilder, ReadmeCookingExample) {
+  test::TempDir dir;
+  const std::string source = (dir.path() / "hero.glb").string();
+  const std::string output = (dir.path() / "hero.crowdpack").string();
+  ASSERT_TRUE(export_glb(samples::make_spectator_character(), source).ok());
+  SkinnedAsset asset;
+  PackContents pack;
+  BakeReport report;
+  std::vector<uint8_t> bytes;
+  Status s = import_asset(source, {}, asset);
+  if (s.ok()) s = build_pack(asset, BakeSettings{}, report, pack);
+  if (s.ok()) s = write_pack(pack, BakeSettings{}.pack, bytes);
+  if (s.ok()) s = write_file_atomically(output, bytes);
+  ASSERT_TRUE(s.ok()) << s.message();
+  PackContents back;
+  std::ifstream in(output, std::ios::binary);
+  const std::vector<uint8_t> written((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+  EXPECT_EQ(written, bytes);
+  EXPECT_TRUE(read_pack(written.data(), written.size(), back).ok());
+
+  const Status missing = import_asset((dir.path() / "nobody.glb").string(), {}, asset);
+  EXPECT_EQ(missing.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(missing.message().find("nobody.glb: file not found"), std::string::npos)
+      << missing.message();
 }
 
 }  // namespace
