@@ -13,8 +13,10 @@
 // - the skinned mesh node sits at the scene root without a transform (glTF ignores both).
 // - one bufferView per accessor, 4-byte aligned, no byteStride anywhere; vertex and index
 //   views carry their target, animation and inverse-bind views none.
-// - materials carry the base colour only (metallic 0): the asset names its textures but
-//   holds no image data to embed.
+// - materials carry the base colour (metallic 0), alpha mode and double-sidedness, and their
+//   base colour image embedded in the binary chunk (one texture per image, default sampler).
+//   A material's UV transform is applied to its primitives' UVs, which is exact, where
+//   KHR_texture_transform cannot express a sheared one.
 // - glTF has no clip duration, so a clip whose keys end early gets a rest-valued track
 //   reaching its duration (see with_duration_keys).
 #include "crowdbake/pipeline/gltf_export.h"
@@ -353,8 +355,9 @@ glm::vec3 unit_normal(const glm::vec3& n) {
   return glm::normalize(n / len);
 }
 
-Json write_primitive(const Primitive& p, size_t joint_count, size_t material_count,
+Json write_primitive(const Primitive& p, size_t joint_count, const std::vector<Material>& materials,
                      BinaryBuilder& bin) {
+  const size_t material_count = materials.size();
   const size_t n = p.vertex_count();
   Json attributes;
   std::vector<float> data;
@@ -371,8 +374,14 @@ Json write_primitive(const Primitive& p, size_t joint_count, size_t material_cou
   }
   if (!p.uvs.empty()) {
     data.clear();
-    for (const glm::vec2& v : p.uvs)
+    // u' = t0·u + t1·v + t2, v' = t3·u + t4·v + t5 (Material::uv_transform).
+    const bool own = p.material >= 0 && static_cast<size_t>(p.material) < material_count;
+    const std::array<float, 6> t = own ? materials[static_cast<size_t>(p.material)].uv_transform
+                                       : std::array<float, 6>{1, 0, 0, 0, 1, 0};
+    for (const glm::vec2& uv : p.uvs) {
+      const glm::vec2 v(t[0] * uv.x + t[1] * uv.y + t[2], t[3] * uv.x + t[4] * uv.y + t[5]);
       data.insert(data.end(), {std::isfinite(v.x) ? v.x : 0.0f, std::isfinite(v.y) ? v.y : 0.0f});
+    }
     attributes["TEXCOORD_0"] = bin.add_floats(data, 2, "VEC2", kArrayBuffer, false);
   }
   std::vector<uint16_t> joints16;
@@ -409,16 +418,52 @@ Json write_primitive(const Primitive& p, size_t joint_count, size_t material_cou
   return primitive;
 }
 
-Json write_material(const Material& m) {
+// `textures[i]`: the texture index of asset image i, -1 when it is not written.
+Json write_material(const Material& m, const std::vector<int>& textures) {
   Json material;
   if (!m.name.empty()) material["name"] = m.name;
   float c[4];
   for (int i = 0; i < 4; ++i)
     c[i] = std::isfinite(m.base_color[i]) ? std::clamp(m.base_color[i], 0.0f, 1.0f) : 1.0f;
   // note: glTF's default metallicFactor is 1; importers give plain colours, so write 0.
-  material["pbrMetallicRoughness"] = {{"baseColorFactor", vec_json(c, 4)}, {"metallicFactor", 0.0}};
-  if (c[3] < 1.0f) material["alphaMode"] = "BLEND";
+  Json pbr = {{"baseColorFactor", vec_json(c, 4)}, {"metallicFactor", 0.0}};
+  const int image = m.base_color_image;
+  if (image >= 0 && static_cast<size_t>(image) < textures.size() &&
+      textures[static_cast<size_t>(image)] >= 0)
+    pbr["baseColorTexture"] = {{"index", textures[static_cast<size_t>(image)]}};
+  material["pbrMetallicRoughness"] = std::move(pbr);
+  if (m.alpha_mode == AlphaMode::kMask) {
+    material["alphaMode"] = "MASK";
+    const float cutoff = std::isfinite(m.alpha_cutoff) ? std::max(m.alpha_cutoff, 0.0f) : 0.5f;
+    if (cutoff != 0.5f) material["alphaCutoff"] = cutoff;
+  } else if (m.alpha_mode == AlphaMode::kBlend || c[3] < 1.0f) {
+    material["alphaMode"] = "BLEND";
+  }
+  if (m.double_sided) material["doubleSided"] = true;
   return material;
+}
+
+// The images the materials use, embedded: one bufferView, image and texture each (an image
+// without bytes is left out, and so is the texture of a material that uses it; an image no
+// material uses too, which the validator would report as unused).
+void write_images(const SkinnedAsset& asset, BinaryBuilder& bin, Json& images, Json& textures,
+                  std::vector<int>& texture_of) {
+  texture_of.assign(asset.images.size(), -1);
+  std::vector<uint8_t> used(asset.images.size(), 0);
+  for (const Material& m : asset.materials)
+    if (m.base_color_image >= 0 && static_cast<size_t>(m.base_color_image) < used.size())
+      used[static_cast<size_t>(m.base_color_image)] = 1;
+  for (size_t i = 0; i < asset.images.size(); ++i) {
+    const PackImage& source = asset.images[i];
+    if (!used[i] || source.data.empty() || source.mime_type.empty()) continue;
+    Json image;
+    if (!source.name.empty()) image["name"] = source.name;
+    image["bufferView"] = bin.add_view(source.data.data(), source.data.size(), kNoTarget);
+    image["mimeType"] = source.mime_type;
+    images.push_back(std::move(image));
+    textures.push_back({{"source", images.size() - 1}});
+    texture_of[i] = static_cast<int>(textures.size()) - 1;
+  }
 }
 
 Json build_json(const SkinnedAsset& asset, BinaryBuilder& bin) {
@@ -477,7 +522,7 @@ Json build_json(const SkinnedAsset& asset, BinaryBuilder& bin) {
 
   Json primitives = Json::array();
   for (const Primitive& p : asset.primitives)
-    primitives.push_back(write_primitive(p, joint_count, asset.materials.size(), bin));
+    primitives.push_back(write_primitive(p, joint_count, asset.materials, bin));
   Json mesh;
   mesh["name"] = "character";
   mesh["primitives"] = std::move(primitives);
@@ -502,8 +547,11 @@ Json build_json(const SkinnedAsset& asset, BinaryBuilder& bin) {
     animations.push_back(writer.finish(clip.name));
   }
 
+  Json images = Json::array(), textures = Json::array();
+  std::vector<int> texture_of;
+  write_images(asset, bin, images, textures, texture_of);
   Json materials = Json::array();
-  for (const Material& m : asset.materials) materials.push_back(write_material(m));
+  for (const Material& m : asset.materials) materials.push_back(write_material(m, texture_of));
 
   // note: the binary chunk must hold the declared byteLength exactly (no extra padding).
   bin.bin().resize((bin.bin().size() + 3) & ~size_t{3}, 0);
@@ -518,6 +566,8 @@ Json build_json(const SkinnedAsset& asset, BinaryBuilder& bin) {
   gltf["meshes"] = Json::array({std::move(mesh)});
   gltf["skins"] = Json::array({std::move(skin)});
   if (!materials.empty()) gltf["materials"] = std::move(materials);
+  if (!textures.empty()) gltf["textures"] = std::move(textures);
+  if (!images.empty()) gltf["images"] = std::move(images);
   if (!animations.empty()) gltf["animations"] = std::move(animations);
   gltf["accessors"] = bin.take_accessors();
   gltf["bufferViews"] = bin.take_views();

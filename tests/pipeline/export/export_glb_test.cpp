@@ -21,6 +21,7 @@
 #include "edge_case_asset.h"
 #include "pipeline_calls.h"
 #include "spectator_character.h"
+#include "test_png.h"
 
 namespace crowdbake {
 namespace {
@@ -216,6 +217,57 @@ TEST_F(ExportGlb, ReimportedFileAnimatesLikeTheAsset) {
   // note: importers skip point primitives, so compare without it.
   edge.primitives.erase(edge.primitives.begin() + 1);
   EXPECT_LT(max_skinned_difference(edge, edge_back), 1e-5);
+}
+
+// Materials keep their look through export and import: the base colour image (bytes as they
+// were), the alpha mode and cutoff, double-sidedness; a UV transform is applied to the UVs,
+// so the re-imported texture coordinates are the transformed ones with no transform left.
+TEST_F(ExportGlb, MaterialsKeepTheirImagesModesAndUvTransforms) {
+  SkinnedAsset a = samples::make_spectator_character();
+  PackImage image;
+  image.name = "skin.png";
+  image.mime_type = "image/png";
+  image.width = 4;
+  image.height = 2;
+  image.data = test::solid_image(4, 2, {200, 120, 90, 255});
+  a.images = {image};
+  ASSERT_FALSE(a.materials.empty());
+  Material& m = a.materials[0];
+  m.base_color_texture = image.name;
+  m.base_color_image = 0;
+  m.alpha_mode = AlphaMode::kMask;
+  m.alpha_cutoff = 0.3f;
+  m.double_sided = true;
+  m.uv_transform = {0.5f, 0.0f, 0.25f, 0.0f, 2.0f, -1.0f};
+  size_t textured = 0;
+  while (textured < a.primitives.size() &&
+         (a.primitives[textured].material != 0 || a.primitives[textured].uvs.empty()))
+    ++textured;
+  ASSERT_LT(textured, a.primitives.size()) << "a primitive with material 0 and UVs";
+
+  const fs::path path = dir_ / "textured.glb";
+  test::export_glb_or_throw(a, path.string());
+  const nlohmann::json j = parse_glb(read_bytes(path));
+  ASSERT_EQ(j["images"].size(), 1u);
+  EXPECT_EQ(j["images"][0]["mimeType"], "image/png");
+  EXPECT_EQ(j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+
+  const SkinnedAsset back = test::import_gltf_or_throw(path.string(), {});
+  ASSERT_EQ(back.images.size(), 1u);
+  EXPECT_EQ(back.images[0].data, image.data);
+  const Material& mb = back.materials[0];
+  EXPECT_EQ(mb.base_color_image, 0);
+  EXPECT_EQ(mb.alpha_mode, AlphaMode::kMask);
+  EXPECT_FLOAT_EQ(mb.alpha_cutoff, 0.3f);
+  EXPECT_TRUE(mb.double_sided);
+  EXPECT_EQ(mb.uv_transform, (std::array<float, 6>{1, 0, 0, 0, 1, 0}));
+  const Primitive& pa = a.primitives[textured];
+  const Primitive& pb = back.primitives[textured];
+  ASSERT_EQ(pb.uvs.size(), pa.uvs.size());
+  for (size_t v = 0; v < pa.uvs.size(); ++v) {
+    EXPECT_FLOAT_EQ(pb.uvs[v].x, 0.5f * pa.uvs[v].x + 0.25f) << v;
+    EXPECT_FLOAT_EQ(pb.uvs[v].y, 2.0f * pa.uvs[v].y - 1.0f) << v;
+  }
 }
 
 // Every shared character, imported, exported and imported again, animates as imported
