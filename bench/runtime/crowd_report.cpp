@@ -15,6 +15,7 @@
 #include "crowdbake/runtime/crowd/placement.h"
 #include "crowdbake/runtime/crowd/spectator_scene.h"
 #include "crowdbake/runtime/crowd/spectator_update_job.h"
+#include "runtime/crowd/spectator_sim.h"
 
 namespace crowdbake::crowd {
 namespace {
@@ -25,48 +26,22 @@ double Ms(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-struct Sim {
-  BehaviourFsm fsm;
-  SpectatorScene scene;
-  SpectatorState state;
-  std::vector<uint16_t> out_state, out_clip;
-  std::vector<float> out_time;
+// Shares are printed in percent.
+struct Sim : SpectatorSim {
   explicit Sim(const SpectatorSceneDef& def) {
-    Status s = build_behaviour_fsm(default_stadium_fsm(), fsm);
-    if (s.ok()) s = build_spectator_scene(fsm, def, scene);
+    const Status s = build(def);
     if (!s.ok()) {
       std::fprintf(stderr, "error: %s\n", s.message().c_str());
       std::exit(2);
     }
-    state.reset(fsm, scene);
-    out_state.resize(scene.size());
-    out_clip.resize(scene.size());
-    out_time.resize(scene.size());
   }
   void RunTo(double t) {
-    SpectatorUpdateJob job;
-    job.fsm = &fsm;
-    job.scene = &scene;
-    job.state = &state;
-    job.time_s = t;
-    job.out_state = out_state.data();
-    job.out_clip = out_clip.data();
-    job.out_clip_time = out_time.data();
-    job.out_count = scene.size();
-    if (!job.Run()) std::exit(3);
+    if (!job(t).Run()) std::exit(3);
   }
   double Share(const std::function<bool(size_t)>& pick, int team = -1) const {
-    size_t hit = 0, count = 0;
-    for (size_t i = 0; i < scene.size(); ++i) {
-      if (team >= 0 && scene.team(i) != team) continue;
-      ++count;
-      hit += pick(i);
-    }
-    return count ? 100.0 * static_cast<double>(hit) / static_cast<double>(count) : 0.0;
+    return 100.0 * share(pick, team);
   }
-  double Reacting(int team = -1) const {
-    return Share([&](size_t i) { return state.mode[i] == SpectatorState::kReacting; }, team);
-  }
+  double Reacting(int team = -1) const { return 100.0 * reacting(team); }
 };
 
 SpectatorSceneDef Block(int side, float embarrassment, std::vector<SceneEvent> events) {

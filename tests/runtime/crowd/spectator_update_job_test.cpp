@@ -13,55 +13,19 @@
 #include "allocation_counter.h"
 #include "crowdbake/runtime/crowd/behaviour_fsm.h"
 #include "crowdbake/runtime/crowd/spectator_scene.h"
+#include "spectator_sim.h"
 
 namespace crowdbake::crowd {
 namespace {
 
-struct Sim {
-  BehaviourFsm fsm;
-  SpectatorScene scene;
-  SpectatorState state;
-  std::vector<uint16_t> out_state, out_clip;
-  std::vector<float> out_time;
-
+struct Sim : SpectatorSim {
   explicit Sim(const SpectatorSceneDef& def,
                const BehaviourFsmDef& fsm_def = default_stadium_fsm()) {
-    Status s = build_behaviour_fsm(fsm_def, fsm);
+    const Status s = build(def, fsm_def);
     EXPECT_TRUE(s.ok()) << s.message();
-    s = build_spectator_scene(fsm, def, scene);
-    EXPECT_TRUE(s.ok()) << s.message();
-    state.reset(fsm, scene);
-    out_state.resize(scene.size());
-    out_clip.resize(scene.size());
-    out_time.resize(scene.size());
   }
-  SpectatorUpdateJob Job(double t) {
-    SpectatorUpdateJob job;
-    job.fsm = &fsm;
-    job.scene = &scene;
-    job.state = &state;
-    job.time_s = t;
-    job.out_state = out_state.data();
-    job.out_clip = out_clip.data();
-    job.out_clip_time = out_time.data();
-    job.out_count = scene.size();
-    return job;
-  }
-  void RunTo(double t) { ASSERT_TRUE(Job(t).Run()); }
+  void RunTo(double t) { ASSERT_TRUE(job(t).Run()); }
   uint16_t Id(const char* name) const { return fsm.find_state(name); }
-  // Share of individuals (optionally of one team) for which `pick` holds.
-  double Share(const std::function<bool(size_t)>& pick, int team = -1) const {
-    size_t hit = 0, count = 0;
-    for (size_t i = 0; i < scene.size(); ++i) {
-      if (team >= 0 && scene.team(i) != team) continue;
-      ++count;
-      hit += pick(i);
-    }
-    return count ? static_cast<double>(hit) / static_cast<double>(count) : 0.0;
-  }
-  double Reacting(int team = -1) const {
-    return Share([&](size_t i) { return state.mode[i] == SpectatorState::kReacting; }, team);
-  }
 };
 
 SpectatorSceneDef Stadium(uint64_t seed = 1) {
@@ -128,8 +92,8 @@ TEST(SpectatorUpdateJob, NothingHappensWithoutEvents) {
   }
   // The idle walk varies the crowd: several sitting variants and some looking around.
   sim.RunTo(31.0);
-  EXPECT_GT(sim.Share([&](size_t i) { return sim.out_state[i] == sim.Id("look_around"); }), 0.05);
-  EXPECT_GT(sim.Share([&](size_t i) { return sim.out_state[i] == sim.Id("sit"); }), 0.5);
+  EXPECT_GT(sim.share([&](size_t i) { return sim.out_state[i] == sim.Id("look_around"); }), 0.05);
+  EXPECT_GT(sim.share([&](size_t i) { return sim.out_state[i] == sim.Id("sit"); }), 0.5);
 }
 
 TEST(SpectatorUpdateJob, OutputsNameAPlayableClip) {
@@ -151,17 +115,17 @@ TEST(SpectatorUpdateJob, GoalReactionsByTeam) {
   auto cheering = [&](size_t i) { return sim.out_state[i] == arm_up || sim.out_state[i] == cheer; };
   auto sulking = [&](size_t i) { return sim.out_state[i] == look_down; };
   sim.RunTo(11.9);
-  EXPECT_EQ(sim.Reacting(), 0.0);
-  EXPECT_EQ(sim.Share(cheering), 0.0);
+  EXPECT_EQ(sim.reacting(), 0.0);
+  EXPECT_EQ(sim.share(cheering), 0.0);
   sim.RunTo(14.5);
-  EXPECT_GE(sim.Share(cheering, 0), 0.9);  // supporters of A cheer
-  EXPECT_EQ(sim.Share(cheering, 1), 0.0);  // B's do not...
-  EXPECT_GE(sim.Share(sulking, 1), 0.9);   // ... they look down
-  EXPECT_EQ(sim.Share(sulking, 0), 0.0);
+  EXPECT_GE(sim.share(cheering, 0), 0.9);  // supporters of A cheer
+  EXPECT_EQ(sim.share(cheering, 1), 0.0);  // B's do not...
+  EXPECT_GE(sim.share(sulking, 1), 0.9);   // ... they look down
+  EXPECT_EQ(sim.share(sulking, 0), 0.0);
   sim.RunTo(40.0);
-  EXPECT_EQ(sim.Reacting(), 0.0);
-  EXPECT_EQ(sim.Share(cheering), 0.0);
-  EXPECT_EQ(sim.Share(sulking), 0.0);
+  EXPECT_EQ(sim.reacting(), 0.0);
+  EXPECT_EQ(sim.share(cheering), 0.0);
+  EXPECT_EQ(sim.share(sulking), 0.0);
 }
 
 TEST(SpectatorUpdateJob, StateChangesKeepTheDefaultPose) {
@@ -241,7 +205,7 @@ double PeakReacting(Sim& sim, double until, int team = -1) {
   double peak = 0.0;
   for (double t = 0.0; t <= until; t += 0.1) {
     sim.RunTo(t);
-    peak = std::max(peak, sim.Reacting(team));
+    peak = std::max(peak, sim.reacting(team));
   }
   return peak;
 }
@@ -286,7 +250,7 @@ double MeanReactingTime(Sim& sim, double until) {
   double total = 0.0;
   for (double t = 0.0; t <= until; t += 0.1) {
     sim.RunTo(t);
-    total += sim.Reacting() * 0.1;
+    total += sim.reacting() * 0.1;
   }
   return total;
 }
@@ -304,7 +268,7 @@ TEST(SpectatorUpdateJob, FastStartSlowStop) {
   double rise_from = -1, rise_to = -1, fall_from = -1, fall_to = -1;
   for (double t = 0.0; t <= 20.0; t += 0.1) {
     sim.RunTo(t);
-    const double r = sim.Reacting();
+    const double r = sim.reacting();
     if (rise_from < 0 && r >= 0.1) rise_from = t;
     if (rise_to < 0 && r >= 0.9) rise_to = t;
     if (rise_to >= 0 && fall_from < 0 && r < 0.9) fall_from = t;
@@ -346,42 +310,42 @@ TEST(SpectatorUpdateJob, RunNeverAllocates) {
   Sim sim(Stadium());
   sim.RunTo(0.5);
   test::StartCountingAllocations();
-  for (double t = 0.5; t <= 20.0; t += 1.0 / 30.0) ASSERT_TRUE(sim.Job(t).Run());
+  for (double t = 0.5; t <= 20.0; t += 1.0 / 30.0) ASSERT_TRUE(sim.job(t).Run());
   EXPECT_EQ(test::StopCountingAllocations(), 0u);
 }
 
 TEST(SpectatorUpdateJob, JobValidity) {
   Sim sim(Stadium());
-  EXPECT_TRUE(sim.Job(1.0).Validate());
-  SpectatorUpdateJob job = sim.Job(1.0);
+  EXPECT_TRUE(sim.job(1.0).Validate());
+  SpectatorUpdateJob job = sim.job(1.0);
   job.fsm = nullptr;
   EXPECT_FALSE(job.Validate());
-  job = sim.Job(1.0);
+  job = sim.job(1.0);
   job.scene = nullptr;
   EXPECT_FALSE(job.Validate());
-  job = sim.Job(1.0);
+  job = sim.job(1.0);
   job.state = nullptr;
   EXPECT_FALSE(job.Run());
-  job = sim.Job(1.0);
+  job = sim.job(1.0);
   job.out_count = sim.scene.size() - 1;
   EXPECT_FALSE(job.Validate());
-  job = sim.Job(std::nan(""));
+  job = sim.job(std::nan(""));
   EXPECT_FALSE(job.Validate());
   // Outputs are optional.
-  job = sim.Job(1.0);
+  job = sim.job(1.0);
   job.out_state = nullptr;
   job.out_clip = nullptr;
   job.out_clip_time = nullptr;
   job.out_count = 0;
   EXPECT_TRUE(job.Run());
   // Time never goes backwards; reset() rewinds.
-  EXPECT_FALSE(sim.Job(0.5).Validate());
-  EXPECT_TRUE(sim.Job(1.0).Validate());
+  EXPECT_FALSE(sim.job(0.5).Validate());
+  EXPECT_TRUE(sim.job(1.0).Validate());
   sim.state.reset(sim.fsm, sim.scene);
-  EXPECT_TRUE(sim.Job(0.5).Run());
+  EXPECT_TRUE(sim.job(0.5).Run());
   // A state sized for another scene is refused.
   SpectatorState other;
-  job = sim.Job(1.0);
+  job = sim.job(1.0);
   job.state = &other;
   EXPECT_FALSE(job.Validate());
 }
