@@ -2,6 +2,7 @@
 // frame time), then continuous and discrete LoD at each budget; then the popping measure over
 // a camera dolly, continuous against discrete at an equal mean triangle count, and continuous
 // without and with geomorphs.
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "commands/child.h"
 #include "commands/render_report.h"
 #include "commands/render_scene.h"
+#include "commands/work_folder.h"
 #include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/runtime/cpu_reference.h"
@@ -465,16 +467,8 @@ int run_bench_render(const BenchRenderSettings& settings) {
   parse_resolution(s.resolution, width, height);
   const auto start = std::chrono::steady_clock::now();
   prepare_outputs(s);
-  const fs::path work =
-      fs::temp_directory_path() / ("crowdbake-bench-render-" + std::to_string(getpid()));
-  fs::create_directories(work);
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } cleanup{work};
+  const WorkFolder scratch("crowdbake-bench-render");
+  const fs::path& work = scratch.path();
   std::string pack = s.pack;
   if (pack.empty()) {
     pack = (work / "spectator.crowdpack").string();

@@ -19,6 +19,7 @@
 #include "commands/levels.h"
 #include "commands/peers.h"
 #include "commands/report.h"
+#include "commands/work_folder.h"
 #include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/error.h"
@@ -267,15 +268,8 @@ int run_bench_simplify(const BenchSettings& settings) {
   if (ec)
     throw Error(Error::Kind::kOutput, settings.out,
                 "cannot create the output folder: " + ec.message());
-  const fs::path work = fs::temp_directory_path() / ("crowdbake-bench-" + std::to_string(getpid()));
-  fs::create_directories(work);
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } cleanup{work};
+  const WorkFolder scratch("crowdbake-bench");
+  const fs::path& work = scratch.path();
 
   for (const Input& input : load_inputs(settings, progress)) {
     result.assets.push_back(
