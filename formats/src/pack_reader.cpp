@@ -38,25 +38,49 @@ std::string hex(uint32_t v) {
   return buffer;
 }
 
+// A chunk's payload decoder, into its part of the contents (HEAD also fills the counts).
+using ChunkDecoder = bool (*)(ByteReader& in, uint32_t version, PackContents& out,
+                              PackCounts& counts);
+
+// Adapters from the pack_io decoders to ChunkDecoder: `Decode` fills the contents' `Part`.
+template <auto Part, auto Decode>
+bool decode_part(ByteReader& in, uint32_t, PackContents& out, PackCounts&) {
+  return Decode(in, out.*Part);
+}
+template <auto Part, auto Decode>
+bool decode_versioned_part(ByteReader& in, uint32_t version, PackContents& out, PackCounts&) {
+  return Decode(in, version, out.*Part);
+}
+bool decode_head(ByteReader& in, uint32_t, PackContents& out, PackCounts& counts) {
+  return pack_io::decode_head(in, out, counts);
+}
+
 struct KnownChunk {
   uint32_t tag;
   uint32_t version;  // the newest this build reads
-  bool required = true;
-  uint32_t oldest = 0;  // the oldest this build reads; 0: only `version`
+  bool required;
+  uint32_t oldest;  // the oldest this build reads; 0: only `version`
+  ChunkDecoder decode;
 };
+using C = PackContents;
 constexpr KnownChunk kKnownChunks[] = {
-    {kTagHead, kHeadVersion},
-    {kTagSkel, kWrappedVersion, true, kSkelVersion},
-    {kTagClip, kWrappedVersion, true, kClipVersion},
-    {kTagMatl, kMatlVersion},
-    {kTagMatx, kMatxVersion, false},
-    {kTagBnds, kBndsVersion},
-    {kTagProg, kWrappedVersion, true, kProgVersion},
-    {kTagLerr, kLerrVersion, false},
-    {kTagGeom, kGeomVersion, true, kGeomOldestVersion},
-    {kTagAnim, kAnimVersion, true, kAnimOldestVersion},
-    {kTagPart, kWrappedVersion, true, kPartVersion},
-    {kTagImgs, kImgsVersion, false},
+    {kTagHead, kHeadVersion, true, 0, decode_head},
+    {kTagSkel, kWrappedVersion, true, kSkelVersion,
+     decode_part<&C::joints, pack_io::decode_skeleton>},
+    {kTagClip, kWrappedVersion, true, kClipVersion, decode_part<&C::clips, pack_io::decode_clips>},
+    {kTagMatl, kMatlVersion, true, 0, decode_part<&C::materials, pack_io::decode_materials>},
+    {kTagMatx, kMatxVersion, false, 0, decode_part<&C::materials, pack_io::decode_material_extras>},
+    {kTagBnds, kBndsVersion, true, 0, decode_part<&C::bounds, pack_io::decode_bounds>},
+    {kTagProg, kWrappedVersion, true, kProgVersion,
+     decode_part<&C::progressive, pack_io::decode_progressive>},
+    {kTagLerr, kLerrVersion, false, 0, decode_part<&C::level_errors, pack_io::decode_level_errors>},
+    {kTagGeom, kGeomVersion, true, kGeomOldestVersion,
+     decode_versioned_part<&C::geometry, pack_io::decode_geometry>},
+    {kTagAnim, kAnimVersion, true, kAnimOldestVersion,
+     decode_versioned_part<&C::animation, pack_io::decode_animation>},
+    {kTagPart, kWrappedVersion, true, kPartVersion,
+     decode_part<&C::partition, pack_io::decode_partition>},
+    {kTagImgs, kImgsVersion, false, 0, decode_part<&C::images, pack_io::decode_images>},
 };
 
 const KnownChunk* find_known(uint32_t tag) {
@@ -191,45 +215,7 @@ Status decode_chunk(const PackChunk& chunk, const uint8_t* payload, PackContents
   }
   ByteReader in(payload, size, name);
   PackCounts ignored;
-  bool ok = false;
-  switch (chunk.tag) {
-    case kTagHead:
-      ok = pack_io::decode_head(in, out, counts ? *counts : ignored);
-      break;
-    case kTagSkel:
-      ok = pack_io::decode_skeleton(in, out.joints);
-      break;
-    case kTagClip:
-      ok = pack_io::decode_clips(in, out.clips);
-      break;
-    case kTagMatl:
-      ok = pack_io::decode_materials(in, out.materials);
-      break;
-    case kTagMatx:
-      ok = pack_io::decode_material_extras(in, out.materials);
-      break;
-    case kTagBnds:
-      ok = pack_io::decode_bounds(in, out.bounds);
-      break;
-    case kTagProg:
-      ok = pack_io::decode_progressive(in, out.progressive);
-      break;
-    case kTagLerr:
-      ok = pack_io::decode_level_errors(in, out.level_errors);
-      break;
-    case kTagGeom:
-      ok = pack_io::decode_geometry(in, chunk.version, out.geometry);
-      break;
-    case kTagAnim:
-      ok = pack_io::decode_animation(in, chunk.version, out.animation);
-      break;
-    case kTagPart:
-      ok = pack_io::decode_partition(in, out.partition);
-      break;
-    case kTagImgs:
-      ok = pack_io::decode_images(in, out.images);
-      break;
-  }
+  const bool ok = known->decode(in, chunk.version, out, counts ? *counts : ignored);
   if (!ok) return error(in.ok() ? name + ": invalid" : in.error());
   return {};
 }
