@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/material_listing.h"
 #include "cli/pack_file.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/import.h"
@@ -38,7 +39,8 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
   j["triangles"] = asset.triangle_count();
   j["max_influences"] = max_influences(asset);
   j["source_max_influences"] = asset.stats.max_influences;
-  j["materials"] = asset.materials.size();
+  j["materials"] = materials_json(asset.materials);
+  j["images"] = images_json(asset.images);
   j["primitives"] = nlohmann::json::array();
   for (const Primitive& p : asset.primitives)
     j["primitives"].push_back({{"name", p.name},
@@ -76,6 +78,7 @@ void print_text(const SkinnedAsset& asset) {
     std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s\n", p.name.c_str(),
                 p.material, p.vertex_count(), p.triangle_count(),
                 p.normals.empty() ? "  no normals" : "", p.uvs.empty() ? "  no uvs" : "");
+  print_materials(asset.materials, asset.images);
   std::printf("  clips      %zu\n", asset.clips.size());
   for (const Clip& c : asset.clips)
     std::printf("    %-32s %8.3f s  %4d keyframes\n", c.name.c_str(), c.duration, c.keyframes());

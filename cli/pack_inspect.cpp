@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/material_listing.h"
 #include "cli/pack_file.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
@@ -138,23 +139,8 @@ ordered_json to_json(const PackFile& pack) {
                  {"max", c.bounds.max},
                  {"diagonal", bbox_diagonal(c)},
                  {"radius", c.bounds.radius}};
-  j["materials"] = ordered_json::array();
-  for (const PackMaterial& mat : c.materials)
-    j["materials"].push_back({{"name", mat.name},
-                              {"base_color", mat.base_color},
-                              {"texture", mat.base_color_texture},
-                              {"image", mat.base_color_image},
-                              {"uv_transform", mat.uv_transform},
-                              {"alpha_mode", alpha_mode_name(mat.alpha_mode)},
-                              {"alpha_cutoff", mat.alpha_cutoff},
-                              {"double_sided", mat.double_sided}});
-  j["images"] = ordered_json::array();
-  for (const PackImage& image : c.images)
-    j["images"].push_back({{"name", image.name},
-                           {"type", image.mime_type},
-                           {"width", image.width},
-                           {"height", image.height},
-                           {"bytes", image.data.size()}});
+  j["materials"] = materials_json(c.materials);
+  j["images"] = images_json(c.images);
   j["settings"] = settings_json(c.settings_json);
   ordered_json sizes = ordered_json::object();
   for (const PackChunk& ch : pack.chunks) sizes[pack_format::tag_name(ch.tag)] = ch.size;
@@ -227,27 +213,7 @@ void print_text(const PackFile& pack) {
   std::printf("  bounds     min (%g, %g, %g), max (%g, %g, %g), diagonal %g, radius %g\n",
               c.bounds.min[0], c.bounds.min[1], c.bounds.min[2], c.bounds.max[0], c.bounds.max[1],
               c.bounds.max[2], bbox_diagonal(c), c.bounds.radius);
-  std::printf("  materials  %zu\n", c.materials.size());
-  for (const PackMaterial& mat : c.materials) {
-    std::string extra;
-    if (!mat.base_color_texture.empty())
-      extra += "  texture " + mat.base_color_texture +
-               (mat.base_color_image >= 0 ? " (image " + std::to_string(mat.base_color_image) + ")"
-                                          : " (not stored)");
-    if (mat.alpha_mode != AlphaMode::kOpaque)
-      extra += std::string("  alpha ") + alpha_mode_name(mat.alpha_mode) +
-               (mat.alpha_mode == AlphaMode::kMask ? " " + std::to_string(mat.alpha_cutoff) : "");
-    if (mat.double_sided) extra += "  double-sided";
-    std::printf("             %-28s  color (%.3g, %.3g, %.3g, %.3g)%s\n", mat.name.c_str(),
-                mat.base_color[0], mat.base_color[1], mat.base_color[2], mat.base_color[3],
-                extra.c_str());
-  }
-  if (!c.images.empty()) std::printf("  images     %zu\n", c.images.size());
-  for (size_t i = 0; i < c.images.size(); ++i) {
-    const PackImage& image = c.images[i];
-    std::printf("             %zu  %-26s  %s %u x %u, %zu bytes\n", i, image.name.c_str(),
-                image.mime_type.c_str(), image.width, image.height, image.data.size());
-  }
+  print_materials(c.materials, c.images);
   const ordered_json settings = settings_json(c.settings_json);
   if (settings.is_object()) {
     bool first = true;

@@ -550,6 +550,17 @@ TEST_F(PackCommands, TexturedBakeShowsItsImageAndDiffComparesIt) {
   EXPECT_EQ(j["materials"][0]["alpha_mode"], "mask");
   EXPECT_EQ(j["images"][0]["width"], 4);
   EXPECT_EQ(j["images"][0]["bytes"], png.size());
+  // The character file itself lists its materials and images the same way.
+  r = run_crowdbake({"inspect", input.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("texture cloth_albedo (image 0)  alpha mask"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("image/png 4 x 4, " + std::to_string(png.size()) + " bytes"),
+            std::string::npos)
+      << r.out;
+  r = run_crowdbake({"inspect", input.string(), "--json"});
+  const json source = json::parse(r.out);
+  EXPECT_EQ(source["materials"], j["materials"]);
+  EXPECT_EQ(source["images"], j["images"]);
 
   PackContents c = read(pack);
   ASSERT_EQ(c.images.size(), 1u);
