@@ -3,7 +3,6 @@
 // a camera dolly, continuous against discrete at an equal mean triangle count, and continuous
 // without and with geomorphs.
 
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>

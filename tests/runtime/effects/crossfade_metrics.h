@@ -1,7 +1,8 @@
 // Artefacts of the three crossfade blends (crossfade.h) on one joint: clip A holds the joint
 // at its bind transform, clip B rotates it by `angle` about `axis` through `pivot` (the joint's
 // model-space position); the ideal in-between is the rotation by w·angle about that same axis.
-// Used by crossfade_test.cpp and by bench/runtime/crossfade_report.cpp (numbers in docs/performance.md).
+// Used by crossfade_test.cpp and by bench/runtime/crossfade_report.cpp (numbers in
+// docs/performance.md).
 #pragma once
 
 #include <algorithm>
