@@ -44,18 +44,6 @@ struct Sim : SpectatorSim {
   double Reacting(int team = -1) const { return 100.0 * reacting(team); }
 };
 
-SpectatorSceneDef Block(int side, float embarrassment, std::vector<SceneEvent> events) {
-  SpectatorSceneDef def;
-  def.teams = {{"A", embarrassment, 0.2f}};
-  SeatGridDef grid;
-  grid.rows = grid.columns = side;
-  grid.empty_probability = 0.0f;
-  grid.sections = {{"A", 0, side}};
-  place_seat_grid(grid, def.teams, def.individuals);
-  def.events = std::move(events);
-  return def;
-}
-
 void Goal() {
   SpectatorSceneDef def;
   def.teams = {{"A", 0.5f, 0.2f}, {"B", 0.5f, 0.2f}};
@@ -94,15 +82,7 @@ void Contagion() {
       "| sparks | shy crowd peak reacting | lone starts | social | contagion | isolated stops |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|\n");
   for (double share : {0.02, 0.05, 0.08, 0.10, 0.15, 0.20, 0.25, 0.30, 0.40}) {
-    SpectatorSceneDef def = Block(30, 0.9f, {{"applause", 1.0, "spark", 1.0f}});
-    def.teams[0].embarrassment_spread = 0.05f;
-    def.teams.push_back({"spark", 0.0f, 0.0f});
-    uint64_t x = 12345;
-    for (IndividualDef& p : def.individuals) {
-      x = x * 6364136223846793005ull + 1442695040888963407ull;
-      if (static_cast<double>(x >> 11) * 0x1.0p-53 < share) p.team = 1;
-    }
-    def.params.home_state = "stand";
+    const SpectatorSceneDef def = sparks_scene(share);
     Sim sim(def);
     double peak = 0.0;
     for (int f = 0; f <= 150; ++f) {
@@ -128,7 +108,7 @@ void Embarrassment() {
     for (float excitement : {0.3f, 0.6f, 1.0f}) {
       if (std::strcmp(kind, "goal") == 0 && excitement != 1.0f) continue;
       for (float e : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
-        Sim sim(Block(30, e, {{kind, 1.0, "", excitement}}));
+        Sim sim(block_scene(30, e, {{kind, 1.0, "", excitement}}));
         double peak = 0.0, area = 0.0, t10 = -1, t90 = -1, d90 = -1, d10 = -1;
         for (int f = 0; f <= 400; ++f) {
           const double t = f * 0.1;
@@ -161,7 +141,7 @@ void Cost() {
       "tick: mean / max ms | frames without: mean ms |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|\n");
   for (int side : {32, 100, 317}) {
-    SpectatorSceneDef def = Block(side, 0.5f, {{"goal", 1.0, "", 1.0f}});
+    SpectatorSceneDef def = block_scene(side, 0.5f, {{"goal", 1.0, "", 1.0f}});
     const auto b0 = Clock::now();
     Sim sim(def);
     const double build = Ms(b0, Clock::now());

@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "crowdbake/runtime/crowd/behaviour_fsm.h"
+#include "crowdbake/runtime/crowd/placement.h"
 #include "crowdbake/runtime/crowd/spectator_scene.h"
 #include "crowdbake/runtime/crowd/spectator_update_job.h"
 
@@ -60,5 +62,36 @@ struct SpectatorSim {
     return share([&](size_t i) { return state.mode[i] == SpectatorState::kReacting; }, team);
   }
 };
+
+// A side × side block of seats, every one taken, by one team "A" of the given embarrassment
+// (spread 0.2) watching `events`. No individuals if the seats cannot be placed, which
+// SpectatorSim::build then refuses.
+inline SpectatorSceneDef block_scene(int side, float embarrassment,
+                                     std::vector<SceneEvent> events) {
+  SpectatorSceneDef def;
+  def.teams = {{"A", embarrassment, 0.2f}};
+  SeatGridDef grid;
+  grid.rows = grid.columns = side;
+  grid.empty_probability = 0.0f;
+  grid.sections = {{"A", 0, side}};
+  if (!place_seat_grid(grid, def.teams, def.individuals).ok()) def.individuals.clear();
+  def.events = std::move(events);
+  return def;
+}
+
+// A 30 × 30 block where a random share of the seats are sparks (eager clappers of an
+// applause event) and everyone else is shy (embarrassment 0.9) with no drive of its own.
+inline SpectatorSceneDef sparks_scene(double share) {
+  SpectatorSceneDef def = block_scene(30, 0.9f, {{"applause", 1.0, "spark", 1.0f}});
+  def.teams[0].embarrassment_spread = 0.05f;
+  def.teams.push_back({"spark", 0.0f, 0.0f});
+  uint64_t x = 12345;
+  for (IndividualDef& p : def.individuals) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    if (static_cast<double>(x >> 11) * 0x1.0p-53 < share) p.team = 1;
+  }
+  def.params.home_state = "stand";
+  return def;
+}
 
 }  // namespace crowdbake::crowd

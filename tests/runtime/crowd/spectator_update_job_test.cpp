@@ -23,6 +23,7 @@ struct Sim : SpectatorSim {
                const BehaviourFsmDef& fsm_def = default_stadium_fsm()) {
     const Status s = build(def, fsm_def);
     EXPECT_TRUE(s.ok()) << s.message();
+    EXPECT_GT(scene.size(), 0u) << "no individuals: the seats could not be placed";
   }
   void RunTo(double t) { ASSERT_TRUE(job(t).Run()); }
   uint16_t Id(const char* name) const { return fsm.find_state(name); }
@@ -43,18 +44,6 @@ SpectatorSceneDef Stadium(uint64_t seed = 1) {
 }
 
 // One team on a square grid of seats (spacing 0.55 × 0.85 m, about 13 neighbours each).
-SpectatorSceneDef Block(int side, float embarrassment, std::vector<SceneEvent> events) {
-  SpectatorSceneDef def;
-  def.teams = {{"A", embarrassment, 0.2f}};
-  SeatGridDef grid;
-  grid.rows = grid.columns = side;
-  grid.empty_probability = 0.0f;
-  grid.sections = {{"A", 0, side}};
-  EXPECT_TRUE(place_seat_grid(grid, def.teams, def.individuals).ok());
-  def.events = std::move(events);
-  return def;
-}
-
 // 3 × 3 individuals 1 m apart (the centre, index 4, has the other 8 as neighbours).
 // `sparks` clap for an applause event at t = 1 s with no embarrassment; the centre is a
 // shy spectator with no drive of its own; everyone else is busy looking down (a
@@ -210,33 +199,18 @@ double PeakReacting(Sim& sim, double until, int team = -1) {
   return peak;
 }
 
-// A 30 × 30 block where a random share of the seats are sparks (eager clappers of an
-// applause event) and everyone else is shy (embarrassment 0.9) with no drive of its own.
-SpectatorSceneDef Sparks(double share) {
-  SpectatorSceneDef def = Block(30, 0.9f, {{"applause", 1.0, "spark", 1.0f}});
-  def.teams[0].embarrassment_spread = 0.05f;
-  def.teams.push_back({"spark", 0.0f, 0.0f});
-  uint64_t x = 12345;
-  for (IndividualDef& p : def.individuals) {
-    x = x * 6364136223846793005ull + 1442695040888963407ull;
-    if (static_cast<double>(x >> 11) * 0x1.0p-53 < share) p.team = 1;
-  }
-  def.params.home_state = "stand";
-  return def;
-}
-
 TEST(SpectatorUpdateJob, CrowdJoinsAboveAQuarterClapping) {
-  Sim many(Sparks(0.30));
+  Sim many(sparks_scene(0.30));
   EXPECT_GE(PeakReacting(many, 8.0, 0), 0.95);
-  Sim few(Sparks(0.03));
+  Sim few(sparks_scene(0.03));
   EXPECT_LT(PeakReacting(few, 8.0, 0), 0.30);
   EXPECT_GT(few.state.counters.isolated_stops, 0u);
 }
 
 TEST(SpectatorUpdateJob, EmbarrassmentReducesLoneReactions) {
   const std::vector<SceneEvent> weak = {{"applause", 1.0, "", 0.4f}};
-  Sim bold(Block(30, 0.1f, weak));
-  Sim shy(Block(30, 0.9f, weak));
+  Sim bold(block_scene(30, 0.1f, weak));
+  Sim shy(block_scene(30, 0.9f, weak));
   const double bold_peak = PeakReacting(bold, 15.0), shy_peak = PeakReacting(shy, 15.0);
   const double n = static_cast<double>(bold.scene.size());
   EXPECT_GT(bold.state.counters.lone_starts / n, 0.8);
@@ -257,14 +231,14 @@ double MeanReactingTime(Sim& sim, double until) {
 
 TEST(SpectatorUpdateJob, EmbarrassmentShortensReactions) {
   const std::vector<SceneEvent> goal = {{"goal", 1.0, "", 1.0f}};
-  Sim bold(Block(30, 0.0f, goal));
-  Sim shy(Block(30, 1.0f, goal));
+  Sim bold(block_scene(30, 0.0f, goal));
+  Sim shy(block_scene(30, 1.0f, goal));
   const double bold_time = MeanReactingTime(bold, 30.0), shy_time = MeanReactingTime(shy, 30.0);
   EXPECT_GT(bold_time, 1.25 * shy_time) << bold_time << " vs " << shy_time;
 }
 
 TEST(SpectatorUpdateJob, FastStartSlowStop) {
-  Sim sim(Block(30, 0.5f, {{"applause", 1.0, "", 1.0f}}));
+  Sim sim(block_scene(30, 0.5f, {{"applause", 1.0, "", 1.0f}}));
   double rise_from = -1, rise_to = -1, fall_from = -1, fall_to = -1;
   for (double t = 0.0; t <= 20.0; t += 0.1) {
     sim.RunTo(t);
