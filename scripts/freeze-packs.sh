@@ -13,9 +13,11 @@ trap 'rm -rf "$WORK"' EXIT
 "$BUILD/samples/spectator/make_spectator" -o "$WORK/spectator.glb" --detail 0 -q
 "$BUILD/samples/limb_chain/make_limb_chain" -o "$WORK/limb.glb" --triangles 400 --joints 4 >/dev/null
 SMALL='"level_errors": {"samples": 4, "fps": 0.5}, "partition": {"size": 64}'
-echo "{$SMALL, \"animation\": {\"fps\": 10}}" >"$WORK/draco.json"
+echo "{$SMALL, \"animation\": {\"fps\": 10}}" >"$WORK/predictive.json"
+echo "{$SMALL, \"animation\": {\"fps\": 10}, \"geometry\": {\"codec\": \"draco\"}}" >"$WORK/draco.json"
 echo "{$SMALL, \"animation\": {\"fps\": 10, \"encoding\": \"float16\"}, \"geometry\": {\"codec\": \"meshopt\"}}" >"$WORK/meshopt.json"
 echo "{$SMALL, \"animation\": {\"fps\": 5, \"encoding\": \"float32\"}, \"geometry\": {\"codec\": \"raw\"}}" >"$WORK/raw.json"
+"$CB" bake "$WORK/spectator.glb" -o "$WORK/spectator_predictive.crowdpack" --config "$WORK/predictive.json" --quiet
 "$CB" bake "$WORK/spectator.glb" -o "$WORK/spectator_draco.crowdpack" --config "$WORK/draco.json" --quiet
 "$CB" bake "$WORK/limb.glb" -o "$WORK/limb_meshopt_float16.crowdpack" --config "$WORK/meshopt.json" --quiet
 "$CB" bake "$WORK/limb.glb" -o "$WORK/limb_raw_float32.crowdpack" --config "$WORK/raw.json" --quiet

@@ -43,6 +43,17 @@ struct GeometryLayout {
 // The layout write_pack stores for `g` (bits forced to 0 for the raw codec).
 GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOptions& options);
 
+// A quantisation grid over the bounding cube of `dims`-component values (the rule Draco
+// uses): every component c maps to round((v - origin[c]) / range * max_q), max_q = 2^bits - 1.
+struct Grid {
+  float origin[3] = {0, 0, 0};
+  float range = 1.0f;
+  uint32_t max_q = 0;
+};
+Grid make_grid(const std::vector<float>& values, int dims, int bits);
+uint32_t quantize(float v, float origin, const Grid& g);
+float dequantize(uint32_t q, float origin, const Grid& g);
+
 // Skin weights as integers of `bits` (1-16), four per vertex summing to 2^bits - 1 (the
 // rounding error moved onto each vertex's largest weight), and back.
 std::vector<uint16_t> quantize_weights(const std::vector<float>& weights, int bits);
@@ -53,6 +64,13 @@ bool decode_geometry_raw(ByteReader& in, const GeometryLayout& layout, PackGeome
 
 void encode_geometry_meshopt(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);
 bool decode_geometry_meshopt(ByteReader& in, const GeometryLayout& layout, PackGeometry& out);
+
+// Codec 3 codes against `progressive` (PROG) when it describes these vertices: the decoder
+// must get the same arrays (PROG is read before GEOM).
+void encode_geometry_predictive(const PackGeometry& g, const PackProgressive& progressive,
+                                const GeometryLayout& layout, ByteWriter& out);
+bool decode_geometry_predictive(ByteReader& in, const GeometryLayout& layout,
+                                const PackProgressive& progressive, PackGeometry& out);
 
 // Throws std::runtime_error when Draco refuses the mesh.
 void encode_geometry_draco(const PackGeometry& g, const GeometryLayout& layout, ByteWriter& out);

@@ -20,43 +20,6 @@ namespace {
 
 enum IndexMode : uint8_t { kIndexSequence = 0, kIndexBufferRotated = 1 };
 
-// A quantisation grid over the bounding cube of `dims`-component values: every component
-// c maps to round((v - origin[c]) / range * (2^bits - 1)).
-struct Grid {
-  float origin[3] = {0, 0, 0};
-  float range = 1.0f;
-  uint32_t max_q = 0;
-};
-
-Grid make_grid(const std::vector<float>& values, int dims, int bits) {
-  Grid grid;
-  float lo[3], hi[3];
-  for (int c = 0; c < dims; ++c) lo[c] = std::numeric_limits<float>::max(), hi[c] = -lo[c];
-  for (size_t i = 0; i < values.size(); ++i) {
-    const int c = static_cast<int>(i % dims);
-    lo[c] = std::min(lo[c], values[i]);
-    hi[c] = std::max(hi[c], values[i]);
-  }
-  float range = 0.0f;
-  for (int c = 0; c < dims; ++c) {
-    grid.origin[c] = values.empty() ? 0.0f : lo[c];
-    if (!values.empty()) range = std::max(range, hi[c] - lo[c]);
-  }
-  // note: a flat attribute (all equal) still needs a nonzero step.
-  grid.range = range > 0.0f && std::isfinite(range) ? range : 1.0f;
-  grid.max_q = (1u << bits) - 1;
-  return grid;
-}
-
-uint32_t quantize(float v, float origin, const Grid& g) {
-  const double q = std::floor((static_cast<double>(v) - origin) / g.range * g.max_q + 0.5);
-  return static_cast<uint32_t>(std::min<double>(std::max(q, 0.0), g.max_q));
-}
-
-float dequantize(uint32_t q, float origin, const Grid& g) {
-  return static_cast<float>(origin + static_cast<double>(q) * g.range / g.max_q);
-}
-
 void put_stream(ByteWriter& out, const void* elements, size_t count, size_t stride) {
   if (count == 0) {
     out.u32(0);

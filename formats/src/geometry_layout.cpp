@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry_codec.h"
@@ -35,6 +36,35 @@ GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOption
     layout.weight_bits = layout.has(kAttrSkin) ? static_cast<uint8_t>(options.weight_bits) : 0;
   }
   return layout;
+}
+
+Grid make_grid(const std::vector<float>& values, int dims, int bits) {
+  Grid grid;
+  float lo[3], hi[3];
+  for (int c = 0; c < dims; ++c) lo[c] = std::numeric_limits<float>::max(), hi[c] = -lo[c];
+  for (size_t i = 0; i < values.size(); ++i) {
+    const int c = static_cast<int>(i % dims);
+    lo[c] = std::min(lo[c], values[i]);
+    hi[c] = std::max(hi[c], values[i]);
+  }
+  float range = 0.0f;
+  for (int c = 0; c < dims; ++c) {
+    grid.origin[c] = values.empty() ? 0.0f : lo[c];
+    if (!values.empty()) range = std::max(range, hi[c] - lo[c]);
+  }
+  // note: a flat attribute (all equal) still needs a nonzero step.
+  grid.range = range > 0.0f && std::isfinite(range) ? range : 1.0f;
+  grid.max_q = (1u << bits) - 1;
+  return grid;
+}
+
+uint32_t quantize(float v, float origin, const Grid& g) {
+  const double q = std::floor((static_cast<double>(v) - origin) / g.range * g.max_q + 0.5);
+  return static_cast<uint32_t>(std::min<double>(std::max(q, 0.0), g.max_q));
+}
+
+float dequantize(uint32_t q, float origin, const Grid& g) {
+  return static_cast<float>(origin + static_cast<double>(q) * g.range / g.max_q);
 }
 
 std::vector<uint16_t> quantize_weights(const std::vector<float>& weights, int bits) {

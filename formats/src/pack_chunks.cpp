@@ -386,7 +386,8 @@ bool decode_level_errors(ByteReader& in, PackLevelErrors& out) {
 
 // --- GEOM ------------------------------------------------------------------------------
 
-void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, ByteWriter& out) {
+void encode_geometry(const PackGeometry& g, const PackProgressive& progressive,
+                     const PackWriteOptions& options, ByteWriter& out) {
   const GeometryLayout layout = make_geometry_layout(g, options);
   out.u32(static_cast<uint32_t>(layout.codec));
   out.u32(layout.vertex_count);
@@ -407,14 +408,19 @@ void encode_geometry(const PackGeometry& g, const PackWriteOptions& options, Byt
     case GeometryCodec::kRaw:
       encode_geometry_raw(g, layout, out);
       break;
+    case GeometryCodec::kPredictive:
+      encode_geometry_predictive(g, progressive, layout, out);
+      break;
   }
 }
 
 uint32_t geometry_version(const PackGeometry& g, const PackWriteOptions& options) {
-  return make_geometry_layout(g, options).weight_bits ? kGeomVersion : kGeomOldestVersion;
+  if (options.codec == GeometryCodec::kPredictive) return kGeomVersion;
+  return make_geometry_layout(g, options).weight_bits ? kGeomWeightsVersion : kGeomOldestVersion;
 }
 
-bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out) {
+bool decode_geometry(ByteReader& in, uint32_t version, const PackProgressive& progressive,
+                     PackGeometry& out) {
   GeometryLayout layout;
   uint32_t codec = 0, reserved[3] = {};
   in.u32(codec, "codec");
@@ -429,8 +435,10 @@ bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out) {
   if (!in.ok()) return false;
   if ((version < 2 && layout.weight_bits) || reserved[0] || reserved[1] || reserved[2])
     return in.fail("reserved header fields are not zero");
-  if (codec > static_cast<uint32_t>(GeometryCodec::kRaw))
-    return in.fail("unknown codec " + std::to_string(codec));
+  if (codec > static_cast<uint32_t>(GeometryCodec::kPredictive) ||
+      (codec == static_cast<uint32_t>(GeometryCodec::kPredictive) && version < 3))
+    return in.fail("unknown codec " + std::to_string(codec) + " for GEOM version " +
+                   std::to_string(version));
   layout.codec = static_cast<GeometryCodec>(codec);
   if (layout.vertex_count > kMaxVertices || layout.triangle_count > kMaxTriangles)
     return in.fail(std::to_string(layout.vertex_count) + " vertices / " +
@@ -467,6 +475,9 @@ bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out) {
       break;
     case GeometryCodec::kRaw:
       ok = decode_geometry_raw(in, layout, out);
+      break;
+    case GeometryCodec::kPredictive:
+      ok = decode_geometry_predictive(in, layout, progressive, out);
       break;
   }
   if (!ok) return in.fail("decoding failed");  // note: keeps the codec's own message

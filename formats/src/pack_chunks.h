@@ -48,11 +48,14 @@ bool decode_progressive(ByteReader& in, PackProgressive& out);
 void encode_level_errors(const PackLevelErrors& errors, ByteWriter& out);
 bool decode_level_errors(ByteReader& in, PackLevelErrors& out);
 
-void encode_geometry(const PackGeometry& geometry, const PackWriteOptions& options,
-                     ByteWriter& out);
-// The GEOM version write_pack uses: v2 when weights are quantised, else v1 (§3.7).
+// The predictive codec codes against `progressive`; its decoder needs the same arrays.
+void encode_geometry(const PackGeometry& geometry, const PackProgressive& progressive,
+                     const PackWriteOptions& options, ByteWriter& out);
+// The GEOM version write_pack uses: v3 for the predictive codec, v2 when weights are
+// quantised, else v1 (§3.7).
 uint32_t geometry_version(const PackGeometry& geometry, const PackWriteOptions& options);
-bool decode_geometry(ByteReader& in, uint32_t version, PackGeometry& out);
+bool decode_geometry(ByteReader& in, uint32_t version, const PackProgressive& progressive,
+                     PackGeometry& out);
 
 // ANIM v2 when `compressed` (the texels as one zstd frame), v1 otherwise.
 // `bounded_frame` (may be null): the error-bounded coding's stream as one zstd frame, to store

@@ -51,6 +51,10 @@ template <auto Part, auto Decode>
 bool decode_versioned_part(ByteReader& in, uint32_t version, PackContents& out, PackCounts&) {
   return Decode(in, version, out.*Part);
 }
+// GEOM's predictive codec decodes against PROG, which writers store before it.
+bool decode_geometry(ByteReader& in, uint32_t version, PackContents& out, PackCounts&) {
+  return pack_io::decode_geometry(in, version, out.progressive, out.geometry);
+}
 bool decode_head(ByteReader& in, uint32_t, PackContents& out, PackCounts& counts) {
   return pack_io::decode_head(in, out, counts);
 }
@@ -74,8 +78,7 @@ constexpr KnownChunk kKnownChunks[] = {
     {kTagProg, kWrappedVersion, true, kProgVersion,
      decode_part<&C::progressive, pack_io::decode_progressive>},
     {kTagLerr, kLerrVersion, false, 0, decode_part<&C::level_errors, pack_io::decode_level_errors>},
-    {kTagGeom, kGeomVersion, true, kGeomOldestVersion,
-     decode_versioned_part<&C::geometry, pack_io::decode_geometry>},
+    {kTagGeom, kGeomVersion, true, kGeomOldestVersion, decode_geometry},
     {kTagAnim, kAnimVersion, true, kAnimOldestVersion,
      decode_versioned_part<&C::animation, pack_io::decode_animation>},
     {kTagPart, kWrappedVersion, true, kPartVersion,

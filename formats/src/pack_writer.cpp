@@ -29,7 +29,7 @@ void check_options(const PackWriteOptions& o) {
   const auto bits_ok = [](int bits, int min) {
     return bits == 0 || (bits >= min && bits <= static_cast<int>(kMaxQuantizationBits));
   };
-  if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kRaw))
+  if (static_cast<uint32_t>(o.codec) > static_cast<uint32_t>(GeometryCodec::kPredictive))
     throw std::invalid_argument("write_pack: unknown geometry codec " +
                                 std::to_string(static_cast<uint32_t>(o.codec)));
   if (o.compression != PackCompression::kNone && o.compression != PackCompression::kZstd)
@@ -164,6 +164,8 @@ const char* geometry_codec_name(GeometryCodec codec) {
       return "meshopt";
     case GeometryCodec::kRaw:
       return "raw";
+    case GeometryCodec::kPredictive:
+      return "predictive";
   }
   return "unknown";
 }
@@ -213,7 +215,7 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
   if (!contents.level_errors.vertices.empty())
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
-  pack_io::encode_geometry(contents.geometry, options,
+  pack_io::encode_geometry(contents.geometry, contents.progressive, options,
                            add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
   const bool compressed = options.compression == PackCompression::kZstd;
   pack_io::encode_animation(contents.animation, compressed, bounded_animation,

@@ -29,8 +29,9 @@ constexpr std::array<std::pair<const char*, AnimationEncoding>, 3> kEncodings = 
      {"quantized", AnimationEncoding::kQuantized}}};
 constexpr std::array<std::pair<const char*, PackCompression>, 2> kCompressions = {
     {{"zstd", PackCompression::kZstd}, {"none", PackCompression::kNone}}};
-constexpr std::array<std::pair<const char*, GeometryCodec>, 3> kCodecs = {
-    {{"draco", GeometryCodec::kDraco},
+constexpr std::array<std::pair<const char*, GeometryCodec>, 4> kCodecs = {
+    {{"predictive", GeometryCodec::kPredictive},
+     {"draco", GeometryCodec::kDraco},
      {"meshopt", GeometryCodec::kMeshopt},
      {"raw", GeometryCodec::kRaw}}};
 

@@ -142,8 +142,8 @@ TEST_P(Hostile, AppendedBytesRejected) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Codecs, Hostile,
-                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt,
-                                           GeometryCodec::kRaw),
+                         ::testing::Values(GeometryCodec::kPredictive, GeometryCodec::kDraco,
+                                           GeometryCodec::kMeshopt, GeometryCodec::kRaw),
                          [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
 
 TEST(PackReader, WrongMagic) {
@@ -267,6 +267,31 @@ TEST(PackReader, ChunksInAnyFileOrderRead) {
   const Status s = read(test::assemble_pack(chunks), out);
   ASSERT_TRUE(s.ok()) << s.message();
   test::expect_same_contents(in, out);
+}
+
+TEST(PackReader, PredictiveGeometryNeedsItsProgressiveMeshFirst) {
+  // The predictive codec decodes against PROG, which writers store before GEOM.
+  const PackContents in = test::make_test_contents(4, 25);
+  auto chunks = test::split_pack(test::pack_bytes(in, {GeometryCodec::kPredictive}));
+  std::reverse(chunks.begin(), chunks.end());
+  expect_error(read(test::assemble_pack(chunks)),
+               "chunk GEOM: coded against the progressive mesh, but no PROG chunk for these 16 "
+               "vertices was read before it");
+  // Streaming: GEOM alone, then with PROG read first.
+  chunks = test::split_pack(test::pack_bytes(in, {GeometryCodec::kPredictive}));
+  const std::vector<uint8_t> bytes = test::assemble_pack(chunks);
+  std::vector<PackChunk> table;
+  ASSERT_TRUE(read_pack_chunks(bytes.data(), bytes.size(), table));
+  const auto find = [&](uint32_t tag) {
+    return *std::find_if(table.begin(), table.end(),
+                         [&](const PackChunk& c) { return c.tag == tag; });
+  };
+  PackContents out;
+  EXPECT_FALSE(read_pack_chunk(find(kTagGeom), bytes.data() + find(kTagGeom).offset, out));
+  ASSERT_TRUE(read_pack_chunk(find(kTagProg), bytes.data() + find(kTagProg).offset, out));
+  const Status s = read_pack_chunk(find(kTagGeom), bytes.data() + find(kTagGeom).offset, out);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(out.geometry.triangles, in.geometry.triangles);
 }
 
 TEST(PackReader, BadTableEntriesRejected) {

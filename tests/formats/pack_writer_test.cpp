@@ -27,17 +27,17 @@ PackContents round_trip(const PackContents& in, const PackWriteOptions& options)
   return out;
 }
 
-// Documented tolerance of a codec/bit setting on these contents. Normals: Draco's
-// octahedral quantisation of unit normals stays within 2.5 / (2^bits - 1) per component
-// plus float rounding (measured: about 2.06 / (2^bits - 1)), meshopt's grid within half a
-// step of the normals' extent.
+// Documented tolerance of a codec/bit setting on these contents. Normals: Draco's and the
+// predictive codec's octahedral quantisation of unit normals stays within 2.5 / (2^bits - 1)
+// per component plus float rounding (measured: about 2.06 / (2^bits - 1)), meshopt's grid
+// within half a step of the normals' extent.
 test::Tolerance tolerance_for(const PackContents& c, const PackWriteOptions& o) {
   test::Tolerance tol;
   if (o.codec == GeometryCodec::kRaw) return tol;
   tol.positions = test::grid_tolerance(test::extent(c.geometry.positions, 3), o.position_bits);
   tol.uvs = test::grid_tolerance(test::extent(c.geometry.uvs, 2), o.uv_bits);
   if (o.normal_bits)
-    tol.normals = o.codec == GeometryCodec::kDraco
+    tol.normals = o.codec == GeometryCodec::kDraco || o.codec == GeometryCodec::kPredictive
                       ? 2.5 / ((1u << o.normal_bits) - 1) + 1e-6
                       : test::grid_tolerance(test::extent(c.geometry.normals, 3), o.normal_bits);
   if (o.weight_bits) tol.weights = 2.5 / ((1u << o.weight_bits) - 1) + 1e-7;
@@ -170,8 +170,8 @@ TEST_P(RoundTrip, DeterministicBytes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Codecs, RoundTrip,
-                         ::testing::Values(GeometryCodec::kDraco, GeometryCodec::kMeshopt,
-                                           GeometryCodec::kRaw),
+                         ::testing::Values(GeometryCodec::kPredictive, GeometryCodec::kDraco,
+                                           GeometryCodec::kMeshopt, GeometryCodec::kRaw),
                          [](const auto& p) { return std::string(geometry_codec_name(p.param)); });
 
 TEST(PackWriter, ChunksInStreamingOrderAligned) {

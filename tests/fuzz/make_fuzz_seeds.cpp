@@ -33,8 +33,8 @@ int write_packs(const std::string& dir) {
                static_cast<std::streamsize>(bytes.size()));
     ++written;
   };
-  for (GeometryCodec codec :
-       {GeometryCodec::kDraco, GeometryCodec::kMeshopt, GeometryCodec::kRaw}) {
+  for (GeometryCodec codec : {GeometryCodec::kPredictive, GeometryCodec::kDraco,
+                              GeometryCodec::kMeshopt, GeometryCodec::kRaw}) {
     const std::string codec_name = geometry_codec_name(codec);
     for (uint32_t grid : {2u, 3u, 5u}) {
       emit(codec_name + "_grid" + std::to_string(grid), fuzz::small_pack_contents(grid, grid),

@@ -154,6 +154,9 @@ enum class GeometryCodec : uint32_t {
   kDraco = 0,    // Draco sequential encoding (keeps vertex and face order)
   kMeshopt = 1,  // meshoptimizer vertex/index codecs (faster to decode)
   kRaw = 2,      // uncompressed
+  // Coded against the progressive mesh (PROG): each vertex predicted from the one it
+  // collapses into, each corner from its neighbours (GEOM v3, pack 1.6). The smallest.
+  kPredictive = 3,
 };
 
 // Quantisation bits apply to kDraco and kMeshopt; kRaw always stores exact floats.
@@ -171,7 +174,7 @@ enum class GeometryCodec : uint32_t {
 enum class PackCompression : uint32_t { kNone = 0, kZstd = 1 };
 
 struct PackWriteOptions {
-  GeometryCodec codec = GeometryCodec::kDraco;
+  GeometryCodec codec = GeometryCodec::kPredictive;
   int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
   int normal_bits = 10;
   int uv_bits = 12;
@@ -298,7 +301,7 @@ double bbox_diagonal(const PackContents& contents);
 // "opaque", "mask", "blend".
 const char* alpha_mode_name(AlphaMode mode);
 
-// Short names for reports: "draco", "meshopt", "raw".
+// Short names for reports: "predictive", "draco", "meshopt", "raw".
 const char* geometry_codec_name(GeometryCodec codec);
 
 }  // namespace crowdbake

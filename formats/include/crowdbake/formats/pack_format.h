@@ -12,8 +12,8 @@ namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
 // additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights);
-// 1.5: ANIM v3 (error-bounded animation coding)
-constexpr uint16_t kPackVersionMinor = 5;
+// 1.5: ANIM v3 (error-bounded animation coding); 1.6: GEOM v3 (the predictive codec)
+constexpr uint16_t kPackVersionMinor = 6;
 
 namespace pack_format {
 
@@ -57,7 +57,8 @@ constexpr uint32_t kMatlVersion = 1;
 constexpr uint32_t kBndsVersion = 1;
 constexpr uint32_t kProgVersion = 1;
 constexpr uint32_t kLerrVersion = 1;
-constexpr uint32_t kGeomVersion = 2;          // v2: skin weights may be quantised (§3.7)
+constexpr uint32_t kGeomVersion = 3;          // v3: the predictive codec (§3.7)
+constexpr uint32_t kGeomWeightsVersion = 2;   // v2: skin weights may be quantised
 constexpr uint32_t kGeomOldestVersion = 1;    // written when weights are stored exactly
 constexpr uint32_t kAnimVersion = 3;          // v3: error-bounded coding (compression 2)
 constexpr uint32_t kAnimLosslessVersion = 2;  // v2: texels stored compressed losslessly
