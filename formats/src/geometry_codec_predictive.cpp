@@ -1,26 +1,14 @@
 // The predictive GEOM codec (codec 3, GEOM v3; docs/pack-format.md 3.7): the geometry coded
 // against the progressive mesh that PROG describes, entropy-coded with Draco's rANS symbol
-// coder (the only Draco headers this file includes).
+// coder (symbol_stream.h).
 //
 // Why: vertices and triangles must stay in ProgressiveMesh order, which is the worst order
 // for Draco's sequential coder (it predicts each vertex from the previous one and each index
-// from the previous index). The progressive mesh itself says where to look instead:
-// - a vertex is predicted from the vertex it collapses into, or from the previous vertex
-//   of its collapse group (the wedges of one position, split together); the writer picks,
-//   per attribute, whichever of three rules codes smaller;
-// - a triangle's corners are mostly vertices seen a few triangles ago: neighbours of its
-//   other corners, the vertex whose split added it and that vertex's parent, or recently
-//   used vertices. A corner names its place in that candidate list; a vertex seen for the
-//   first time is named among the unseen wedges of a candidate's position, or by its rank
-//   among all unseen vertices; anything else by its distance from the level's vertex count.
-// The decoder rebuilds the same lists from what it has decoded, so both sides must run the
-// exact same steps (TriangleModel).
-#include <draco/compression/entropy/symbol_decoding.h>
-#include <draco/compression/entropy/symbol_encoding.h>
-#include <draco/core/decoder_buffer.h>
-#include <draco/core/draco_version.h>
-#include <draco/core/encoder_buffer.h>
-
+// from the previous index). The progressive mesh itself says where to look instead: a vertex
+// is predicted from the vertex it collapses into, or from the previous vertex of its collapse
+// group (the wedges of one position, split together); normals from the faces around them;
+// the writer picks, per attribute, whichever rule codes smallest. Triangles come first after
+// the positions, so the normals' guess can use them (predictive_triangles.h).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -28,60 +16,11 @@
 #include <stdexcept>
 
 #include "geometry_codec.h"
+#include "predictive_triangles.h"
+#include "symbol_stream.h"
 
 namespace crowdbake::pack_io {
 namespace {
-
-// --- symbol streams ---------------------------------------------------------------------
-
-// A stream is u32 n, n bytes of EncodeSymbols output, pad to 4. Empty when there are no
-// symbols (n = 0).
-void put_symbols(ByteWriter& out, const std::vector<uint32_t>& symbols, int components) {
-  if (symbols.empty()) {
-    out.u32(0);
-    return;
-  }
-  // note: Draco picks raw (a table per symbol value) or tagged (bit lengths, then the bits)
-  // from an estimate that leaves out the raw table's own size, which dominates for sparse
-  // 16-bit residuals; both are tried and the smaller kept (the stream says which).
-  draco::EncoderBuffer best;
-  for (const draco::SymbolCodingMethod method :
-       {draco::SYMBOL_CODING_TAGGED, draco::SYMBOL_CODING_RAW}) {
-    draco::Options options;
-    draco::SetSymbolEncodingCompressionLevel(&options, 10);
-    draco::SetSymbolEncodingMethod(&options, method);
-    draco::EncoderBuffer buffer;
-    if (!draco::EncodeSymbols(symbols.data(), static_cast<int>(symbols.size()), components,
-                              &options, &buffer))
-      throw std::runtime_error("Draco's symbol coder failed");
-    if (best.size() == 0 || buffer.size() < best.size()) best = std::move(buffer);
-  }
-  out.u32(static_cast<uint32_t>(best.size()));
-  out.raw(best.data(), best.size());
-  out.zero_pad(4);
-}
-
-// Reads `count` symbols, each below `limit`.
-bool get_symbols(ByteReader& in, std::vector<uint32_t>& symbols, size_t count, int components,
-                 uint32_t limit, const char* field) {
-  uint32_t size = 0;
-  if (!in.u32(size, field)) return false;
-  symbols.assign(count, 0);
-  if (count == 0) return size == 0 || in.fail(std::string(field) + ": bytes for an empty stream");
-  const uint8_t* data = in.cursor();
-  if (!in.skip(size, field)) return false;
-  draco::DecoderBuffer buffer;
-  buffer.Init(reinterpret_cast<const char*>(data), size);
-  buffer.set_bitstream_version(DRACO_BITSTREAM_VERSION(draco::kDracoMeshBitstreamVersionMajor,
-                                                       draco::kDracoMeshBitstreamVersionMinor));
-  if (!draco::DecodeSymbols(static_cast<uint32_t>(count), components, &buffer, symbols.data()))
-    return in.fail(std::string(field) + ": Draco's symbol decoder rejected the stream");
-  for (size_t i = 0; i < count; ++i)
-    if (symbols[i] >= limit)
-      return in.fail(std::string(field) + ": symbol " + std::to_string(i) + " is " +
-                     std::to_string(symbols[i]) + ", at most " + std::to_string(limit - 1));
-  return in.zero_pad(4, field);
-}
 
 // --- lanes: attributes as unsigned integers of at most 16 bits --------------------------
 
@@ -114,11 +53,6 @@ std::vector<uint32_t> from_lanes(const std::vector<uint32_t>& lanes, const LaneL
   for (size_t i = 0; i < values.size(); ++i) values[i] = lanes[2 * i] << 16 | lanes[2 * i + 1];
   return values;
 }
-
-uint32_t zigzag(int32_t d) {
-  return (static_cast<uint32_t>(d) << 1) ^ static_cast<uint32_t>(d >> 31);
-}
-int32_t unzigzag(uint32_t s) { return static_cast<int32_t>(s >> 1) ^ -static_cast<int32_t>(s & 1); }
 
 // The difference x - p taken modulo 2^w as a signed value, zigzagged: below 2^w.
 uint32_t wrapped_residual(uint32_t x, uint32_t p, int w) {
@@ -386,322 +320,6 @@ std::vector<float> grid_floats(const std::vector<uint32_t>& q, const Grid& grid,
   return values;
 }
 
-// --- the triangle model (shared by encoder and decoder) ---------------------------------
-
-namespace predictive {
-
-constexpr uint32_t kCandidates = 32;  // corner symbols below this name a list entry
-constexpr uint32_t kFirstUse = 32;    // an unseen vertex by its rank among all unseen
-constexpr uint32_t kEscape = 33;      // a seen vertex by its distance from the level
-constexpr uint32_t kWedgeBase = 34;   // + j: an unseen wedge at the j-th candidate position
-constexpr uint32_t kWedgePositions = 16;
-constexpr uint32_t kCornerSymbols = kWedgeBase + kWedgePositions;
-constexpr uint32_t kMaxWedges = 64;  // positions with more vertices are not wedge-coded
-constexpr int kAdjacency = 8;        // neighbours remembered per vertex
-constexpr int kRecent = 16;          // recently used vertices
-
-// What both sides know while triangles are coded in order.
-class TriangleModel {
- public:
-  TriangleModel(uint32_t vertex_count, const std::vector<uint32_t>& position_keys,
-                const PackProgressive* prog)
-      : prog_(prog),
-        vertex_count_(vertex_count),
-        seen_(vertex_count, 0),
-        stamp_(vertex_count, 0),
-        adjacency_(size_t{vertex_count} * kAdjacency),
-        adjacency_size_(vertex_count, 0),
-        unseen_tree_(vertex_count + 1, 0) {
-    for (uint32_t i = 1; i <= vertex_count; ++i) {
-      unseen_tree_[i] += 1;
-      const uint32_t parent = i + (i & (~i + 1));
-      if (parent <= vertex_count) unseen_tree_[parent] += unseen_tree_[i];
-    }
-    group_positions(position_keys);
-  }
-
-  // The level triangle t belongs to (the vertex count at which it appears), 0 if none.
-  void start_triangle(uint32_t t) {
-    if (!prog_) return;
-    while (level_ < vertex_count_ && prog_->triangle_count[level_] <= t) ++level_;
-    split_ = level_ > prog_->min_vertices ? level_ - 1 : kNone;
-  }
-  uint32_t level() const { return level_; }
-
-  // The candidate list for corner k of a triangle whose earlier corners are tri[0..k).
-  const std::vector<uint32_t>& candidates(const uint32_t* tri, int k) {
-    list_.clear();
-    ++stamp_value_;
-    if (k == 2)
-      for (int a = 0; a < adjacency_size_[tri[0]]; ++a) {
-        const uint32_t x = adjacency_[size_t{tri[0]} * kAdjacency + a];
-        if (is_neighbour(tri[1], x)) push(x);
-      }
-    for (int j = k - 1; j >= 0; --j)
-      for (int a = 0; a < adjacency_size_[tri[j]]; ++a)
-        push(adjacency_[size_t{tri[j]} * kAdjacency + a]);
-    if (split_ != kNone) {
-      push(split_);
-      push(prog_->collapse_to[split_]);
-    }
-    for (uint32_t x : recent_) push(x);
-    return list_;
-  }
-
-  // The distinct positions of the last candidate list with at most kMaxWedges vertices.
-  std::vector<uint32_t> wedge_positions() {
-    std::vector<uint32_t> positions;
-    ++stamp_value_;
-    for (uint32_t x : list_) {
-      const uint32_t p = position_of_[x];
-      if (stamp_position_[p] == stamp_value_ || members(p).second > kMaxWedges) continue;
-      stamp_position_[p] = stamp_value_;
-      positions.push_back(p);
-      if (positions.size() == kWedgePositions) break;
-    }
-    return positions;
-  }
-
-  uint32_t position_of(uint32_t v) const { return position_of_[v]; }
-  bool seen(uint32_t v) const { return seen_[v] != 0; }
-
-  // The r-th unseen vertex at position p (ascending), or kNone.
-  uint32_t unseen_wedge(uint32_t p, uint32_t r) const {
-    const auto [first, count] = members(p);
-    for (uint32_t i = 0; i < count; ++i) {
-      const uint32_t v = by_position_[first + i];
-      if (!seen_[v] && r-- == 0) return v;
-    }
-    return kNone;
-  }
-  uint32_t unseen_wedge_rank(uint32_t p, uint32_t v) const {
-    const auto [first, count] = members(p);
-    uint32_t r = 0;
-    for (uint32_t i = 0; i < count && by_position_[first + i] != v; ++i)
-      r += seen_[by_position_[first + i]] ? 0 : 1;
-    return r;
-  }
-
-  uint32_t unseen_rank(uint32_t v) const {  // unseen vertices below v
-    uint32_t sum = 0;
-    for (uint32_t i = v; i > 0; i -= i & (~i + 1)) sum += unseen_tree_[i];
-    return sum;
-  }
-  uint32_t unseen_count() const { return unseen_rank(vertex_count_); }
-  uint32_t unseen_at_rank(uint32_t r) const {  // the unseen vertex with r unseen below it
-    uint32_t at = 0, step = 1;
-    while (step * 2 <= vertex_count_) step *= 2;
-    for (; step > 0; step /= 2)
-      if (at + step <= vertex_count_ && unseen_tree_[at + step] <= r) {
-        at += step;
-        r -= unseen_tree_[at];
-      }
-    return at;  // 0-based vertex index
-  }
-
-  void use(uint32_t v) {
-    if (!seen_[v]) {
-      seen_[v] = 1;
-      for (uint32_t i = v + 1; i <= vertex_count_; i += i & (~i + 1)) --unseen_tree_[i];
-    }
-    move_to_front(recent_, v, kRecent);
-  }
-
-  void end_triangle(const uint32_t* tri) {
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        if (a != b) remember_neighbour(tri[a], tri[b]);
-  }
-
- private:
-  void push(uint32_t x) {
-    if (list_.size() == kCandidates || stamp_[x] == stamp_value_) return;
-    stamp_[x] = stamp_value_;
-    list_.push_back(x);
-  }
-  bool is_neighbour(uint32_t v, uint32_t x) const {
-    for (int a = 0; a < adjacency_size_[v]; ++a)
-      if (adjacency_[size_t{v} * kAdjacency + a] == x) return true;
-    return false;
-  }
-  void remember_neighbour(uint32_t v, uint32_t x) {
-    uint32_t* list = &adjacency_[size_t{v} * kAdjacency];
-    int at = 0;
-    while (at < adjacency_size_[v] && list[at] != x) ++at;
-    if (at == adjacency_size_[v]) {
-      if (at < kAdjacency)
-        ++adjacency_size_[v];
-      else
-        --at;
-    }
-    for (; at > 0; --at) list[at] = list[at - 1];
-    list[0] = x;
-  }
-  static void move_to_front(std::vector<uint32_t>& list, uint32_t x, size_t cap) {
-    const auto it = std::find(list.begin(), list.end(), x);
-    if (it != list.end()) list.erase(it);
-    list.insert(list.begin(), x);
-    if (list.size() > cap) list.pop_back();
-  }
-  std::pair<uint32_t, uint32_t> members(uint32_t p) const {
-    return {position_start_[p], position_start_[p + 1] - position_start_[p]};
-  }
-  // Vertices with equal position keys (3 per vertex) share a position id.
-  void group_positions(const std::vector<uint32_t>& keys) {
-    by_position_.resize(vertex_count_);
-    std::iota(by_position_.begin(), by_position_.end(), 0u);
-    const auto key = [&](uint32_t v) {
-      return std::make_tuple(keys[3 * size_t{v}], keys[3 * size_t{v} + 1], keys[3 * size_t{v} + 2]);
-    };
-    std::sort(by_position_.begin(), by_position_.end(),
-              [&](uint32_t a, uint32_t b) { return key(a) != key(b) ? key(a) < key(b) : a < b; });
-    position_of_.resize(vertex_count_);
-    position_start_.clear();
-    for (uint32_t i = 0; i < vertex_count_; ++i) {
-      if (i == 0 || key(by_position_[i]) != key(by_position_[i - 1])) position_start_.push_back(i);
-      position_of_[by_position_[i]] = static_cast<uint32_t>(position_start_.size() - 1);
-    }
-    position_start_.push_back(vertex_count_);
-    stamp_position_.assign(position_start_.size(), 0);
-  }
-
-  const PackProgressive* prog_;
-  uint32_t vertex_count_;
-  uint32_t level_ = 0, split_ = kNone;
-  std::vector<uint8_t> seen_;
-  std::vector<uint32_t> stamp_, stamp_position_;
-  uint32_t stamp_value_ = 0;
-  std::vector<uint32_t> adjacency_;
-  std::vector<uint8_t> adjacency_size_;
-  std::vector<uint32_t> unseen_tree_;  // Fenwick tree over "still unseen" flags
-  std::vector<uint32_t> recent_, list_;
-  std::vector<uint32_t> by_position_, position_of_, position_start_;
-};
-
-// --- triangles ---------------------------------------------------------------------------
-
-struct TriangleStreams {
-  std::vector<uint32_t> corner[3];                 // one symbol per corner, by corner slot
-  std::vector<uint32_t> wedge, first_use, escape;  // the values some symbols need
-};
-
-constexpr uint32_t kRankLimit = 1u << 25;    // a vertex rank (< the vertex limit)
-constexpr uint32_t kEscapeLimit = 1u << 26;  // a zigzagged signed vertex distance
-
-TriangleStreams model_triangles(const std::vector<uint32_t>& triangles, uint32_t vertex_count,
-                                const std::vector<uint32_t>& keys, const PackProgressive* prog) {
-  TriangleStreams s;
-  TriangleModel m(vertex_count, keys, prog);
-  const uint32_t count = static_cast<uint32_t>(triangles.size() / 3);
-  for (int k = 0; k < 3; ++k) s.corner[k].reserve(count);
-  for (uint32_t t = 0; t < count; ++t) {
-    m.start_triangle(t);
-    const uint32_t* tri = &triangles[3 * size_t{t}];
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t x = tri[k];
-      const std::vector<uint32_t>& list = m.candidates(tri, k);
-      const auto at = std::find(list.begin(), list.end(), x);
-      uint32_t symbol = static_cast<uint32_t>(at - list.begin());
-      if (at == list.end() && m.seen(x)) {
-        symbol = kEscape;
-        s.escape.push_back(zigzag(static_cast<int32_t>(x) - static_cast<int32_t>(m.level())));
-      } else if (at == list.end()) {
-        const std::vector<uint32_t> positions = m.wedge_positions();
-        const auto p = std::find(positions.begin(), positions.end(), m.position_of(x));
-        if (p != positions.end()) {
-          symbol = kWedgeBase + static_cast<uint32_t>(p - positions.begin());
-          s.wedge.push_back(m.unseen_wedge_rank(*p, x));
-        } else {
-          symbol = kFirstUse;
-          s.first_use.push_back(m.unseen_rank(x));
-        }
-      }
-      s.corner[k].push_back(symbol);
-      m.use(x);
-    }
-    m.end_triangle(tri);
-  }
-  return s;
-}
-
-bool replay_triangles(ByteReader& in, const TriangleStreams& s, uint32_t vertex_count,
-                      const std::vector<uint32_t>& keys, const PackProgressive* prog,
-                      std::vector<uint32_t>& triangles) {
-  TriangleModel m(vertex_count, keys, prog);
-  size_t next_wedge = 0, next_first = 0, next_escape = 0;
-  const uint32_t count = static_cast<uint32_t>(s.corner[0].size());
-  triangles.assign(3 * size_t{count}, 0);
-  for (uint32_t t = 0; t < count; ++t) {
-    in.set_item("triangle", t);
-    m.start_triangle(t);
-    uint32_t* tri = &triangles[3 * size_t{t}];
-    for (int k = 0; k < 3; ++k) {
-      const std::vector<uint32_t>& list = m.candidates(tri, k);
-      const uint32_t symbol = s.corner[k][t];
-      uint32_t x = kNone;
-      if (symbol < kCandidates) {
-        if (symbol < list.size()) x = list[symbol];
-      } else if (symbol == kFirstUse) {
-        if (next_first < s.first_use.size() && s.first_use[next_first] < m.unseen_count())
-          x = m.unseen_at_rank(s.first_use[next_first]);
-        ++next_first;
-      } else if (symbol == kEscape) {
-        if (next_escape < s.escape.size()) {
-          const int64_t v = int64_t{m.level()} + unzigzag(s.escape[next_escape]);
-          if (v >= 0 && v < vertex_count) x = static_cast<uint32_t>(v);
-        }
-        ++next_escape;
-      } else {
-        const std::vector<uint32_t> positions = m.wedge_positions();
-        const uint32_t j = symbol - kWedgeBase;
-        if (j < positions.size() && next_wedge < s.wedge.size())
-          x = m.unseen_wedge(positions[j], s.wedge[next_wedge]);
-        ++next_wedge;
-      }
-      if (x == kNone)
-        return in.fail("corner " + std::to_string(k) + ": symbol " + std::to_string(symbol) +
-                       " names no vertex");
-      tri[k] = x;
-      m.use(x);
-    }
-    m.end_triangle(tri);
-  }
-  in.set_item(nullptr, 0);
-  if (next_wedge != s.wedge.size() || next_first != s.first_use.size() ||
-      next_escape != s.escape.size())
-    return in.fail("triangle streams hold values no corner uses");
-  return true;
-}
-
-}  // namespace predictive
-
-using predictive::TriangleStreams;
-
-void put_triangles(ByteWriter& out, const TriangleStreams& s) {
-  out.u32(static_cast<uint32_t>(s.wedge.size()));
-  out.u32(static_cast<uint32_t>(s.first_use.size()));
-  out.u32(static_cast<uint32_t>(s.escape.size()));
-  for (const std::vector<uint32_t>& corner : s.corner) put_symbols(out, corner, 1);
-  put_symbols(out, s.wedge, 1);
-  put_symbols(out, s.first_use, 1);
-  put_symbols(out, s.escape, 1);
-}
-
-bool get_triangles(ByteReader& in, uint32_t triangle_count, TriangleStreams& s) {
-  uint32_t counts[3] = {};
-  for (uint32_t& c : counts) in.u32(c, "triangle stream counts");
-  if (!in.ok()) return false;
-  for (uint32_t c : counts)
-    if (c > 3 * uint64_t{triangle_count})
-      return in.fail("triangle stream count " + std::to_string(c) + " exceeds the corners");
-  for (std::vector<uint32_t>& corner : s.corner)
-    if (!get_symbols(in, corner, triangle_count, 1, predictive::kCornerSymbols, "corners"))
-      return false;
-  return get_symbols(in, s.wedge, counts[0], 1, predictive::kMaxWedges, "wedge ranks") &&
-         get_symbols(in, s.first_use, counts[1], 1, predictive::kRankLimit, "first-use ranks") &&
-         get_symbols(in, s.escape, counts[2], 1, predictive::kEscapeLimit, "escapes");
-}
-
 // The progressive mesh the coder may lean on: PROG's arrays when they describe these
 // vertices (checked here too, so a caller's inconsistent contents cannot mislead the coder).
 const PackProgressive* usable(const PackProgressive& prog, uint32_t vertex_count) {
@@ -730,7 +348,7 @@ void encode_geometry_predictive(const PackGeometry& g, const PackProgressive& pr
   ByteWriter body;
   const std::vector<uint32_t> keys = grid_values(body, g.positions, 3, layout.position_bits);
   put_attribute(body, keys, float_layout(3, layout.position_bits), p, rules[kSlotPosition]);
-  put_triangles(body, predictive::model_triangles(g.triangles, n, keys, p.prog));
+  put_predictive_triangles(body, g.triangles, n, keys, p.prog);
   if (layout.has(kAttrNormals)) {
     const int bits = layout.normal_bits;
     if (bits) {
@@ -855,9 +473,7 @@ bool decode_geometry_predictive(ByteReader& in, const GeometryLayout& layout,
   if (!get_float_attribute(in, n, 3, layout.position_bits, p, rules[kSlotPosition], "positions",
                            keys, out.positions))
     return false;
-  predictive::TriangleStreams streams;
-  if (!get_triangles(in, layout.triangle_count, streams) ||
-      !predictive::replay_triangles(in, streams, n, keys, p.prog, out.triangles))
+  if (!get_predictive_triangles(in, layout.triangle_count, n, keys, p.prog, out.triangles))
     return false;
   if (layout.has(kAttrNormals) && !get_normals(in, layout, p, rules[kSlotNormal], keys, out))
     return false;

@@ -106,10 +106,12 @@ void expect_pack_round_trip(const SkinnedAsset& asset, const std::string& name) 
   EXPECT_EQ(back.partition.width, pack.partition.width);
   EXPECT_EQ(back.geometry.regions, pack.geometry.regions);
   EXPECT_EQ(back.geometry.joints, pack.geometry.joints);
-  // Weights as 16-bit integers (docs/pack-format.md 3.7): each within 2.5 / 65535.
+  // Weights as integers of the bake's weight_bits (docs/pack-format.md 3.7): each within
+  // 2.5 / (2^bits - 1).
   ASSERT_EQ(back.geometry.weights.size(), pack.geometry.weights.size());
+  const double weight_step = 1.0 / ((1u << settings.pack.weight_bits) - 1);
   for (size_t i = 0; i < pack.geometry.weights.size(); ++i)
-    ASSERT_NEAR(back.geometry.weights[i], pack.geometry.weights[i], 2.5 / 65535 + 1e-7) << i;
+    ASSERT_NEAR(back.geometry.weights[i], pack.geometry.weights[i], 2.5 * weight_step + 1e-7) << i;
   ASSERT_EQ(back.joints.size(), asset.skeleton.joints.size());
   EXPECT_EQ(back.clips.size(), std::max<size_t>(asset.clips.size(), 1));
   // The animation as stored_animation() said it would be, and the coding within its bound.

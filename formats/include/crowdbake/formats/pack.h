@@ -178,7 +178,7 @@ struct PackWriteOptions {
   int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
   int normal_bits = 10;
   int uv_bits = 12;
-  int weight_bits = 16;  // skin weights as integers (0 = exact floats, GEOM v1)
+  int weight_bits = 12;  // skin weights as integers (0 = exact floats, GEOM v1)
   PackCompression compression = PackCompression::kZstd;
   // With kZstd and a kQuantized texture: the largest distance, as a fraction of the
   // bind-pose bounding-box diagonal (BNDS), that the animation coding may move a skinned
