@@ -55,10 +55,15 @@ class TriangleModel {
   }
   uint32_t level() const { return level_; }
 
-  // Candidate positions for corner k of a triangle whose corners tri[0..k) are known.
-  const std::vector<uint32_t>& candidates(const uint32_t* tri, int k) {
+  // Candidate positions for corner k of a triangle whose corners tri[0..k) are known. The
+  // list stops early once it holds `stop_size` entries or has reached `stop_position` (the
+  // decoder needs only the entry it names, the encoder only the place of its position).
+  const std::vector<uint32_t>& candidates(const uint32_t* tri, int k, uint32_t stop_size,
+                                          uint32_t stop_position) {
     list_.clear();
     ++stamp_value_;
+    stop_size_ = std::min(stop_size, kCandidates);
+    stop_position_ = stop_position;
     if (k == 2) {
       const uint32_t a = position_[tri[0]], b = position_[tri[1]];
       for (int i = 0; i < adjacency_size_[a]; ++i)
@@ -138,8 +143,8 @@ class TriangleModel {
 
  private:
   void push(uint32_t p) {
-    if (list_.size() == kCandidates || stamp_[p] == stamp_value_ ||
-        position_start_[p + 1] - position_start_[p] > kMaxWedges)
+    if (list_.size() == stop_size_ || (!list_.empty() && list_.back() == stop_position_) ||
+        stamp_[p] == stamp_value_ || position_start_[p + 1] - position_start_[p] > kMaxWedges)
       return;
     stamp_[p] = stamp_value_;
     list_.push_back(p);
@@ -189,6 +194,7 @@ class TriangleModel {
   std::vector<uint8_t> adjacency_size_;
   std::vector<uint32_t> unseen_tree_;  // Fenwick tree over "not used yet"
   std::vector<uint32_t> recent_, list_;
+  uint32_t stop_size_ = kCandidates, stop_position_ = kNone;
 };
 
 struct TriangleStreams {
@@ -209,7 +215,7 @@ void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& tria
     const uint32_t* tri = &triangles[3 * size_t{t}];
     for (int k = 0; k < 3; ++k) {
       const uint32_t x = tri[k], p = m.position_of(x);
-      const std::vector<uint32_t>& list = m.candidates(tri, k);
+      const std::vector<uint32_t>& list = m.candidates(tri, k, kCandidates, p);
       const auto at = std::find(list.begin(), list.end(), p);
       if (at != list.end()) {
         s.corner[k].push_back(static_cast<uint32_t>(at - list.begin()));
@@ -269,10 +275,10 @@ bool get_predictive_triangles(ByteReader& in, uint32_t triangle_count, uint32_t 
     m.start_triangle(t);
     uint32_t* tri = &triangles[3 * size_t{t}];
     for (int k = 0; k < 3; ++k) {
-      const std::vector<uint32_t>& list = m.candidates(tri, k);
       const uint32_t symbol = s.corner[k][t];
       uint32_t x = kNone;
       if (symbol < kCandidates) {
+        const std::vector<uint32_t>& list = m.candidates(tri, k, symbol + 1, kNone);
         const uint32_t wedge = take(s.wedge, next_wedge);
         if (symbol < list.size() && wedge != kNone) x = m.wedge_vertex(list[symbol], wedge);
       } else if (symbol == kFirstUse) {
