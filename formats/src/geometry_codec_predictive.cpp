@@ -327,8 +327,10 @@ const PackProgressive* usable(const PackProgressive& prog, uint32_t vertex_count
       prog.group_start.size() != vertex_count || prog.triangle_count.size() != vertex_count + 1 ||
       prog.min_vertices > vertex_count)
     return nullptr;
-  for (uint32_t i = prog.min_vertices; i < vertex_count; ++i)
-    if (prog.collapse_to[i] >= i || prog.group_start[i] > i) return nullptr;
+  for (uint32_t i = 0; i < vertex_count; ++i)
+    if (i < prog.min_vertices ? prog.collapse_to[i] != i
+                              : prog.collapse_to[i] >= i || prog.group_start[i] > i)
+      return nullptr;
   return &prog;
 }
 

@@ -17,10 +17,12 @@
 namespace crowdbake::pack_io {
 namespace {
 
-constexpr uint32_t kCandidates = 32;  // corner symbols below this name a candidate position
-constexpr uint32_t kFirstUse = 32;    // a vertex not used before, by its rank among those
-constexpr uint32_t kEscape = 33;      // a used vertex, by its distance from the level
-constexpr uint32_t kCornerSymbols = 34;
+constexpr uint32_t kCandidates = 32;   // corner symbols below this name a candidate position
+constexpr uint32_t kFirstUse = 32;     // a vertex not used before, by its rank among those
+constexpr uint32_t kEscape = 33;       // a used vertex, by its distance from the level
+constexpr uint32_t kUnderSplit = 34;   // a vertex not used before below the split s...
+constexpr uint32_t kUnderParent = 35;  // ... or below collapse_to[s], by its rank there
+constexpr uint32_t kCornerSymbols = 36;
 constexpr uint32_t kMaxWedges = 64;  // positions with more vertices are never candidates
 constexpr int kAdjacency = 8;        // neighbour positions remembered per position
 constexpr size_t kRecent = 16;       // recently used positions
@@ -28,22 +30,57 @@ constexpr uint32_t kNone = ~0u;
 constexpr uint32_t kRankLimit = 1u << 25;    // a rank below the vertex limit
 constexpr uint32_t kEscapeLimit = 1u << 26;  // a zigzagged signed vertex distance
 
+// Which of `size` slots are still unused, with rank and select in O(log size) (a Fenwick
+// tree over the flags).
+class UnusedSet {
+ public:
+  explicit UnusedSet(uint32_t size) : size_(size), tree_(size + 1, 0) {
+    for (uint32_t i = 1; i <= size; ++i) {
+      tree_[i] += 1;
+      const uint32_t parent = i + (i & (~i + 1));
+      if (parent <= size) tree_[parent] += tree_[i];
+    }
+  }
+  uint32_t rank(uint32_t slot) const {  // unused slots below `slot`
+    uint32_t sum = 0;
+    for (uint32_t i = slot; i > 0; i -= i & (~i + 1)) sum += tree_[i];
+    return sum;
+  }
+  uint32_t count() const { return rank(size_); }
+  uint32_t select(uint32_t r) const {  // the unused slot with r unused below it
+    uint32_t at = 0, step = 1;
+    while (step * 2 <= size_) step *= 2;
+    for (; step > 0; step /= 2)
+      if (at + step <= size_ && tree_[at + step] <= r) {
+        at += step;
+        r -= tree_[at];
+      }
+    return at;
+  }
+  void remove(uint32_t slot) {
+    for (uint32_t i = slot + 1; i <= size_; i += i & (~i + 1)) --tree_[i];
+  }
+
+ private:
+  uint32_t size_;
+  std::vector<uint32_t> tree_;
+};
+
 class TriangleModel {
  public:
   TriangleModel(uint32_t vertex_count, const std::vector<uint32_t>& keys,
                 const PackProgressive* prog)
-      : prog_(prog), vertex_count_(vertex_count), seen_(vertex_count, 0) {
+      : prog_(prog),
+        vertex_count_(vertex_count),
+        seen_(vertex_count, 0),
+        unused_(vertex_count),
+        unused_in_tour_(prog ? vertex_count : 0) {
     group_positions(keys);
     const size_t positions = position_start_.size() - 1;
     stamp_.assign(positions, 0);
     adjacency_.assign(positions * kAdjacency, 0);
     adjacency_size_.assign(positions, 0);
-    unseen_tree_.assign(vertex_count + 1, 0);
-    for (uint32_t i = 1; i <= vertex_count; ++i) {  // every vertex unseen
-      unseen_tree_[i] += 1;
-      const uint32_t parent = i + (i & (~i + 1));
-      if (parent <= vertex_count) unseen_tree_[parent] += unseen_tree_[i];
-    }
+    if (prog) tour_collapse_forest();
   }
 
   // With PROG: the level n of triangle t (triangle_count[n - 1] <= t < triangle_count[n])
@@ -105,27 +142,34 @@ class TriangleModel {
     return kNone;
   }
 
-  uint32_t unseen_rank(uint32_t v) const {  // unused vertices below v
-    uint32_t sum = 0;
-    for (uint32_t i = v; i > 0; i -= i & (~i + 1)) sum += unseen_tree_[i];
-    return sum;
+  uint32_t unseen_rank(uint32_t v) const { return unused_.rank(v); }
+  uint32_t unseen_count() const { return unused_.count(); }
+  uint32_t unseen_at_rank(uint32_t r) const { return unused_.select(r); }
+
+  // The roots whose subtrees (in the collapse forest: every vertex whose collapse chain passes
+  // the root) an unused corner is named in: the split s and collapse_to[s]; kNone without.
+  uint32_t subtree_root(uint32_t symbol) const {
+    if (split_ == kNone) return kNone;
+    return symbol == kUnderSplit ? split_ : prog_->collapse_to[split_];
   }
-  uint32_t unseen_count() const { return unseen_rank(vertex_count_); }
-  uint32_t unseen_at_rank(uint32_t r) const {  // the unused vertex with r unused below it
-    uint32_t at = 0, step = 1;
-    while (step * 2 <= vertex_count_) step *= 2;
-    for (; step > 0; step /= 2)
-      if (at + step <= vertex_count_ && unseen_tree_[at + step] <= r) {
-        at += step;
-        r -= unseen_tree_[at];
-      }
-    return at;
+  bool in_subtree(uint32_t root, uint32_t v) const {
+    return tour_[v] >= tour_[root] && tour_[v] < tour_end_[root];
+  }
+  uint32_t subtree_rank(uint32_t root, uint32_t v) const {  // unused below v in root's subtree
+    return unused_in_tour_.rank(tour_[v]) - unused_in_tour_.rank(tour_[root]);
+  }
+  uint32_t subtree_select(uint32_t root, uint32_t r) const {
+    const uint32_t base = unused_in_tour_.rank(tour_[root]);
+    if (r >= unused_in_tour_.count() - base) return kNone;
+    const uint32_t at = unused_in_tour_.select(base + r);
+    return at < tour_end_[root] ? tour_vertex_[at] : kNone;
   }
 
   void use(uint32_t v) {
     if (!seen_[v]) {
       seen_[v] = 1;
-      for (uint32_t i = v + 1; i <= vertex_count_; i += i & (~i + 1)) --unseen_tree_[i];
+      unused_.remove(v);
+      if (prog_) unused_in_tour_.remove(tour_[v]);
     }
     const uint32_t p = position_[v];
     const auto it = std::find(recent_.begin(), recent_.end(), p);
@@ -167,6 +211,40 @@ class TriangleModel {
     for (; at > 0; --at) list[at] = list[at - 1];
     list[0] = q;
   }
+  // A depth-first tour of the collapse forest (children in index order): every subtree is a
+  // range [tour_[r], tour_end_[r]) of tour positions.
+  void tour_collapse_forest() {
+    std::vector<uint32_t> first_child(vertex_count_ + 1, 0), children(vertex_count_);
+    for (uint32_t i = prog_->min_vertices; i < vertex_count_; ++i)
+      ++first_child[prog_->collapse_to[i] + 1];
+    for (uint32_t v = 0; v < vertex_count_; ++v) first_child[v + 1] += first_child[v];
+    std::vector<uint32_t> fill(first_child.begin(), first_child.end() - 1);
+    for (uint32_t i = prog_->min_vertices; i < vertex_count_; ++i)
+      children[fill[prog_->collapse_to[i]]++] = i;
+    tour_.assign(vertex_count_, 0);
+    tour_end_.assign(vertex_count_, 0);
+    tour_vertex_.assign(vertex_count_, 0);
+    uint32_t clock = 0;
+    std::vector<std::pair<uint32_t, uint32_t>> stack;  // vertex, next child slot
+    const auto enter = [&](uint32_t v) {
+      tour_[v] = clock;
+      tour_vertex_[clock++] = v;
+      stack.push_back({v, first_child[v]});
+    };
+    for (uint32_t root = 0; root < std::min(prog_->min_vertices, vertex_count_); ++root) {
+      enter(root);
+      while (!stack.empty()) {
+        auto& [v, next] = stack.back();
+        if (next < first_child[v + 1]) {
+          enter(children[next++]);
+        } else {
+          tour_end_[v] = clock;
+          stack.pop_back();
+        }
+      }
+    }
+  }
+
   void group_positions(const std::vector<uint32_t>& keys) {
     by_position_.resize(vertex_count_);
     std::iota(by_position_.begin(), by_position_.end(), 0u);
@@ -192,14 +270,16 @@ class TriangleModel {
   uint32_t stamp_value_ = 0;
   std::vector<uint32_t> adjacency_;
   std::vector<uint8_t> adjacency_size_;
-  std::vector<uint32_t> unseen_tree_;  // Fenwick tree over "not used yet"
+  UnusedSet unused_;          // by vertex index
+  UnusedSet unused_in_tour_;  // by tour position (with PROG)
+  std::vector<uint32_t> tour_, tour_end_, tour_vertex_;
   std::vector<uint32_t> recent_, list_;
   uint32_t stop_size_ = kCandidates, stop_position_ = kNone;
 };
 
 struct TriangleStreams {
-  std::vector<uint32_t> corner[3];                 // one symbol per triangle per corner slot
-  std::vector<uint32_t> wedge, first_use, escape;  // what the symbols need besides
+  std::vector<uint32_t> corner[3];  // one symbol per triangle per corner slot
+  std::vector<uint32_t> wedge, first_use, escape, subtree;  // what the symbols need besides
 };
 
 }  // namespace
@@ -221,8 +301,16 @@ void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& tria
         s.corner[k].push_back(static_cast<uint32_t>(at - list.begin()));
         s.wedge.push_back(m.wedge_symbol(p, x));
       } else if (!m.seen(x)) {
-        s.corner[k].push_back(kFirstUse);
-        s.first_use.push_back(m.unseen_rank(x));
+        uint32_t symbol = kFirstUse;
+        for (const uint32_t under : {kUnderSplit, kUnderParent}) {
+          const uint32_t root = m.subtree_root(under);
+          if (symbol == kFirstUse && root != kNone && m.in_subtree(root, x)) {
+            symbol = under;
+            s.subtree.push_back(m.subtree_rank(root, x));
+          }
+        }
+        if (symbol == kFirstUse) s.first_use.push_back(m.unseen_rank(x));
+        s.corner[k].push_back(symbol);
       } else {
         s.corner[k].push_back(kEscape);
         s.escape.push_back(zigzag(static_cast<int32_t>(x) - static_cast<int32_t>(m.level())));
@@ -234,16 +322,18 @@ void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& tria
   out.u32(static_cast<uint32_t>(s.wedge.size()));
   out.u32(static_cast<uint32_t>(s.first_use.size()));
   out.u32(static_cast<uint32_t>(s.escape.size()));
+  out.u32(static_cast<uint32_t>(s.subtree.size()));
   for (const std::vector<uint32_t>& corner : s.corner) put_symbols(out, corner, 1);
   put_symbols(out, s.wedge, 1);
   put_symbols(out, s.first_use, 1);
   put_symbols(out, s.escape, 1);
+  put_symbols(out, s.subtree, 1);
 }
 
 namespace {
 
 bool get_streams(ByteReader& in, uint32_t triangle_count, TriangleStreams& s) {
-  uint32_t counts[3] = {};
+  uint32_t counts[4] = {};
   for (uint32_t& c : counts) in.u32(c, "triangle stream counts");
   if (!in.ok()) return false;
   for (uint32_t c : counts)
@@ -253,7 +343,8 @@ bool get_streams(ByteReader& in, uint32_t triangle_count, TriangleStreams& s) {
     if (!get_symbols(in, corner, triangle_count, 1, kCornerSymbols, "corners")) return false;
   return get_symbols(in, s.wedge, counts[0], 1, kMaxWedges, "wedges") &&
          get_symbols(in, s.first_use, counts[1], 1, kRankLimit, "first-use ranks") &&
-         get_symbols(in, s.escape, counts[2], 1, kEscapeLimit, "escapes");
+         get_symbols(in, s.escape, counts[2], 1, kEscapeLimit, "escapes") &&
+         get_symbols(in, s.subtree, counts[3], 1, kRankLimit, "subtree ranks");
 }
 
 // Reads from `values` at `next` (one past the end names no vertex).
@@ -269,7 +360,7 @@ bool get_predictive_triangles(ByteReader& in, uint32_t triangle_count, uint32_t 
   TriangleStreams s;
   if (!get_streams(in, triangle_count, s)) return false;
   TriangleModel m(vertex_count, position_keys, prog);
-  size_t next_wedge = 0, next_first = 0, next_escape = 0;
+  size_t next_wedge = 0, next_first = 0, next_escape = 0, next_subtree = 0;
   triangles.assign(3 * size_t{triangle_count}, 0);
   for (uint32_t t = 0; t < triangle_count; ++t) {
     m.start_triangle(t);
@@ -284,6 +375,10 @@ bool get_predictive_triangles(ByteReader& in, uint32_t triangle_count, uint32_t 
       } else if (symbol == kFirstUse) {
         const uint32_t rank = take(s.first_use, next_first);
         if (rank < m.unseen_count()) x = m.unseen_at_rank(rank);
+      } else if (symbol == kUnderSplit || symbol == kUnderParent) {
+        const uint32_t rank = take(s.subtree, next_subtree);
+        const uint32_t root = m.subtree_root(symbol);
+        if (rank != kNone && root != kNone) x = m.subtree_select(root, rank);
       } else {
         const uint32_t escape = take(s.escape, next_escape);
         const int64_t v = int64_t{m.level()} + unzigzag(escape);
@@ -298,7 +393,7 @@ bool get_predictive_triangles(ByteReader& in, uint32_t triangle_count, uint32_t 
     m.end_triangle(tri);
   }
   if (next_wedge != s.wedge.size() || next_first != s.first_use.size() ||
-      next_escape != s.escape.size())
+      next_escape != s.escape.size() || next_subtree != s.subtree.size())
     return in.fail("triangle streams hold values no corner uses");
   return true;
 }
