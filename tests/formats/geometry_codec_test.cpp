@@ -137,6 +137,23 @@ TEST(PredictiveCodec, TrianglesComeBackExactlyInAnyOrder) {
   }
 }
 
+TEST(PredictiveCodec, CoincidentPositionsRoundTrip) {
+  // Every vertex at one position (a degenerate export): far more wedges than a candidate
+  // position may hold, so corners go by ranks and escapes; they must still come back exactly,
+  // and the normals' face guess (zero-area faces) must not disturb the normals.
+  const PackContents c = test::make_test_contents(12, 39);
+  PackGeometry g = c.geometry;
+  for (size_t i = 0; i < g.positions.size(); ++i) g.positions[i] = 0.5f;
+  for (const PackProgressive& prog : {c.progressive, PackProgressive{}}) {
+    const PackGeometry out = predictive_round_trip(g, prog, {});
+    EXPECT_EQ(out.triangles, g.triangles);
+    EXPECT_EQ(out.positions, g.positions);
+    const double bound = 2.5 / ((1u << PackWriteOptions{}.normal_bits) - 1) + 1e-6;
+    for (size_t i = 0; i < g.normals.size(); ++i)
+      ASSERT_NEAR(out.normals[i], g.normals[i], bound) << "component " << i;
+  }
+}
+
 TEST(PredictiveCodec, FlatShadedNormalsArePredictedFromTheirFaces) {
   // Every triangle its own three vertices with the face's normal (a flat-shaded export):
   // the normals are guessed from the decoded positions and triangles, so they cost almost
