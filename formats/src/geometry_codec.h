@@ -53,6 +53,10 @@ struct Grid {
 Grid make_grid(const std::vector<float>& values, int dims, int bits);
 uint32_t quantize(float v, float origin, const Grid& g);
 float dequantize(uint32_t q, float origin, const Grid& g);
+// The grid header codecs 1 and 3 store before grid-quantised values: f32 origin[dims], f32
+// range. get_grid refuses a range that is not positive, naming `field`.
+void put_grid(ByteWriter& out, const Grid& grid, int dims);
+bool get_grid(ByteReader& in, Grid& grid, int dims, int bits, const char* field);
 
 // Skin weights as integers of `bits` (1-16), four per vertex summing to 2^bits - 1 (the
 // rounding error moved onto each vertex's largest weight), and back.

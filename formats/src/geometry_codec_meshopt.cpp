@@ -71,8 +71,7 @@ void put_float_attribute(ByteWriter& out, const std::vector<float>& values, int 
     return;
   }
   const Grid grid = make_grid(values, dims, bits);
-  for (int c = 0; c < dims; ++c) out.f32(grid.origin[c]);
-  out.f32(grid.range);
+  put_grid(out, grid, dims);
   const bool narrow = bits <= 16;
   const size_t lanes = narrow && dims == 3 ? 4 : dims;
   const size_t lane_bytes = narrow ? 2 : 4;
@@ -102,13 +101,7 @@ bool get_float_attribute(ByteReader& in, std::vector<float>& values, size_t coun
     return true;
   }
   Grid grid;
-  for (int c = 0; c < dims; ++c) in.f32(grid.origin[c], field);
-  in.f32(grid.range, field);
-  if (!in.ok()) return false;
-  if (!(grid.range > 0.0f))
-    return in.fail(std::string(field) + ": quantisation range " + std::to_string(grid.range) +
-                   " is not positive");
-  grid.max_q = (1u << bits) - 1;
+  if (!get_grid(in, grid, dims, bits, field)) return false;
   const bool narrow = bits <= 16;
   const size_t lanes = narrow && dims == 3 ? 4 : dims;
   const size_t lane_bytes = narrow ? 2 : 4;

@@ -296,22 +296,11 @@ std::vector<uint32_t> grid_values(ByteWriter& out, const std::vector<float>& val
                                   int bits) {
   if (bits == 0) return float_bits(values);
   const Grid grid = make_grid(values, dims, bits);
-  for (int c = 0; c < dims; ++c) out.f32(grid.origin[c]);
-  out.f32(grid.range);
+  put_grid(out, grid, dims);
   std::vector<uint32_t> q(values.size());
   for (size_t i = 0; i < values.size(); ++i)
     q[i] = quantize(values[i], grid.origin[i % dims], grid);
   return q;
-}
-
-bool get_grid(ByteReader& in, Grid& grid, int dims, int bits, const char* field) {
-  for (int c = 0; c < dims; ++c) in.f32(grid.origin[c], field);
-  in.f32(grid.range, field);
-  if (!in.ok()) return false;
-  if (!(grid.range > 0.0f))
-    return in.fail(std::string(field) + ": quantisation range is not positive");
-  grid.max_q = (1u << bits) - 1;
-  return true;
 }
 
 std::vector<float> grid_floats(const std::vector<uint32_t>& q, const Grid& grid, int dims) {
@@ -400,7 +389,7 @@ bool get_normals(ByteReader& in, const GeometryLayout& layout, Prediction p, uin
   const uint32_t n = layout.vertex_count;
   const int bits = layout.normal_bits;
   std::vector<uint32_t> values, guesses;
-  if (bits && layout.position_bits) {
+  if (bits && layout.position_bits && rule == kGuess) {  // note: only the rule that reads them
     guesses = to_lanes(normal_guesses(keys, out.triangles, n, bits), {2, bits});
     p.guess = &guesses;
   }

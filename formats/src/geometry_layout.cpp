@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "geometry_codec.h"
 
@@ -65,6 +66,22 @@ uint32_t quantize(float v, float origin, const Grid& g) {
 
 float dequantize(uint32_t q, float origin, const Grid& g) {
   return static_cast<float>(origin + static_cast<double>(q) * g.range / g.max_q);
+}
+
+void put_grid(ByteWriter& out, const Grid& grid, int dims) {
+  for (int c = 0; c < dims; ++c) out.f32(grid.origin[c]);
+  out.f32(grid.range);
+}
+
+bool get_grid(ByteReader& in, Grid& grid, int dims, int bits, const char* field) {
+  for (int c = 0; c < dims; ++c) in.f32(grid.origin[c], field);
+  in.f32(grid.range, field);
+  if (!in.ok()) return false;
+  if (!(grid.range > 0.0f))
+    return in.fail(std::string(field) + ": quantisation range " + std::to_string(grid.range) +
+                   " is not positive");
+  grid.max_q = (1u << bits) - 1;
+  return true;
 }
 
 std::vector<uint16_t> quantize_weights(const std::vector<float>& weights, int bits) {
