@@ -92,6 +92,8 @@ void main() {
   vec3 albedo;
   if (kDrawMode == kDrawGround) {
     albedo = frame.ground_color.rgb;
+  } else if (kDrawMode == kDrawStatic) {
+    albedo = in_color.rgb;
   } else {
     const uint region = partition_region();
     const bool material_shading = type_block.waist_mask.w > 0.5;

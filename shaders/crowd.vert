@@ -17,6 +17,7 @@ layout(location = 2) out vec2 out_uv;
 layout(location = 3) out float out_height;  // bind-pose height along the pack's up axis
 layout(location = 4) flat out uint out_textures;
 layout(location = 5) flat out vec4 out_color;      // hue shift, saturation, brightness, mode
+                                                   // (static geometry: rgb, mode)
 layout(location = 6) flat out vec2 out_partition;  // the instance's neck and waist heights
 layout(location = 7) flat out uint out_material;   // index into the type's materials
 
@@ -32,6 +33,19 @@ void main() {
     out_partition = vec2(0.0);
     out_material = 0u;
     gl_Position = frame.view_proj * vec4(p, 1.0);
+    return;
+  }
+  if (kDrawMode == kDrawStatic) {
+    const StaticVertex v = static_vertex();
+    out_world = v.position;
+    out_normal = v.normal;
+    out_uv = vec2(0.0);
+    out_height = 0.0;
+    out_textures = 0u;
+    out_color = vec4(v.color, float(kDrawStatic));
+    out_partition = vec2(0.0);
+    out_material = 0u;
+    gl_Position = frame.view_proj * vec4(v.position, 1.0);
     return;
   }
   const uvec2 corner = drawn_corner();

@@ -29,6 +29,9 @@ layout(std430, set = 0, binding = 5) readonly buffer BaseBlock { uint skin_base[
 layout(std430, set = 0, binding = 6) readonly buffer SkinnedBlock { vec4 skinned[]; };
 // Instanced static levels: the instance of gl_InstanceIndex (CrowdCompute's instance list).
 layout(std430, set = 0, binding = 7) readonly buffer InstanceListBlock { uint instance_list[]; };
+// Static geometry (runtime/static_geometry.h), two vec4 per vertex: position and RGBA8 colour
+// bits, normal and an unused w. Three vertices a triangle, no index buffer.
+layout(std430, set = 0, binding = 8) readonly buffer StaticBlock { vec4 static_vertices[]; };
 
 
 // Push constants of every crowd draw: where the type's corners start. (Nothing pushed steers
@@ -43,6 +46,7 @@ const uint kDrawCrowd = 0u;      // corners pulled from the corner buffer
 const uint kDrawGround = 1u;     // the ground quad
 const uint kDrawInstanced = 2u;  // CrowdCompute's instanced static levels (indexed, instanced)
 const uint kDrawInstancedSlots = 3u;  // the same when every instance has skinned slots
+const uint kDrawStatic = 4u;          // the scene's static geometry (stands, pitch)
 // What the pipeline draws (a specialization constant: each kind is its own pipeline).
 layout(constant_id = 1) const uint kDrawMode = kDrawCrowd;
 
@@ -55,6 +59,17 @@ vec3 ground_corner(uint i) {
 }
 
 #ifdef CROWD_VERTEX_STAGE
+// Static vertex gl_VertexIndex: world position, normal, display-space colour.
+struct StaticVertex {
+  vec3 position, normal;
+  vec3 color;
+};
+StaticVertex static_vertex() {
+  const uint i = 2u * uint(gl_VertexIndex);
+  const vec4 a = static_vertices[i];
+  return StaticVertex(a.xyz, static_vertices[i + 1u].xyz, unpackUnorm4x8(floatBitsToUint(a.w)).rgb);
+}
+
 // The (instance, vertex of its type) a vertex shader invocation draws.
 uvec2 drawn_corner() {
   if (kDrawMode == kDrawInstanced || kDrawMode == kDrawInstancedSlots)

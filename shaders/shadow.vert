@@ -11,6 +11,10 @@
 #include "skin.glsl"
 
 void main() {
+  if (kDrawMode == kDrawStatic) {
+    gl_Position = frame.light_view_proj * vec4(static_vertex().position, 1.0);
+    return;
+  }
   const uvec2 corner = drawn_corner();
   const uint base = skin_base[corner.x];
   vec3 p;

@@ -195,9 +195,13 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   if (s.ok() && settings.ground && !types.empty())
     s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.ground, kModeGround,
                                  p.samples);
+  if (s.ok() && static_vertex_count > 0 && !types.empty())
+    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.static_geometry,
+                                 kModeStatic, p.samples);
   if (!s) {
     destroy_pipelines(context->device(), p.pipelines);
     vkDestroyPipeline(context->device(), p.ground, nullptr);
+    vkDestroyPipeline(context->device(), p.static_geometry, nullptr);
     vkDestroyRenderPass(context->device(), p.render_pass, nullptr);
     return s;
   }
@@ -311,6 +315,7 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
       vkCmdPushConstants(cmd, m.pipeline_layout, stages, 0, sizeof(push), &push);
       vkCmdDraw(cmd, 6, 1, 0, 0);
     }
+    m.record_static(cmd, pipeline->static_geometry);
   }
   vkCmdEndRenderPass(cmd);
   return {};

@@ -67,6 +67,7 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
   }
 
   if (Status s = impl->create_swatches(); !s) return s;
+  if (Status s = impl->create_static_geometry(scene.static_geometry); !s) return s;
   if (Status s = impl->create_shadow(); !s) return s;
   if (Status s = impl->create_skin_pass(); !s) return s;
   if (Status s =

@@ -15,6 +15,7 @@
 #include "crowdbake/runtime/gpu/crowd_draw.h"
 #include "crowdbake/runtime/gpu/gpu_buffer.h"
 #include "crowdbake/runtime/gpu/vulkan_context.h"
+#include "crowdbake/runtime/static_geometry.h"
 
 namespace crowdbake::runtime::gpu {
 
@@ -54,10 +55,12 @@ struct ColorPipeline {
   // skinned slots, [1] the vertex shader skins instances without (slower on lavapipe).
   VkPipeline instanced[2][kEncodings] = {};
   VkPipeline ground = VK_NULL_HANDLE;
+  VkPipeline static_geometry = VK_NULL_HANDLE;  // made when the scene has static geometry
 };
 
 // Pipeline kinds (crowd_frame.glsl kDrawMode).
-constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2, kModeInstancedSlots = 3;
+constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2, kModeInstancedSlots = 3,
+                   kModeStatic = 4;
 
 struct CrowdDraw::Impl {
   VulkanContext* context = nullptr;
@@ -79,6 +82,9 @@ struct CrowdDraw::Impl {
   VkFramebuffer shadow_framebuffer = VK_NULL_HANDLE;
   VkPipeline shadow_pipelines[kEncodings] = {};
   VkPipeline shadow_instanced[2][kEncodings] = {};
+  VkPipeline shadow_static = VK_NULL_HANDLE;
+  GpuBuffer static_vertices;  // static_draw.cpp
+  uint32_t static_vertex_count = 0;
   bool skin_fallback = false;  // this frame: some instance may find no skinned slots
   uint32_t shadow_size = 1;
   uint32_t swatches_per_region = 1;
@@ -129,6 +135,11 @@ struct CrowdDraw::Impl {
 
   // shadow_pass.cpp
   Status create_shadow();
+
+  // static_draw.cpp: the scene's static geometry, uploaded once; drawn with `pipeline` (the
+  // colour or shadow pass's kModeStatic one).
+  Status create_static_geometry(const StaticGeometry& geometry);
+  void record_static(VkCommandBuffer cmd, VkPipeline pipeline) const;
 
   // color_pass.cpp
   Status create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,

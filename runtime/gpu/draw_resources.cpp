@@ -19,10 +19,12 @@ CrowdDraw::Impl::~Impl() {
     destroy_pipelines(d, p.pipelines);
     destroy_pipelines(d, p.instanced);
     vkDestroyPipeline(d, p.ground, nullptr);
+    vkDestroyPipeline(d, p.static_geometry, nullptr);
     vkDestroyRenderPass(d, p.render_pass, nullptr);
   }
   destroy_pipelines(d, shadow_pipelines);
   destroy_pipelines(d, shadow_instanced);
+  vkDestroyPipeline(d, shadow_static, nullptr);
   vkDestroyFramebuffer(d, shadow_framebuffer, nullptr);
   vkDestroyPipeline(d, skin_list_pipeline, nullptr);
   destroy_pipelines(d, skin_pipelines);
@@ -58,6 +60,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   const VkDescriptorSetLayoutBinding type_bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
@@ -78,7 +81,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 + 6 * type_count + 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 + 6 * type_count + 8},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + 2 * type_count},
   };
   if (Status s = create_descriptor_pool(d, sizes, 2 + type_count, pool); !s) return s;
@@ -261,6 +264,7 @@ void CrowdDraw::Impl::write_frame_set() {
       .buffer(5, skin_base.descriptor())
       .buffer(6, skinned.descriptor())
       .buffer(7, {bound_instance_list, 0, VK_WHOLE_SIZE})
+      .buffer(8, static_vertices.descriptor())
       .apply(context->device());
 }
 
@@ -311,6 +315,7 @@ CrowdDraw::Memory CrowdDraw::memory() const {
        {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})
     out.skinning += b->size();
   out.frame = m.frame_buffer.size() + image_bytes(m.swatches) + image_bytes(m.shadow_map);
+  out.static_geometry = m.static_vertices.size();
   return out;
 }
 

@@ -111,8 +111,11 @@ Status CrowdDraw::Impl::update_frame_constants(const Scene& scene, const FrameSt
   }
   const float margin = 2.0f * radius;
   const bool ground = settings.ground && n > 0 && !types.empty();
-  const float ground_min[4] = {lo[0] - margin, lo[1], lo[2] - margin, ground ? 1.0f : 0.0f};
-  const float ground_max[4] = {hi[0] + margin, lo[1], hi[2] + margin, 0.0f};
+  // note: static geometry (a stand's first tread, a pitch) usually lies at the crowd's feet
+  // too; the ground goes 2 cm lower so it never fights them for depth.
+  const float ground_y = lo[1] - (scene.static_geometry.empty() ? 0.0f : 0.02f);
+  const float ground_min[4] = {lo[0] - margin, ground_y, lo[2] - margin, ground ? 1.0f : 0.0f};
+  const float ground_max[4] = {hi[0] + margin, ground_y, hi[2] + margin, 0.0f};
   std::memcpy(k.ground_min, ground_min, sizeof(ground_min));
   std::memcpy(k.ground_max, ground_max, sizeof(ground_max));
   if (ground && spheres.empty()) {

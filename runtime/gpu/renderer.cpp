@@ -51,7 +51,7 @@ struct Renderer::Impl {
     out.per_instance = CrowdCompute::kBytesPerInstance;
     out.instance_capacity = compute->max_instances();
     out.skinning = d.skinning;
-    out.total = compute->gpu_bytes() + d.skinning + d.frame;
+    out.total = compute->gpu_bytes() + d.skinning + d.frame + d.static_geometry;
     for (uint64_t b : d.per_type) out.total += b;
     // note: the target: RGBA8 colour, D32 depth and, with MSAA, the multisampled colour.
     if (color.valid()) {

@@ -57,7 +57,9 @@ Status CrowdDraw::Impl::create_shadow() {
                                     shadow_framebuffer);
       !s)
     return s;
-  return create_pipelines(shadow_pass, true, shadow_pipelines);
+  if (Status s = create_pipelines(shadow_pass, true, shadow_pipelines); !s) return s;
+  if (static_vertex_count == 0 || types.empty()) return {};
+  return create_graphics_pipeline(shadow_pass, true, types[0].encoding, shadow_static, kModeStatic);
 }
 
 void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
@@ -72,6 +74,7 @@ void CrowdDraw::record_shadow(VkCommandBuffer cmd, Span<const TypeDraw> draws) {
   // note: update() makes the instanced pipelines before such frames; none is made here.
   (void)m.record_type_draws(cmd, draws, VK_NULL_HANDLE, m.shadow_pipelines,
                             m.shadow_instanced[m.skin_fallback]);
+  m.record_static(cmd, m.shadow_static);
   vkCmdEndRenderPass(cmd);
 }
 

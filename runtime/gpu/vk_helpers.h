@@ -41,7 +41,7 @@ class SetWrites {
   void apply(VkDevice device);
 
  private:
-  static constexpr uint32_t kMax = 8;
+  static constexpr uint32_t kMax = 12;
   VkDescriptorSet set_;
   uint32_t count_ = 0;
   uint32_t bindings_[kMax] = {};

@@ -248,14 +248,23 @@ void parse_textures(const Json& v, const std::string& path, bool allow_random, R
   if (allow_random && v.is_string()) {
     if (v.get<std::string>() != "random")
       fail(path, "expected \"random\" or an object of variant indices, got " + describe(v));
-    out.random = true;
+    out.random = {true, true, true};
     return;
   }
   check_object(v, path, {"head", "upper_body", "trousers"});
   const char* names[3] = {"head", "upper_body", "trousers"};
-  for (int k = 0; k < 3; ++k)
-    if (const Json* q = find(v, names[k]))
-      out.value[k] = integer(*q, path + "." + names[k], 0, 255);
+  for (int k = 0; k < 3; ++k) {
+    const Json* q = find(v, names[k]);
+    if (!q) continue;
+    const std::string qp = path + "." + names[k];
+    if (allow_random && q->is_string()) {
+      if (q->get<std::string>() != "random")
+        fail(qp, "expected a variant index or \"random\", got " + describe(*q));
+      out.random[k] = true;
+    } else {
+      out.value[k] = integer(*q, qp, 0, 255);
+    }
+  }
 }
 
 // Keys every instance description (listed or generated) may have.
@@ -293,7 +302,7 @@ void parse_attributes(const Json& v, const std::string& path, bool generator, Ra
     a.neck_height = static_cast<float>(number(*p, path + ".neck_height"));
   if (const Json* p = find(v, "waist_height"))
     a.waist_height = static_cast<float>(number(*p, path + ".waist_height"));
-  if (!generator) {
+  {
     if (const Json* p = find(v, "color")) {
       const std::string cp = path + ".color";
       check_object(*p, cp, {"hue", "saturation", "brightness"});
@@ -308,7 +317,8 @@ void parse_attributes(const Json& v, const std::string& path, bool generator, Ra
       if (const Json* q = find(*p, "brightness"))
         a.color[2] = static_cast<float>(number_at_least(*q, cp + ".brightness", 0.0, true));
     }
-  } else if (const Json* p = find(v, "color_variation")) {
+  }
+  if (const Json* p = generator ? find(v, "color_variation") : nullptr) {
     const std::string cp = path + ".color_variation";
     check_object(*p, cp, {"hue", "saturation", "brightness"});
     if (const Json* q = find(*p, "hue")) {
@@ -357,6 +367,57 @@ void parse_instances(const Json& v, RawScene& s) {
   }
 }
 
+Rgb color(const Json& v, const std::string& path) {
+  const std::array<float, 3> c = numbers<3>(v, path);
+  for (int k = 0; k < 3; ++k)
+    if (!(c[k] >= 0.0f && c[k] <= 1.0f))
+      fail(item_path(path, k), "a colour channel must be in [0, 1], got " + show(c[k]));
+  return c;
+}
+
+// A seat_grid's "stand": true, false or an object of StandStyle's keys.
+std::optional<StandStyle> parse_stand(const Json& v, const std::string& path,
+                                      const RawGenerator& g) {
+  StandStyle style;
+  if (v.is_boolean()) {
+    if (!v.get<bool>()) return std::nullopt;
+  } else {
+    check_object(v, path, {"color", "seat_color", "seat_height", "seat_back", "seats"});
+    if (const Json* p = find(v, "color")) style.color = color(*p, path + ".color");
+    if (const Json* p = find(v, "seat_color")) style.seat_color = color(*p, path + ".seat_color");
+    if (const Json* p = find(v, "seat_height"))
+      style.seat_height = static_cast<float>(number_at_least(*p, path + ".seat_height", 0, true));
+    if (const Json* p = find(v, "seat_back"))
+      style.seat_back = static_cast<float>(number_at_least(*p, path + ".seat_back", 0, true));
+    if (const Json* p = find(v, "seats")) style.seats = boolean(*p, path + ".seats");
+  }
+  if (!(g.row_rise >= 0.0f))
+    fail(path,
+         "a stand needs row_rise >= 0 (its rows stand on the plane of the grid's origin), "
+         "got " +
+             show(g.row_rise));
+  return style;
+}
+
+void parse_pitch(const Json& v, RawScene& s) {
+  const std::string path = "pitch";
+  check_object(v, path,
+               {"center", "length", "width", "yaw_degrees", "color", "line_color", "stripes"});
+  Pitch p;
+  if (const Json* q = find(v, "center")) p.center = numbers<3>(*q, path + ".center");
+  if (const Json* q = find(v, "length"))
+    p.length = static_cast<float>(number_at_least(*q, path + ".length", 0, false));
+  if (const Json* q = find(v, "width"))
+    p.width = static_cast<float>(number_at_least(*q, path + ".width", 0, false));
+  if (const Json* q = find(v, "yaw_degrees"))
+    p.yaw_degrees = static_cast<float>(number(*q, path + ".yaw_degrees"));
+  if (const Json* q = find(v, "color")) p.color = color(*q, path + ".color");
+  if (const Json* q = find(v, "line_color")) p.line_color = color(*q, path + ".line_color");
+  if (const Json* q = find(v, "stripes"))
+    p.stripes = static_cast<uint32_t>(integer(*q, path + ".stripes", 0, 1000));
+  s.pitch = p;
+}
+
 void parse_generators(const Json& v, RawScene& s) {
   const std::string path = "generators";
   const Json& arr = array(v, path);
@@ -366,10 +427,17 @@ void parse_generators(const Json& v, RawScene& s) {
     const std::string kind = string(require(arr[i], "kind", gp), gp + ".kind");
     RawGenerator g;
     if (kind == "seat_grid") {
-      check_object(arr[i], gp,
-                   {"kind", "type", "seed", "origin", "rows", "columns", "spacing", "row_rise",
-                    "yaw_degrees", "empty_probability", "clip", "clips", "speed", "time_offset",
-                    "scale", "textures", "color_variation", "neck_height", "waist_height"});
+      check_object(arr[i], gp, {"kind",        "type",
+                                "seed",        "origin",
+                                "rows",        "columns",
+                                "spacing",     "row_rise",
+                                "yaw_degrees", "empty_probability",
+                                "clip",        "clips",
+                                "speed",       "time_offset",
+                                "scale",       "textures",
+                                "color",       "color_variation",
+                                "neck_height", "waist_height",
+                                "stand"});
       g.grid = true;
       if (const Json* p = find(arr[i], "origin")) g.origin = numbers<3>(*p, gp + ".origin");
       g.rows = static_cast<uint32_t>(
@@ -397,11 +465,12 @@ void parse_generators(const Json& v, RawScene& s) {
           fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
         g.empty_probability = static_cast<float>(e);
       }
+      if (const Json* p = find(arr[i], "stand")) g.stand = parse_stand(*p, gp + ".stand", g);
     } else if (kind == "scatter") {
       check_object(arr[i], gp,
                    {"kind", "type", "seed", "count", "rectangle", "y", "yaw_degrees", "clip",
-                    "clips", "speed", "time_offset", "scale", "textures", "color_variation",
-                    "neck_height", "waist_height"});
+                    "clips", "speed", "time_offset", "scale", "textures", "color",
+                    "color_variation", "neck_height", "waist_height"});
       g.grid = false;
       g.count = static_cast<uint32_t>(
           integer(require(arr[i], "count", gp), gp + ".count", 0, kMaxInstances));
@@ -426,10 +495,13 @@ void parse_generators(const Json& v, RawScene& s) {
           fail(gp + ".yaw_degrees", "expected a number or \"random\", got " + describe(*p));
       }
     } else if (kind == "relaxation") {
-      check_object(arr[i], gp,
-                   {"kind", "type", "seed", "region", "count", "y", "min_distance", "group_spacing",
-                    "single_fraction", "iterations", "clip", "clips", "speed", "time_offset",
-                    "scale", "textures", "color_variation", "neck_height", "waist_height"});
+      check_object(arr[i], gp, {"kind",         "type",          "seed",
+                                "region",       "count",         "y",
+                                "min_distance", "group_spacing", "single_fraction",
+                                "iterations",   "clip",          "clips",
+                                "speed",        "time_offset",   "scale",
+                                "textures",     "color",         "color_variation",
+                                "neck_height",  "waist_height"});
       g.grid = false;
       g.relaxation = true;
       g.count = static_cast<uint32_t>(
@@ -493,8 +565,8 @@ void read_sections(const Json& root, const SceneLoadOptions& options, RawScene& 
 
 RawScene read_scene_file(const Json& root, const SceneLoadOptions& options) {
   RawScene s;
-  std::vector<std::string> keys = {"version",         "camera",    "lod",       "animation",
-                                   "character_types", "instances", "generators"};
+  std::vector<std::string> keys = {"version",         "camera",    "lod",        "animation",
+                                   "character_types", "instances", "generators", "pitch"};
   for (const SceneSection& section : options.sections) {
     if (std::find(keys.begin(), keys.end(), section.key) != keys.end())
       fail(section.key, "two readers were given for this key (SceneLoadOptions::sections)",
@@ -516,6 +588,7 @@ RawScene read_scene_file(const Json& root, const SceneLoadOptions& options) {
   parse_types(require(root, "character_types", ""), s);
   if (const Json* p = find(root, "instances")) parse_instances(*p, s);
   if (const Json* p = find(root, "generators")) parse_generators(*p, s);
+  if (const Json* p = find(root, "pitch")) parse_pitch(*p, s);
   read_sections(root, options, s);
   uint64_t total = s.instances.size();
   for (const RawGenerator& g : s.generators)

@@ -32,7 +32,7 @@ struct Range {
 };
 
 struct RawTextures {
-  bool random = false;
+  std::array<bool, 3> random{false, false, false};  // per region: drawn per instance
   std::array<int64_t, 3> value{0, 0, 0};
   std::string path;
 };
@@ -56,7 +56,7 @@ struct RawAttributes {
   Range time_offset{0.0f, 0.0f};
   Range scale{1.0f, 1.0f};
   RawTextures textures;
-  Vec3 color{0.0f, 1.0f, 1.0f};            // listed instances
+  Vec3 color{0.0f, 1.0f, 1.0f};            // hue shift (deg), saturation, brightness
   Vec3 color_variation{0.0f, 0.0f, 0.0f};  // generators: ± hue (deg), saturation, brightness
   std::optional<float> neck_height, waist_height;
 };
@@ -82,6 +82,7 @@ struct RawGenerator {
   float yaw_degrees = 0.0f;
   bool random_yaw = false;
   float empty_probability = 0.0f;
+  std::optional<StandStyle> stand;  // "stand": the static stand under the seats
   // scatter
   uint32_t count = 0;
   float rect_min[2] = {0.0f, 0.0f}, rect_max[2] = {0.0f, 0.0f};
@@ -101,6 +102,7 @@ struct RawScene {
   std::vector<RawType> types;
   std::vector<RawInstance> instances;
   std::vector<RawGenerator> generators;
+  std::optional<Pitch> pitch;
   std::vector<std::any> sections;  // what SceneLoadOptions::sections read, in their order
 };
 

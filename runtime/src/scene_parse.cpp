@@ -83,14 +83,12 @@ Resolved resolve(const Scene& scene, const RawAttributes& a) {
   const TextureVariants& v = type.texture_variants;
   const uint32_t counts[3] = {v.head, v.upper_body, v.trousers};
   const char* names[3] = {"head", "upper_body", "trousers"};
-  if (!a.textures.random)
-    for (int k = 0; k < 3; ++k)
-      if (a.textures.value[k] >= counts[k])
-        fail(a.textures.path + "." + names[k],
-             "variant " + std::to_string(a.textures.value[k]) +
-                 " is out of range: character type '" + type.name + "' has " +
-                 std::to_string(counts[k]) + " " + names[k] +
-                 " variant(s) (character_types texture_variants)");
+  for (int k = 0; k < 3; ++k)
+    if (!a.textures.random[k] && a.textures.value[k] >= counts[k])
+      fail(a.textures.path + "." + names[k],
+           "variant " + std::to_string(a.textures.value[k]) + " is out of range: character type '" +
+               type.name + "' has " + std::to_string(counts[k]) + " " + names[k] +
+               " variant(s) (character_types texture_variants)");
   const PartitionMask& part = type.pack.contents().partition;
   r.neck = a.neck_height.value_or(part.neck_height);
   r.waist = a.waist_height.value_or(part.waist_height);
@@ -115,7 +113,7 @@ Instance make_instance(const Scene& scene, const RawAttributes& a, const Resolve
   for (int k = 0; k < 3; ++k) {
     const uint32_t drawn = rng.below(counts[k]);
     in.textures[k] = static_cast<uint8_t>(
-        a.textures.random ? drawn : static_cast<uint32_t>(a.textures.value[k]));
+        a.textures.random[k] ? drawn : static_cast<uint32_t>(a.textures.value[k]));
   }
   const float h = rng.unit() * 2.0f - 1.0f, s = rng.unit() * 2.0f - 1.0f,
               b = rng.unit() * 2.0f - 1.0f;
@@ -207,6 +205,15 @@ void build_instances(const RawScene& raw, const SceneLoadOptions& options, Scene
           out.add(in);
         }
       }
+      if (g.stand) {
+        SeatGridShape shape;
+        shape.origin = g.origin;
+        shape.rows = g.rows, shape.columns = g.columns;
+        shape.spacing[0] = g.spacing[0], shape.spacing[1] = g.spacing[1];
+        shape.row_rise = g.row_rise;
+        shape.yaw_degrees = g.yaw_degrees;
+        add_stand(shape, *g.stand, scene.static_geometry);
+      }
     } else {
       for (uint32_t k = 0; k < g.count; ++k) {
         Random rng(mix(g.seed, k, 2));
@@ -222,6 +229,7 @@ void build_instances(const RawScene& raw, const SceneLoadOptions& options, Scene
     }
     scene.generated.push_back({first, static_cast<uint32_t>(out.size()) - first, g.relaxation});
   }
+  if (raw.pitch) add_pitch(*raw.pitch, scene.static_geometry);
 }
 
 void build(const Json& root, const std::string& base_dir, const SceneLoadOptions& options,

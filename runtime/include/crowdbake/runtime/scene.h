@@ -23,6 +23,7 @@
 #include "crowdbake/runtime/lod_select_job.h"
 #include "crowdbake/runtime/pack.h"
 #include "crowdbake/runtime/scene_extensions.h"
+#include "crowdbake/runtime/static_geometry.h"
 #include "crowdbake/runtime/status.h"
 
 namespace crowdbake::runtime {
@@ -121,6 +122,8 @@ struct Scene {
   std::map<std::string, std::any, std::less<>> sections;
   // Per scene.json generator, in file order: the instances it made.
   std::vector<InstanceRange> generated;
+  // Stands and pitch (seat_grid "stand", "pitch"): drawn with the crowd, never animated.
+  StaticGeometry static_geometry;
 
   // Index of the type with this name, or -1.
   int32_t find_type(std::string_view name) const;

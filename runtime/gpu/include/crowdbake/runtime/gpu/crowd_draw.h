@@ -194,6 +194,7 @@ class CrowdDraw {
   struct Memory {
     std::vector<uint64_t> per_type;
     uint64_t skinning = 0, frame = 0;
+    uint64_t static_geometry = 0;  // the scene's stands and pitch (Scene::static_geometry)
   };
   Memory memory() const;
 
