@@ -391,6 +391,12 @@ std::optional<StandStyle> parse_stand(const Json& v, const std::string& path,
       style.seat_back = static_cast<float>(number_at_least(*p, path + ".seat_back", 0, true));
     if (const Json* p = find(v, "seats")) style.seats = boolean(*p, path + ".seats");
   }
+  SeatGridShape shape;
+  shape.rows = g.rows, shape.columns = g.columns;
+  if (stand_vertex_bound(shape, style) > kMaxStaticVertices)
+    fail(path, "a stand under " + std::to_string(uint64_t{g.rows} * g.columns) +
+                   " seats would need more than " + std::to_string(kMaxStaticVertices) +
+                   " vertices: draw it without seats (\"seats\": false) or split the grid");
   if (!(g.row_rise >= 0.0f))
     fail(path,
          "a stand needs row_rise >= 0 (its rows stand on the plane of the grid's origin), "
@@ -596,6 +602,17 @@ RawScene read_scene_file(const Json& root, const SceneLoadOptions& options) {
   if (total > kMaxInstances)
     fail("generators", "the scene would hold " + std::to_string(total) +
                            " instances, above the limit of " + std::to_string(kMaxInstances));
+  uint64_t static_vertices = 0;
+  for (const RawGenerator& g : s.generators) {
+    if (!g.stand) continue;
+    SeatGridShape shape;
+    shape.rows = g.rows, shape.columns = g.columns;
+    static_vertices += stand_vertex_bound(shape, *g.stand);
+  }
+  if (static_vertices > kMaxStaticVertices)
+    fail("generators", "the stands together would need " + std::to_string(static_vertices) +
+                           " vertices, above the limit of " + std::to_string(kMaxStaticVertices) +
+                           ": draw some without seats (\"seats\": false)");
   return s;
 }
 

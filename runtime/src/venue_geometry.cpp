@@ -58,6 +58,11 @@ void add_stand(const SeatGridShape& g, const StandStyle& style, StaticGeometry& 
   }
 }
 
+uint64_t stand_vertex_bound(const SeatGridShape& g, const StandStyle& style) {
+  // Per row a block of 4 faces, the wall behind the top row 5, per seat 5: 6 vertices a face.
+  return 6 * (4 * uint64_t{g.rows} + 5 + (style.seats ? 5 * uint64_t{g.rows} * g.columns : 0));
+}
+
 void add_pitch(const Pitch& p, StaticGeometry& out) {
   const float yaw = p.yaw_degrees * kPi / 180.0f;
   const float hx = 0.5f * p.width, hz = 0.5f * p.length;

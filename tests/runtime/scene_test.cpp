@@ -2,6 +2,8 @@
 // settings, pack paths, scenes built from code, and a clear error for every bad input.
 #include "crowdbake/runtime/scene.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <any>
@@ -246,6 +248,103 @@ TEST(Scene, GeneratorsAreDeterministicPerSeed) {
   other.replace(other.find("\"seed\": 5"), 9, "\"seed\": 6");
   ASSERT_TRUE(files.load(scene_with(other, kCamera, kVariantTypes), c));
   EXPECT_NE(a.instances.position, c.instances.position);
+}
+
+TEST(Scene, PerRegionRandomTexturesAndABaseColour) {
+  SceneFiles files;
+  Scene scene;
+  const Status s = files.load(
+      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 6, "columns": 8,
+        "spacing": [0.6, 0.9], "seed": 4,
+        "textures": {"head": "random", "upper_body": 2, "trousers": "random"},
+        "color": {"hue": 40, "saturation": 0.5}, "color_variation": {"hue": 5}}])",
+                 kCamera, kVariantTypes),
+      scene);
+  ASSERT_TRUE(s) << s.message();
+  std::set<uint8_t> heads, trousers;
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance in = scene.instances.get(i);
+    heads.insert(in.textures[0]);
+    trousers.insert(in.textures[2]);
+    EXPECT_EQ(in.textures[1], 2) << "a team's shirt";
+    EXPECT_NEAR(in.color[0], 40.0f, 5.0f);
+    EXPECT_FLOAT_EQ(in.color[1], 0.5f);
+  }
+  EXPECT_EQ(heads.size(), 4u);
+  EXPECT_EQ(trousers.size(), 2u);
+  expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1,
+        "spacing": [1, 1], "textures": {"head": "any"}}])"),
+               {"generators[0].textures.head: expected a variant index or \"random\""});
+  expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"head": "random"}}])"),
+               {"instances[0].textures.head: expected an integer"});
+}
+
+// A seat grid's stand and the pitch become Scene::static_geometry: every spectator stands on
+// a tread at its own height, the pitch lies where the file says, and nothing else is made.
+TEST(Scene, StandsAndPitchBecomeStaticGeometry) {
+  SceneFiles files;
+  Scene plain, scene;
+  const std::string grid = R"({"kind": "seat_grid", "rows": 3, "columns": 4, "spacing": [0.6, 0.9],
+      "row_rise": 0.4, "origin": [1, 0, -2], "yaw_degrees": 90)";
+  ASSERT_TRUE(files.load(scene_with("\"generators\": [" + grid + "}]"), plain));
+  EXPECT_TRUE(plain.static_geometry.empty());
+  const Status s = files.load(
+      scene_with("\"generators\": [" + grid +
+                 R"(, "stand": {"seat_color": [0, 0, 1], "seat_height": 0.5}}],
+      "pitch": {"center": [0, 0, 20], "length": 30, "width": 20, "stripes": 0})"),
+      scene);
+  ASSERT_TRUE(s) << s.message();
+  ASSERT_EQ(scene.instances.size(), 12u);
+  const StaticGeometry& g = scene.static_geometry;
+  ASSERT_EQ(g.positions.size(), 3 * g.vertex_count());
+  size_t seats = 0, pitch = 0;
+  for (size_t v = 0; v < g.vertex_count(); ++v) {
+    seats += g.colors[v] == pack_rgba8({0, 0, 1});
+    pitch += g.positions[3 * v + 2] > 4.0f;
+  }
+  EXPECT_EQ(seats, 12u * 12);  // pan top and front: 2 faces of 6 vertices per seat
+  EXPECT_GT(pitch, 6u);
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance in = scene.instances.get(i);
+    // A tread's top triangle lies under the feet at their height.
+    bool under = false;
+    for (size_t t = 0; t < g.vertex_count() && !under; t += 3) {
+      if (g.normals[3 * t + 1] < 0.99f || std::fabs(g.positions[3 * t + 1] - in.position[1]) > 1e-5f)
+        continue;
+      float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+      for (size_t k = 0; k < 3; ++k)
+        for (int a = 0; a < 2; ++a) {
+          lo[a] = std::min(lo[a], g.positions[3 * (t + k) + 2 * a]);
+          hi[a] = std::max(hi[a], g.positions[3 * (t + k) + 2 * a]);
+        }
+      under = in.position[0] >= lo[0] && in.position[0] <= hi[0] && in.position[2] >= lo[1] &&
+              in.position[2] <= hi[1];
+    }
+    EXPECT_TRUE(under) << "instance " << i << " has no tread under it";
+  }
+}
+
+TEST(SceneErrors, BadStandsAndPitches) {
+  const std::string grid = R"("generators": [{"kind": "seat_grid", "rows": 2, "columns": 2,
+      "spacing": [1, 1], )";
+  expect_error(scene_with(grid + R"("row_rise": -0.2, "stand": true}])"),
+               {"generators[0].stand: a stand needs row_rise >= 0"});
+  expect_error(scene_with(grid + R"("stand": {"seat_color": [0, 2, 0]}}])"),
+               {"generators[0].stand.seat_color[1]: a colour channel must be in [0, 1], got 2"});
+  expect_error(scene_with(grid + R"("stand": {"chairs": 3}}])"),
+               {"generators[0].stand", "chairs"});
+  expect_error(
+      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 2000, "columns": 2000,
+      "spacing": [1, 1], "stand": true}])"),
+      {"generators[0].stand: a stand under 4000000 seats would need more than 4194304 vertices",
+       "\"seats\": false"});
+  expect_error(scene_with(R"("pitch": {"length": 0})"), {"pitch.length: must be > 0"});
+  expect_error(scene_with(R"("pitch": {"color": "green"})"), {"pitch.color"});
+  // Two stands within the limit each, over it together.
+  const std::string big = R"({"kind": "seat_grid", "rows": 1000, "columns": 100,
+      "spacing": [1, 1], "stand": true})";
+  expect_error(scene_with("\"generators\": [" + big + ", " + big + "]"),
+               {"generators: the stands together would need"});
 }
 
 TEST(Scene, EmptySeatProbabilityExtremes) {

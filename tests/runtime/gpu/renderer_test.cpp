@@ -557,5 +557,47 @@ TEST_F(RendererTest, RecordDrawOverTheHostsPictureKeepsItsBackground) {
   EXPECT_EQ(wrong, 0u);
 }
 
+// Static geometry (a pitch under the crowd): drawn in its own colour, lit, and receiving the
+// crowd's shadows; a scene without it draws none of that colour.
+TEST_F(RendererTest, StaticGeometryIsDrawnInItsColourAndReceivesShadows) {
+  Scene scene;
+  make_crowd_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image without = render(scene, 1.3f);
+  runtime::Pitch pitch;
+  pitch.center = {0.0f, 0.0f, -1.3f};
+  pitch.length = 8.0f;
+  pitch.width = 10.0f;
+  pitch.stripes = 0;
+  pitch.color = {0.85f, 0.1f, 0.85f};  // magenta: no swatch, skin or ground colour is
+  runtime::add_pitch(pitch, scene.static_geometry);
+  ASSERT_FALSE(scene.static_geometry.empty());
+  const auto magenta = [](const Image& image, size_t p) {
+    const int r = image.rgba[4 * p], g = image.rgba[4 * p + 1], b = image.rgba[4 * p + 2];
+    return r > 2 * g + 10 && b > 2 * g + 10 && std::abs(r - b) < 12;
+  };
+  const size_t pixels = size_t{without.width} * without.height;
+  size_t before = 0;
+  for (size_t p = 0; p < pixels; ++p) before += magenta(without, p);
+  EXPECT_LT(before, 50u) << "the crowd alone should have (almost) no magenta";
+
+  make_renderer(scene);
+  if (HasFatalFailure()) return;
+  const Image lit = render(scene, 1.3f);
+  RenderOptions options;
+  options.shadows = false;
+  make_renderer(scene, options);
+  if (HasFatalFailure()) return;
+  const Image unlit = render(scene, 1.3f);
+  size_t pitch_pixels = 0, shadowed = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (!magenta(unlit, p)) continue;
+    ++pitch_pixels;
+    shadowed += lit.rgba[4 * p] + 20 < unlit.rgba[4 * p];
+  }
+  EXPECT_GT(pitch_pixels, pixels / 4) << "the pitch fills the lower part of the picture";
+  EXPECT_GT(shadowed, 100u) << "the crowd's shadows fall on the pitch";
+}
+
 }  // namespace
 }  // namespace crowdbake

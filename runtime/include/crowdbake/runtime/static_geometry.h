@@ -60,6 +60,12 @@ struct StandStyle {
 
 // Appends the stand's triangles: 2 per tread, riser and side step, 10 per seat.
 void add_stand(const SeatGridShape& grid, const StandStyle& style, StaticGeometry& out);
+// At most how many vertices add_stand appends (scene readers check it before building).
+uint64_t stand_vertex_bound(const SeatGridShape& grid, const StandStyle& style);
+
+// The most static vertices a scene.json may make (32 bytes each on the GPU: 128 MiB, the
+// storage buffer range lavapipe and most GPUs guarantee).
+constexpr uint64_t kMaxStaticVertices = uint64_t{1} << 22;
 
 // A football pitch: mowing stripes and white lines (touch and goal lines, halfway line, centre
 // circle, penalty and goal areas scaled with the pitch), centred at `center`, length along
