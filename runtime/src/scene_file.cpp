@@ -424,6 +424,45 @@ void parse_pitch(const Json& v, RawScene& s) {
   s.pitch = p;
 }
 
+void parse_seat_grid(const Json& v, const std::string& gp, RawGenerator& g) {
+  check_object(v, gp, {"kind",        "type",
+                       "seed",        "origin",
+                       "rows",        "columns",
+                       "spacing",     "row_rise",
+                       "yaw_degrees", "empty_probability",
+                       "clip",        "clips",
+                       "speed",       "time_offset",
+                       "scale",       "textures",
+                       "color",       "color_variation",
+                       "neck_height", "waist_height",
+                       "stand"});
+  g.grid = true;
+  if (const Json* p = find(v, "origin")) g.origin = numbers<3>(*p, gp + ".origin");
+  g.rows = static_cast<uint32_t>(integer(require(v, "rows", gp), gp + ".rows", 1, kMaxInstances));
+  g.columns =
+      static_cast<uint32_t>(integer(require(v, "columns", gp), gp + ".columns", 1, kMaxInstances));
+  if (uint64_t{g.rows} * g.columns > kMaxInstances)
+    fail(gp, std::to_string(g.rows) + " rows x " + std::to_string(g.columns) +
+                 " columns exceed the limit of " + std::to_string(kMaxInstances) + " instances");
+  const std::array<float, 2> spacing = numbers<2>(require(v, "spacing", gp), gp + ".spacing");
+  for (int k = 0; k < 2; ++k)
+    if (!(spacing[k] > 0.0f))
+      fail(item_path(gp + ".spacing", k), "must be > 0, got " + show(spacing[k]));
+  g.spacing[0] = spacing[0];
+  g.spacing[1] = spacing[1];
+  if (const Json* p = find(v, "row_rise"))
+    g.row_rise = static_cast<float>(number(*p, gp + ".row_rise"));
+  if (const Json* p = find(v, "yaw_degrees"))
+    g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
+  if (const Json* p = find(v, "empty_probability")) {
+    const double e = number(*p, gp + ".empty_probability");
+    if (!(e >= 0.0 && e <= 1.0))
+      fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
+    g.empty_probability = static_cast<float>(e);
+  }
+  if (const Json* p = find(v, "stand")) g.stand = parse_stand(*p, gp + ".stand", g);
+}
+
 void parse_generators(const Json& v, RawScene& s) {
   const std::string path = "generators";
   const Json& arr = array(v, path);
@@ -433,45 +472,7 @@ void parse_generators(const Json& v, RawScene& s) {
     const std::string kind = string(require(arr[i], "kind", gp), gp + ".kind");
     RawGenerator g;
     if (kind == "seat_grid") {
-      check_object(arr[i], gp, {"kind",        "type",
-                                "seed",        "origin",
-                                "rows",        "columns",
-                                "spacing",     "row_rise",
-                                "yaw_degrees", "empty_probability",
-                                "clip",        "clips",
-                                "speed",       "time_offset",
-                                "scale",       "textures",
-                                "color",       "color_variation",
-                                "neck_height", "waist_height",
-                                "stand"});
-      g.grid = true;
-      if (const Json* p = find(arr[i], "origin")) g.origin = numbers<3>(*p, gp + ".origin");
-      g.rows = static_cast<uint32_t>(
-          integer(require(arr[i], "rows", gp), gp + ".rows", 1, kMaxInstances));
-      g.columns = static_cast<uint32_t>(
-          integer(require(arr[i], "columns", gp), gp + ".columns", 1, kMaxInstances));
-      if (uint64_t{g.rows} * g.columns > kMaxInstances)
-        fail(gp, std::to_string(g.rows) + " rows x " + std::to_string(g.columns) +
-                     " columns exceed the limit of " + std::to_string(kMaxInstances) +
-                     " instances");
-      const std::array<float, 2> spacing =
-          numbers<2>(require(arr[i], "spacing", gp), gp + ".spacing");
-      for (int k = 0; k < 2; ++k)
-        if (!(spacing[k] > 0.0f))
-          fail(item_path(gp + ".spacing", k), "must be > 0, got " + show(spacing[k]));
-      g.spacing[0] = spacing[0];
-      g.spacing[1] = spacing[1];
-      if (const Json* p = find(arr[i], "row_rise"))
-        g.row_rise = static_cast<float>(number(*p, gp + ".row_rise"));
-      if (const Json* p = find(arr[i], "yaw_degrees"))
-        g.yaw_degrees = static_cast<float>(number(*p, gp + ".yaw_degrees"));
-      if (const Json* p = find(arr[i], "empty_probability")) {
-        const double e = number(*p, gp + ".empty_probability");
-        if (!(e >= 0.0 && e <= 1.0))
-          fail(gp + ".empty_probability", "must be in [0, 1], got " + show(e));
-        g.empty_probability = static_cast<float>(e);
-      }
-      if (const Json* p = find(arr[i], "stand")) g.stand = parse_stand(*p, gp + ".stand", g);
+      parse_seat_grid(arr[i], gp, g);
     } else if (kind == "scatter") {
       check_object(arr[i], gp,
                    {"kind", "type", "seed", "count", "rectangle", "y", "yaw_degrees", "clip",

@@ -2,10 +2,9 @@
 // settings, pack paths, scenes built from code, and a clear error for every bad input.
 #include "crowdbake/runtime/scene.h"
 
-#include <algorithm>
-
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <any>
 #include <cmath>
 #include <fstream>
@@ -253,13 +252,13 @@ TEST(Scene, GeneratorsAreDeterministicPerSeed) {
 TEST(Scene, PerRegionRandomTexturesAndABaseColour) {
   SceneFiles files;
   Scene scene;
-  const Status s = files.load(
-      scene_with(R"("generators": [{"kind": "seat_grid", "rows": 6, "columns": 8,
+  const Status s =
+      files.load(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 6, "columns": 8,
         "spacing": [0.6, 0.9], "seed": 4,
         "textures": {"head": "random", "upper_body": 2, "trousers": "random"},
         "color": {"hue": 40, "saturation": 0.5}, "color_variation": {"hue": 5}}])",
-                 kCamera, kVariantTypes),
-      scene);
+                            kCamera, kVariantTypes),
+                 scene);
   ASSERT_TRUE(s) << s.message();
   std::set<uint8_t> heads, trousers;
   for (size_t i = 0; i < scene.instances.size(); ++i) {
@@ -275,8 +274,9 @@ TEST(Scene, PerRegionRandomTexturesAndABaseColour) {
   expect_error(scene_with(R"("generators": [{"kind": "seat_grid", "rows": 1, "columns": 1,
         "spacing": [1, 1], "textures": {"head": "any"}}])"),
                {"generators[0].textures.head: expected a variant index or \"random\""});
-  expect_error(scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"head": "random"}}])"),
-               {"instances[0].textures.head: expected an integer"});
+  expect_error(
+      scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"head": "random"}}])"),
+      {"instances[0].textures.head: expected an integer"});
 }
 
 // A seat grid's stand and the pitch become Scene::static_geometry: every spectator stands on
@@ -288,11 +288,11 @@ TEST(Scene, StandsAndPitchBecomeStaticGeometry) {
       "row_rise": 0.4, "origin": [1, 0, -2], "yaw_degrees": 90)";
   ASSERT_TRUE(files.load(scene_with("\"generators\": [" + grid + "}]"), plain));
   EXPECT_TRUE(plain.static_geometry.empty());
-  const Status s = files.load(
-      scene_with("\"generators\": [" + grid +
-                 R"(, "stand": {"seat_color": [0, 0, 1], "seat_height": 0.5}}],
+  const Status s =
+      files.load(scene_with("\"generators\": [" + grid +
+                            R"(, "stand": {"seat_color": [0, 0, 1], "seat_height": 0.5}}],
       "pitch": {"center": [0, 0, 20], "length": 30, "width": 20, "stripes": 0})"),
-      scene);
+                 scene);
   ASSERT_TRUE(s) << s.message();
   ASSERT_EQ(scene.instances.size(), 12u);
   const StaticGeometry& g = scene.static_geometry;
@@ -309,7 +309,8 @@ TEST(Scene, StandsAndPitchBecomeStaticGeometry) {
     // A tread's top triangle lies under the feet at their height.
     bool under = false;
     for (size_t t = 0; t < g.vertex_count() && !under; t += 3) {
-      if (g.normals[3 * t + 1] < 0.99f || std::fabs(g.positions[3 * t + 1] - in.position[1]) > 1e-5f)
+      if (g.normals[3 * t + 1] < 0.99f ||
+          std::fabs(g.positions[3 * t + 1] - in.position[1]) > 1e-5f)
         continue;
       float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
       for (size_t k = 0; k < 3; ++k)
@@ -331,8 +332,7 @@ TEST(SceneErrors, BadStandsAndPitches) {
                {"generators[0].stand: a stand needs row_rise >= 0"});
   expect_error(scene_with(grid + R"("stand": {"seat_color": [0, 2, 0]}}])"),
                {"generators[0].stand.seat_color[1]: a colour channel must be in [0, 1], got 2"});
-  expect_error(scene_with(grid + R"("stand": {"chairs": 3}}])"),
-               {"generators[0].stand", "chairs"});
+  expect_error(scene_with(grid + R"("stand": {"chairs": 3}}])"), {"generators[0].stand", "chairs"});
   expect_error(
       scene_with(R"("generators": [{"kind": "seat_grid", "rows": 2000, "columns": 2000,
       "spacing": [1, 1], "stand": true}])"),

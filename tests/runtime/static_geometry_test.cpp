@@ -157,8 +157,8 @@ TEST(StaticGeometry, PitchIsFlatInsideItsOutlineWithLinesAbove) {
       stripes += g.colors[v] != grass;
     }
   }
-  EXPECT_GT(lines, 100u);    // outline, halfway line, areas and centre circle
-  EXPECT_GT(stripes, 0u);    // every other stripe lighter
+  EXPECT_GT(lines, 100u);  // outline, halfway line, areas and centre circle
+  EXPECT_GT(stripes, 0u);  // every other stripe lighter
   EXPECT_EQ(top_at(g, 5.0f + 29.0f, -3.0f), 1.0f);  // near a goal line, inside the pitch
   EXPECT_EQ(top_at(g, 5.0f, -3.0f + 21.0f), -std::numeric_limits<float>::infinity());
 }

@@ -137,6 +137,17 @@ class RendererTest : public test::GpuTest {
     EXPECT_TRUE(s.ok()) << s.message();
     return image;
   }
+  // The scene at `time` with shadows (lit) and without (unlit), each from a new renderer.
+  void render_with_and_without_shadows(const Scene& scene, float time, Image& lit, Image& unlit) {
+    make_renderer(scene);
+    if (HasFatalFailure()) return;
+    lit = render(scene, time);
+    RenderOptions options;
+    options.shadows = false;
+    make_renderer(scene, options);
+    if (HasFatalFailure()) return;
+    unlit = render(scene, time);
+  }
   // A 256x144 colour + depth target the test owns (as an embedding host would) and a buffer
   // its colour is copied to. extra_usage: added to both images' usage.
   struct CallerTarget {
@@ -274,12 +285,9 @@ TEST_F(RendererTest, ShadowsDarkenTheGround) {
   Scene scene;
   make_crowd_renderer(scene);
   if (HasFatalFailure()) return;
-  const Image lit = render(scene, 1.3f);
-  RenderOptions options;
-  options.shadows = false;
-  make_renderer(scene, options);
+  Image lit, unlit;
+  render_with_and_without_shadows(scene, 1.3f, lit, unlit);
   if (HasFatalFailure()) return;
-  const Image unlit = render(scene, 1.3f);
   size_t darker = 0, brighter = 0;
   for (size_t p = 0; p < lit.rgba.size(); p += 4) {
     const int a = lit.rgba[p] + lit.rgba[p + 1] + lit.rgba[p + 2];
@@ -581,14 +589,9 @@ TEST_F(RendererTest, StaticGeometryIsDrawnInItsColourAndReceivesShadows) {
   for (size_t p = 0; p < pixels; ++p) before += magenta(without, p);
   EXPECT_LT(before, 50u) << "the crowd alone should have (almost) no magenta";
 
-  make_renderer(scene);
+  Image lit, unlit;
+  render_with_and_without_shadows(scene, 1.3f, lit, unlit);
   if (HasFatalFailure()) return;
-  const Image lit = render(scene, 1.3f);
-  RenderOptions options;
-  options.shadows = false;
-  make_renderer(scene, options);
-  if (HasFatalFailure()) return;
-  const Image unlit = render(scene, 1.3f);
   size_t pitch_pixels = 0, shadowed = 0;
   for (size_t p = 0; p < pixels; ++p) {
     if (!magenta(unlit, p)) continue;
