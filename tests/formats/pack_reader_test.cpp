@@ -238,7 +238,7 @@ TEST(PackReader, QuantisedWeightsNeedGeomVersion2) {
   expect_error(read(test::assemble_pack(chunks)), "reserved header fields are not zero");
   geom->version = 2;
   geom->payload[19] = 17;
-  expect_error(read(test::assemble_pack(chunks)), "quantisation bits 16/10/12/17 are invalid");
+  expect_error(read(test::assemble_pack(chunks)), "quantisation bits 14/10/12/17 are invalid");
 
   // The predictive codec (3) needs GEOM v3; a v2 reader's view of it is an unknown codec.
   chunks = test::split_pack(small_pack(GeometryCodec::kPredictive));

@@ -97,6 +97,18 @@ struct PackImage {
   std::vector<uint8_t> data;
 };
 
+// Images an artist made for one partition region (head, upper body, trousers), which an
+// instance may wear there instead of its material's base colour image (VARS, pack 1.7,
+// optional; docs/pack-format.md 3.12). They share the character's UV layout. Region r's
+// variant k >= 1 (the instance's texture choice; 0 is the character's own look) is
+// images[first[r] + k - 1], for k <= count[r].
+struct PackVariantImages {
+  std::array<uint32_t, 3> first{0, 0, 0};  // index into PackContents::images
+  std::array<uint32_t, 3> count{0, 0, 0};  // at most kMaxVariantImages each
+
+  bool empty() const { return count[0] == 0 && count[1] == 0 && count[2] == 0; }
+};
+
 struct PackGeometry {
   std::vector<float> positions;             // 3 per vertex, model units
   std::vector<float> normals;               // 3 per vertex, or empty
@@ -142,6 +154,7 @@ struct PackContents {
   std::vector<PackClip> clips;
   std::vector<PackMaterial> materials;
   std::vector<PackImage> images;  // IMGS (1.2, optional): the materials' base colour images
+  PackVariantImages variant_images;  // VARS (1.7, optional): per-region image variants
   PackGeometry geometry;
   PackProgressive progressive;
   PackLevelErrors level_errors;
@@ -175,7 +188,7 @@ enum class PackCompression : uint32_t { kNone = 0, kZstd = 1 };
 
 struct PackWriteOptions {
   GeometryCodec codec = GeometryCodec::kPredictive;
-  int position_bits = 16;  // Draco/meshopt position quantisation (0 = lossless float)
+  int position_bits = 14;  // position quantisation (0 = lossless float)
   int normal_bits = 10;
   int uv_bits = 12;
   int weight_bits = 12;  // skin weights as integers (0 = exact floats, GEOM v1)
