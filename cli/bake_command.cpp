@@ -91,6 +91,8 @@ int run_bake(const BakeCommandSettings& s) {
     std::vector<std::string> files = asset.files;
     if (!s.config.empty()) files.push_back(s.config);
     if (!settings.simplify.ranges_file.empty()) files.push_back(settings.simplify.ranges_file);
+    for (const auto& region : settings.variant_images)
+      files.insert(files.end(), region.begin(), region.end());
     throw_if_failed(write_file_atomically(s.depfile, depfile_text(s.output, files)));
   }
   if (!s.report.empty()) {

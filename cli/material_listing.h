@@ -64,4 +64,30 @@ void print_materials(const std::vector<MaterialT>& materials,
   }
 }
 
+// Per region the pack's variant images (VARS): {"head": [first, ...], ...} as image indices.
+inline nlohmann::ordered_json variant_images_json(const PackVariantImages& v) {
+  static const char* const kRegions[3] = {"head", "upper_body", "trousers"};
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (int r = 0; r < 3; ++r) {
+    nlohmann::ordered_json images = nlohmann::ordered_json::array();
+    for (uint32_t k = 0; k < v.count[r]; ++k) images.push_back(v.first[r] + k);
+    out[kRegions[r]] = images;
+  }
+  return out;
+}
+
+// "  variants   head 2 (images 3..4), ..." when the pack has variant images.
+inline void print_variant_images(const PackVariantImages& v) {
+  if (v.empty()) return;
+  static const char* const kRegions[3] = {"head", "upper body", "trousers"};
+  std::string line;
+  for (int r = 0; r < 3; ++r) {
+    if (v.count[r] == 0) continue;
+    line += (line.empty() ? "" : ", ") + std::string(kRegions[r]) + " " +
+            std::to_string(v.count[r]) + " (images " + std::to_string(v.first[r]) + ".." +
+            std::to_string(v.first[r] + v.count[r] - 1) + ")";
+  }
+  std::printf("  variants   %s\n", line.c_str());
+}
+
 }  // namespace crowdbake::cli

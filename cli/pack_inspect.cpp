@@ -141,6 +141,7 @@ ordered_json to_json(const PackFile& pack) {
                  {"radius", c.bounds.radius}};
   j["materials"] = materials_json(c.materials);
   j["images"] = images_json(c.images);
+  j["variant_images"] = variant_images_json(c.variant_images);
   j["settings"] = settings_json(c.settings_json);
   ordered_json sizes = ordered_json::object();
   for (const PackChunk& ch : pack.chunks) sizes[pack_format::tag_name(ch.tag)] = ch.size;
@@ -214,6 +215,7 @@ void print_text(const PackFile& pack) {
               c.bounds.min[0], c.bounds.min[1], c.bounds.min[2], c.bounds.max[0], c.bounds.max[1],
               c.bounds.max[2], bbox_diagonal(c), c.bounds.radius);
   print_materials(c.materials, c.images);
+  print_variant_images(c.variant_images);
   const ordered_json settings = settings_json(c.settings_json);
   if (settings.is_object()) {
     bool first = true;

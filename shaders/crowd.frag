@@ -99,10 +99,16 @@ void main() {
     const bool material_shading = type_block.waist_mask.w > 0.5;
     if (material_shading) {
       const GpuMaterial m = materials[in_material];
+      // The instance's variant for this region (0: the character's own image) picks one of
+      // the pack's variant images, laid on the same UVs in place of the material's image.
+      const uint variant = (in_textures >> (8u * region)) & 0xFFu;
+      const uint images = type_block.variant_images[min(region, 2u)];
+      float layer = m.uv_u.w;
+      if (variant > 0u && variant <= (images >> 16)) layer = float((images & 0xFFFFu) + variant - 1u);
       vec4 texel = vec4(1.0);
-      if (m.uv_u.w >= 0.0) {
+      if (layer >= 0.0) {
         const vec3 uv1 = vec3(in_uv, 1.0);
-        texel = texture(material_images, vec3(dot(m.uv_u.xyz, uv1), dot(m.uv_v.xyz, uv1), m.uv_u.w));
+        texel = texture(material_images, vec3(dot(m.uv_u.xyz, uv1), dot(m.uv_v.xyz, uv1), layer));
       }
       if (m.uv_v.w >= 0.0 && texel.a * m.color.a < m.uv_v.w) discard;
       albedo = texel.rgb * m.color.rgb;

@@ -64,6 +64,12 @@ std::string material_rules(const PackContents& c, const HeadCounts& counts) {
       return "MATL: material " + std::to_string(i) + " uses image " +
              std::to_string(c.materials[i].base_color_image) + ", there are " +
              std::to_string(c.images.size());
+  const PackVariantImages& v = c.variant_images;
+  for (int r = 0; r < 3; ++r)
+    if (v.count[r] > 0 && uint64_t{v.first[r]} + v.count[r] > c.images.size())
+      return "VARS: region " + std::to_string(r) + " uses images " + std::to_string(v.first[r]) +
+             ".." + std::to_string(uint64_t{v.first[r]} + v.count[r] - 1) + ", there are " +
+             std::to_string(c.images.size());
   return "";
 }
 

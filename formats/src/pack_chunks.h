@@ -39,6 +39,9 @@ bool decode_material_extras(ByteReader& in, std::vector<PackMaterial>& out);
 bool has_material_extras(const std::vector<PackMaterial>& materials);
 void encode_images(const std::vector<PackImage>& images, ByteWriter& out);
 bool decode_images(ByteReader& in, std::vector<PackImage>& out);
+// VARS (1.7): per region, the first image and how many.
+void encode_variant_images(const PackVariantImages& variants, ByteWriter& out);
+bool decode_variant_images(ByteReader& in, PackVariantImages& out);
 
 void encode_bounds(const PackBounds& bounds, ByteWriter& out);
 bool decode_bounds(ByteReader& in, PackBounds& out);

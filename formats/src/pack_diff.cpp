@@ -284,6 +284,16 @@ DiffSection diff_materials(const PackContents& a, const PackContents& b, const C
       ++images_differ;
     }
   }
+  static const char* const kRegions[3] = {"head", "upper body", "trousers"};
+  for (int r = 0; r < 3; ++r) {
+    const PackVariantImages &va = a.variant_images, &vb = b.variant_images;
+    // note: where a region has none, where they would start means nothing.
+    if (va.count[r] != vb.count[r] || (va.count[r] > 0 && va.first[r] != vb.first[r]))
+      differ(s,
+             std::string(kRegions[r]) + " variant images " +
+                 arrow(std::to_string(va.count[r]) + " from image " + std::to_string(va.first[r]),
+                       std::to_string(vb.count[r]) + " from image " + std::to_string(vb.first[r])));
+  }
   s.summary = std::to_string(a.materials.size()) + " materials, " +
               std::to_string(a.images.size()) + " images; base colour max diff " + num(color.value);
   s.figures = {{"materials", {a.materials.size(), b.materials.size()}},

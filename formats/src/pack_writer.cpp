@@ -211,6 +211,8 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
   pack_io::encode_materials(contents.materials, add(kTagMatl, kMatlVersion));
   if (pack_io::has_material_extras(contents.materials))
     pack_io::encode_material_extras(contents.materials, add(kTagMatx, kMatxVersion));
+  if (!contents.variant_images.empty())
+    pack_io::encode_variant_images(contents.variant_images, add(kTagVars, kVarsVersion));
   pack_io::encode_bounds(contents.bounds, add(kTagBnds, kBndsVersion));
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
   if (!contents.level_errors.vertices.empty())

@@ -49,15 +49,16 @@ class ConfigReader {
   ConfigReader(const std::string& path, BakeSettings& out) : path_(path), out_(out) {}
 
   void read(const Json& doc) {
-    json_reader::check_object(
-        doc, "",
-        {"comment", "simplify", "level_errors", "animation", "partition", "geometry", "pack"});
+    json_reader::check_object(doc, "",
+                              {"comment", "simplify", "level_errors", "animation", "partition",
+                               "geometry", "pack", "variants"});
     if (const Json* p = find(doc, "simplify")) simplify(*p);
     if (const Json* p = find(doc, "level_errors")) level_errors(*p);
     if (const Json* p = find(doc, "animation")) animation(*p);
     if (const Json* p = find(doc, "partition")) partition(*p);
     if (const Json* p = find(doc, "geometry")) geometry(*p);
     if (const Json* p = find(doc, "pack")) pack(*p);
+    if (const Json* p = find(doc, "variants")) variants(*p);
   }
 
  private:
@@ -155,6 +156,27 @@ class ConfigReader {
       out_.pack.compression = json_reader::choice(*p, "pack.compression", kCompressions);
   }
 
+  void variants(const Json& body) {
+    static const char* const kRegions[3] = {"head", "upper_body", "trousers"};
+    json_reader::check_object(body, "variants", {"head", "upper_body", "trousers"});
+    const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+    for (int r = 0; r < 3; ++r) {
+      const Json* list = find(body, kRegions[r]);
+      if (!list) continue;
+      const std::string key = std::string("variants.") + kRegions[r];
+      const Json& files = json_reader::array(*list, key);
+      if (files.size() > pack_format::kMaxVariantImages)
+        json_reader::fail(key, std::to_string(files.size()) + " images exceed the limit of " +
+                                   std::to_string(pack_format::kMaxVariantImages) +
+                                   " per region (an instance's choice is one byte)");
+      for (size_t i = 0; i < files.size(); ++i) {
+        const std::string file = json_reader::string(files[i], json_reader::item_path(key, i));
+        if (file.empty()) json_reader::fail(json_reader::item_path(key, i), "empty file name");
+        out_.variant_images[r].push_back((folder / file).lexically_normal().string());
+      }
+    }
+  }
+
   std::string path_;
   BakeSettings& out_;
 };
@@ -207,6 +229,11 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["geometry"]["uv_bits"] = s.pack.uv_bits;
   j["geometry"]["weight_bits"] = s.pack.weight_bits;
   j["pack"]["compression"] = name_of(kCompressions, s.pack.compression);
+  // note: only when given, so packs baked without variants keep their settings text.
+  static const char* const kRegions[3] = {"head", "upper_body", "trousers"};
+  for (int r = 0; r < 3; ++r)
+    for (const std::string& file : s.variant_images[r])
+      j["variants"][kRegions[r]].push_back(std::filesystem::path(file).filename().string());
   return j.dump();
 }
 

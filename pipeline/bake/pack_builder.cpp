@@ -16,6 +16,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "import/node_transform.h"
+#include "variant_images.h"
 
 namespace crowdbake {
 namespace {
@@ -258,6 +259,7 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
   }
   pack.images = asset.images;
   fill_geometry(asset, pm, partition.vertex_regions, pack.materials, pack.geometry);
+  add_variant_images(settings.variant_images, pack);
   for (const Joint& j : asset.skeleton.joints) {
     PackJoint out;
     out.name = j.name;

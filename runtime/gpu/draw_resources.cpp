@@ -183,6 +183,9 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   k.variants[1] = type.texture_variants.upper_body;
   k.variants[2] = type.texture_variants.trousers;
   k.variants[3] = swatches_per_region;
+  const PackVariantImages& vi = c.variant_images;
+  for (int r = 0; r < 3; ++r) k.variant_images[r] = vi.first[r] | vi.count[r] << 16;
+  k.variant_images[3] = 0;
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   if (Status s = create_filled_buffer(*context, storage, MemoryKind::kHostVisible, &k, sizeof(k),

@@ -10,7 +10,7 @@ namespace crowdbake::runtime::gpu {
 // note: the shaders read these as std140 / std430 blocks; any change must match the GLSL.
 static_assert(sizeof(FrameConstants) == 2 * 64 + 8 * 16, "FrameBlock layout");
 static_assert(offsetof(FrameConstants, light_dir) == 128, "FrameBlock layout");
-static_assert(sizeof(TypeConstants) == 6 * 16, "TypeBlock layout");
+static_assert(sizeof(TypeConstants) == 7 * 16, "TypeBlock layout");
 static_assert(sizeof(GpuVertex) == 64, "GpuVertex layout");
 static_assert(sizeof(GpuMaterial) == 48, "GpuMaterial layout");
 

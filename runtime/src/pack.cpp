@@ -122,8 +122,10 @@ struct Pack::Impl {
         if (Status s = read_chunk(tag); !s) return s;
     // note: LERR is optional (packs of 1.0 have none); it is a small table when present.
     // MATX and IMGS (1.2) are optional too; IMGS holds encoded PNG/JPEG images, a texture's
-    // worth, read with the tables because type creation needs them.
-    for (uint32_t tag : {pack_format::kTagLerr, pack_format::kTagMatx, pack_format::kTagImgs})
+    // worth, read with the tables because type creation needs them. VARS (1.7) says which of
+    // those images are per-region variants.
+    for (uint32_t tag : {pack_format::kTagLerr, pack_format::kTagMatx, pack_format::kTagImgs,
+                         pack_format::kTagVars})
       if (find(tag))
         if (Status s = read_chunk(tag); !s) return s;
     for (uint32_t tag : {pack_format::kTagSkel, pack_format::kTagClip, pack_format::kTagMatl,

@@ -78,6 +78,8 @@ Camera Scene::camera_at_time(float time) const { return camera_at(camera, camera
 
 Shading resolved_shading(const CharacterType& type) {
   if (type.shading != Shading::kAuto) return type.shading;
+  // note: a pack with variant images has its own looks per region.
+  if (!type.pack.contents().variant_images.empty()) return Shading::kMaterial;
   const TextureVariants& v = type.texture_variants;
   return v.head > 1 || v.upper_body > 1 || v.trousers > 1 ? Shading::kSwatches : Shading::kMaterial;
 }

@@ -221,6 +221,7 @@ void parse_types(const Json& v, RawScene& s) {
     if (const Json* p = find(arr[i], "texture_variants")) {
       const std::string vp = tp + ".texture_variants";
       check_object(*p, vp, {"head", "upper_body", "trousers"});
+      t.variants_given = true;
       uint32_t* fields[3] = {&t.variants.head, &t.variants.upper_body, &t.variants.trousers};
       const char* names[3] = {"head", "upper_body", "trousers"};
       for (int k = 0; k < 3; ++k)

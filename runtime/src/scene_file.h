@@ -44,6 +44,7 @@ struct RawColor {
 struct RawType {
   std::string name, pack, path;
   TextureVariants variants;
+  bool variants_given = false;  // "texture_variants" was in the file
   Shading shading = Shading::kAuto;
 };
 

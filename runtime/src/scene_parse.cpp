@@ -135,8 +135,13 @@ void open_packs(const RawScene& raw, const std::string& base_dir, const SceneLoa
     if (!s) fail(t.path + ".pack", s.message(), s.code());
     if (pack.contents().clips.empty())
       fail(t.path + ".pack", pack.source_name() + ": the pack has no clips to play");
+    // note: without texture_variants a pack's variant images are its variants (0: its own).
+    TextureVariants variants = t.variants;
+    const PackVariantImages& images = pack.contents().variant_images;
+    if (!t.variants_given && !images.empty())
+      variants = {1 + images.count[0], 1 + images.count[1], 1 + images.count[2]};
     uint32_t index = 0;
-    const Status added = add_character_type(scene, t.name, std::move(pack), t.variants, &index);
+    const Status added = add_character_type(scene, t.name, std::move(pack), variants, &index);
     if (!added) fail(t.path, added.message());
     scene.types[index].shading = t.shading;
   }

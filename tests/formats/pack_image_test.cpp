@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <functional>
 #include <stdexcept>
+#include <utility>
 
 #include "crowdbake/formats/pack.h"
 #include "pack_bytes.h"
@@ -155,6 +158,85 @@ TEST(PackImage, ReaderRefusesImageBytesThatAreNoImage) {
   const Status s = read_pack(bytes.data(), bytes.size(), back);
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message().find("neither PNG nor JPEG"), std::string::npos) << s.message();
+}
+
+// The textured test character with two upper-body variant images (VARS, 1.7).
+PackContents contents_with_variants() {
+  PackContents c = textured_contents();
+  std::string why;
+  for (const auto& [name, rgba] :
+       {std::pair<const char*, std::array<uint8_t, 4>>{"red.png", {200, 0, 0, 255}},
+        {"blue.png", {0, 0, 200, 255}}}) {
+    PackImage image;
+    EXPECT_TRUE(make_pack_image(name, solid_image(4, 2, rgba), image, why)) << why;
+    c.images.push_back(image);
+  }
+  c.variant_images.first[1] = 1;
+  c.variant_images.count[1] = 2;
+  return c;
+}
+
+TEST(PackImage, VariantImagesRoundTripAndReadersWithoutVarsSkipThem) {
+  const PackContents c = contents_with_variants();
+  const std::vector<uint8_t> bytes = test::pack_bytes(c);
+  EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagVars).version, 1u);
+  EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagVars).size, 24u);
+  PackContents back;
+  Status s = read_pack(bytes.data(), bytes.size(), back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(back.variant_images.first, c.variant_images.first);
+  EXPECT_EQ(back.variant_images.count, c.variant_images.count);
+  EXPECT_EQ(back.images.size(), 3u);
+
+  // What a 1.6 reader sees: the pack without the chunk it does not know, images and all.
+  std::vector<test::RawChunk> kept;
+  for (test::RawChunk& chunk : test::split_pack(bytes))
+    if (chunk.tag != pack_format::kTagVars) kept.push_back(std::move(chunk));
+  const std::vector<uint8_t> old = test::assemble_pack(kept, 1, 6);
+  s = read_pack(old.data(), old.size(), back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_TRUE(back.variant_images.empty());
+  EXPECT_EQ(back.materials[0].base_color_image, 0);
+
+  // Without variants no VARS is written.
+  for (const PackChunk& chunk : [] {
+         std::vector<PackChunk> chunks;
+         const std::vector<uint8_t> plain = test::pack_bytes(textured_contents());
+         EXPECT_TRUE(read_pack_chunks(plain.data(), plain.size(), chunks).ok());
+         return chunks;
+       }())
+    EXPECT_NE(chunk.tag, pack_format::kTagVars);
+}
+
+TEST(PackImage, VariantImagesOutsideTheImagesOrTooManyAreRefused) {
+  PackContents c = contents_with_variants();
+  c.variant_images.count[1] = 3;
+  Status s = validate_pack_contents(c);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("VARS: region 1 uses images 1..3, there are 3"), std::string::npos)
+      << s.message();
+  std::vector<uint8_t> bytes;
+  EXPECT_EQ(write_pack(c, {}, bytes).code(), StatusCode::kInvalidArgument);
+
+  // Hostile chunks with right checksums: a count over the limit, a range past the images, a
+  // short payload.
+  const std::vector<uint8_t> good = test::pack_bytes(contents_with_variants());
+  const auto refused = [&](const std::function<void(test::RawChunk&)>& edit,
+                           const std::string& expected) {
+    std::vector<test::RawChunk> chunks = test::split_pack(good);
+    for (test::RawChunk& chunk : chunks)
+      if (chunk.tag == pack_format::kTagVars) edit(chunk);
+    const std::vector<uint8_t> bad = test::assemble_pack(chunks);
+    PackContents back;
+    const Status r = read_pack(bad.data(), bad.size(), back);
+    EXPECT_FALSE(r.ok()) << expected;
+    EXPECT_NE(r.message().find(expected), std::string::npos) << r.message();
+  };
+  refused([](test::RawChunk& v) { v.payload[12] = 44, v.payload[13] = 1; },  // 300
+          "chunk VARS: region 1 has 300 variant images, above the limit of 255");
+  refused([](test::RawChunk& v) { v.payload[8] = 2; },
+          "VARS: region 1 uses images 2..3, there are 3");
+  refused([](test::RawChunk& v) { v.payload.resize(20); }, "chunk VARS");
 }
 
 }  // namespace

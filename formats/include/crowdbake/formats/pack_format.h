@@ -12,8 +12,9 @@ namespace crowdbake {
 
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
 // additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights);
-// 1.5: ANIM v3 (error-bounded animation coding); 1.6: GEOM v3 (the predictive codec)
-constexpr uint16_t kPackVersionMinor = 6;
+// 1.5: ANIM v3 (error-bounded animation coding); 1.6: GEOM v3 (the predictive codec);
+// 1.7: VARS (per-region variant images)
+constexpr uint16_t kPackVersionMinor = 7;
 
 namespace pack_format {
 
@@ -38,6 +39,8 @@ constexpr uint32_t kTagClip = make_tag('C', 'L', 'I', 'P');  // clip table, root
 constexpr uint32_t kTagMatl = make_tag('M', 'A', 'T', 'L');  // materials
 constexpr uint32_t kTagMatx =
     make_tag('M', 'A', 'T', 'X');  // material images, alpha (1.2, optional)
+constexpr uint32_t kTagVars =
+    make_tag('V', 'A', 'R', 'S');  // per-region variant images (1.7, optional)
 constexpr uint32_t kTagBnds = make_tag('B', 'N', 'D', 'S');  // bounds
 constexpr uint32_t kTagProg = make_tag('P', 'R', 'O', 'G');  // ProgressiveMesh arrays
 constexpr uint32_t kTagLerr = make_tag('L', 'E', 'R', 'R');  // level errors (1.1, optional)
@@ -68,6 +71,7 @@ constexpr uint32_t kAnimCompressionBounded = 2;
 constexpr uint32_t kPartVersion = 1;
 constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;
+constexpr uint32_t kVarsVersion = 1;
 
 // Header flags: bits 0-15 are required features (a reader rejects a pack with a bit it
 // does not know), bits 16-31 optional hints (ignored when unknown). v1.0 defines none.
@@ -76,6 +80,7 @@ constexpr uint32_t kRequiredFlagsMask = 0x0000ffffu;
 // Reader limits (docs/pack-format.md "Limits"). Counts above these are rejected before
 // anything is allocated.
 constexpr uint32_t kMaxChunks = 256;
+constexpr uint32_t kMaxVariantImages = 255;  // per region: an instance's choice is one byte
 constexpr uint32_t kMaxStringBytes = 65536;        // names, texture references
 constexpr uint32_t kMaxSettingsBytes = 16u << 20;  // HEAD settings_json
 constexpr uint32_t kMaxJoints = 65535;             // joint indices are uint16

@@ -3,6 +3,8 @@
 // geometry out in progressive order. formats/ serialises the result.
 #pragma once
 
+#include <array>
+
 #include <string>
 #include <vector>
 
@@ -44,6 +46,10 @@ struct BakeSettings {
   // Bakes code the animation within kDefaultAnimationError of the lossless texture
   // (docs/animation-encoding.md 6); the library's own default stays lossless.
   PackWriteOptions pack = default_bake_pack_options();
+  // Per partition region (head, upper body, trousers): image files an instance may wear
+  // there instead of the character's own base colour image (bake config "variants",
+  // docs/bake-config.md). Paths as given, or resolved against the config file's folder.
+  std::array<std::vector<std::string>, 3> variant_images;
 };
 
 // Reads a bake configuration (docs/bake-config.md) over the defaults. Relative paths in

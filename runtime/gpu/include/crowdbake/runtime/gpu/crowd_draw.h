@@ -109,6 +109,9 @@ struct TypeConstants {
   float up_neck[4];      // up axis, pack neck height
   float waist_mask[4];   // pack waist height, mask width, mask height, 1 = material shading
   uint32_t variants[4];  // head, upper body, trousers, swatch layers per region
+  // Per region (head, upper body, trousers): the pack's variant images (PackVariantImages) as
+  // first layer | count << 16; variant k >= 1 of an instance draws layer first + k - 1.
+  uint32_t variant_images[4];
 };
 
 struct GpuVertex {
