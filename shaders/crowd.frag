@@ -100,18 +100,24 @@ void main() {
     if (material_shading) {
       const GpuMaterial m = materials[in_material];
       // The instance's variant for this region (0: the character's own image) picks one of
-      // the pack's variant images, laid on the same UVs in place of the material's image.
+      // the pack's variant images, laid on the same UVs in place of the material's image. On
+      // a material without an image the variant alone colours it: its factor is the colour
+      // the artist's image replaces.
       const uint variant = (in_textures >> (8u * region)) & 0xFFu;
       const uint images = type_block.variant_images[min(region, 2u)];
       float layer = m.uv_u.w;
-      if (variant > 0u && variant <= (images >> 16)) layer = float((images & 0xFFFFu) + variant - 1u);
+      vec3 factor = m.color.rgb;
+      if (variant > 0u && variant <= (images >> 16)) {
+        if (layer < 0.0) factor = vec3(1.0);
+        layer = float((images & 0xFFFFu) + variant - 1u);
+      }
       vec4 texel = vec4(1.0);
       if (layer >= 0.0) {
         const vec3 uv1 = vec3(in_uv, 1.0);
         texel = texture(material_images, vec3(dot(m.uv_u.xyz, uv1), dot(m.uv_v.xyz, uv1), layer));
       }
       if (m.uv_v.w >= 0.0 && texel.a * m.color.a < m.uv_v.w) discard;
-      albedo = texel.rgb * m.color.rgb;
+      albedo = texel.rgb * factor;
     } else {
       const uint variant = (in_textures >> (8u * region)) & 0xFFu;
       const uint per_region = max(type_block.variants.w, 1u);

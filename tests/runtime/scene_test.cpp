@@ -13,8 +13,10 @@
 #include <set>
 #include <string>
 
+#include "crowdbake/formats/pack_image.h"
 #include "runtime/runtime_test_support.h"
 #include "temp_dir.h"
+#include "test_png.h"
 
 namespace crowdbake::runtime {
 namespace {
@@ -345,6 +347,51 @@ TEST(SceneErrors, BadStandsAndPitches) {
       "spacing": [1, 1], "stand": true})";
   expect_error(scene_with("\"generators\": [" + big + ", " + big + "]"),
                {"generators: the stands together would need"});
+}
+
+// A pack with variant images (VARS) is drawn with its materials, and without texture_variants
+// in the scene its variants are the type's: 0 its own look, then one per image.
+TEST(Scene, PackVariantImagesAreTheTypesTextureVariants) {
+  SceneFiles files;
+  const std::vector<uint8_t> small = test::small_pack_bytes();
+  PackContents c;
+  ASSERT_TRUE(read_pack(small.data(), small.size(), c));
+  std::string why;
+  for (int k = 0; k < 3; ++k) {
+    PackImage image;
+    ASSERT_TRUE(make_pack_image("v.png", test::solid_image(4, 4, {9, 9, 9, 255}), image, why));
+    c.images.push_back(image);
+  }
+  c.variant_images.first = {0, 0, 2};
+  c.variant_images.count = {0, 2, 1};
+  test::write_file(files.dir() / "packs/varied.crowdpack", test::pack_bytes(c));
+  const std::string type = R"("character_types": [{"name": "v", "pack": "packs/varied.crowdpack")";
+  Scene scene;
+  Status s = files.load(
+      scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"upper_body": 2}}])",
+                 kCamera, type + "}]"),
+      scene);
+  ASSERT_TRUE(s) << s.message();
+  const TextureVariants& v = scene.types[0].texture_variants;
+  EXPECT_EQ(v.head, 1u);
+  EXPECT_EQ(v.upper_body, 3u);
+  EXPECT_EQ(v.trousers, 2u);
+  EXPECT_EQ(resolved_shading(scene.types[0]), Shading::kMaterial);
+  EXPECT_EQ(scene.instances.get(0).textures[1], 2);
+  s = files.load(
+      scene_with(R"("instances": [{"position": [0, 0, 0], "textures": {"upper_body": 3}}])",
+                 kCamera, type + "}]"),
+      scene);
+  EXPECT_FALSE(s);
+  EXPECT_NE(s.message().find("instances[0].textures.upper_body: variant 3 is out of range"),
+            std::string::npos)
+      << s.message();
+  // Counts the scene gives win, and the pack's materials still draw it.
+  s = files.load(scene_with("", kCamera, type + R"(, "texture_variants": {"head": 4}}])"), scene);
+  ASSERT_TRUE(s) << s.message();
+  EXPECT_EQ(scene.types[0].texture_variants.head, 4u);
+  EXPECT_EQ(scene.types[0].texture_variants.upper_body, 1u);
+  EXPECT_EQ(resolved_shading(scene.types[0]), Shading::kMaterial);
 }
 
 TEST(Scene, EmptySeatProbabilityExtremes) {

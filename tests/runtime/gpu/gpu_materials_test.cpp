@@ -91,8 +91,9 @@ TEST(GpuMaterials, ImageThatDoesNotDecodeIsAnError) {
 
 class MaterialShadingTest : public test::GpuTest {
  protected:
-  // One spectator close up, its pack's materials changed by `edit`, drawn with `shading`.
-  Image render_spectator(void (*edit)(PackContents&), Shading shading) {
+  // One spectator close up, its pack's materials changed by `edit`, drawn with `shading`,
+  // wearing texture variants `textures` (head | upper body << 8 | trousers << 16).
+  Image render_spectator(void (*edit)(PackContents&), Shading shading, uint32_t textures = 0) {
     std::ifstream in(test::BakedPacks::get().spectator(), std::ios::binary);
     const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in),
                                      std::istreambuf_iterator<char>()};
@@ -106,6 +107,7 @@ class MaterialShadingTest : public test::GpuTest {
     scene.instances.color.assign(3 * scene.instances.size(), 0.0f);
     for (size_t i = 0; i < scene.instances.size(); ++i) scene.instances.color[3 * i + 1] = 1.0f;
     for (size_t i = 0; i < scene.instances.size(); ++i) scene.instances.color[3 * i + 2] = 1.0f;
+    scene.instances.textures.assign(scene.instances.size(), textures);
     scene.camera.position = {0.0f, 1.2f, 2.4f};
     scene.camera.target = {0.0f, 0.9f, 0.0f};
     scene.camera.width = 96;
@@ -181,6 +183,33 @@ TEST_F(MaterialShadingTest, MaskedTexelsAreNotDrawn) {
   const Image cut = render_spectator(cut_out, Shading::kMaterial);
   EXPECT_GT(dominated_by(green, 1), 300u);
   EXPECT_EQ(dominated_by(cut, 1), 0u) << "alpha 40/255 is below the cutoff 0.5";
+}
+
+// Skin-coloured materials without images; a red upper-body variant and a blue trousers one.
+void region_variants(PackContents& c) {
+  for (PackMaterial& m : c.materials) m.base_color = {0.8f, 0.6f, 0.5f, 1.0f};
+  c.images = {image_of(16, 16, {230, 0, 0, 255}), image_of(16, 16, {0, 0, 230, 255})};
+  c.variant_images.first = {0, 0, 1};
+  c.variant_images.count = {0, 1, 1};
+}
+
+TEST_F(MaterialShadingTest, VariantImagesReplaceTheirOwnRegionOnly) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  // auto shading: a pack with variant images is drawn with its materials.
+  const Image own = render_spectator(region_variants, Shading::kAuto);
+  EXPECT_EQ(dominated_by(own, 0) + dominated_by(own, 2), 0u) << "variant 0 is the character's own";
+  const Image shirt = render_spectator(region_variants, Shading::kAuto, 1u << 8);
+  EXPECT_GT(dominated_by(shirt, 0), 150u);
+  EXPECT_EQ(dominated_by(shirt, 2), 0u);
+  const Image trousers = render_spectator(region_variants, Shading::kAuto, 1u << 16);
+  EXPECT_GT(dominated_by(trousers, 2), 150u);
+  EXPECT_EQ(dominated_by(trousers, 0), 0u);
+  const Image both = render_spectator(region_variants, Shading::kAuto, 1u << 8 | 1u << 16);
+  EXPECT_GT(dominated_by(both, 0), 150u);
+  EXPECT_GT(dominated_by(both, 2), 150u);
+  // A choice past the pack's variants (the head has none) keeps the character's own look.
+  const Image beyond = render_spectator(region_variants, Shading::kAuto, 3u | 2u << 8);
+  EXPECT_EQ(dominated_by(beyond, 0) + dominated_by(beyond, 2), 0u);
 }
 
 }  // namespace
