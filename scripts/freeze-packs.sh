@@ -13,7 +13,19 @@ trap 'rm -rf "$WORK"' EXIT
 "$BUILD/samples/spectator/make_spectator" -o "$WORK/spectator.glb" --detail 0 -q
 "$BUILD/samples/limb_chain/make_limb_chain" -o "$WORK/limb.glb" --triangles 400 --joints 4 >/dev/null
 SMALL='"level_errors": {"samples": 4, "fps": 0.5}, "partition": {"size": 64}'
-echo "{$SMALL, \"animation\": {\"fps\": 10}}" >"$WORK/predictive.json"
+# Two 8x8 shirts for the predictive pack's variant images (VARS, 1.7), written here so the
+# set needs nothing from outside.
+python3 - "$WORK" <<'PY'
+import struct, sys, zlib
+def png(path, rgb):
+    rows = b"".join(b"\0" + bytes(rgb) * 8 for _ in range(8))
+    chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+    open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 8, 8, 8, 2, 0, 0, 0))
+                           + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+png(sys.argv[1] + "/red.png", (200, 30, 30))
+png(sys.argv[1] + "/blue.png", (30, 30, 200))
+PY
+echo "{$SMALL, \"animation\": {\"fps\": 10}, \"variants\": {\"upper_body\": [\"red.png\", \"blue.png\"]}}" >"$WORK/predictive.json"
 echo "{$SMALL, \"animation\": {\"fps\": 10}, \"geometry\": {\"codec\": \"draco\"}}" >"$WORK/draco.json"
 echo "{$SMALL, \"animation\": {\"fps\": 10, \"encoding\": \"float16\"}, \"geometry\": {\"codec\": \"meshopt\"}}" >"$WORK/meshopt.json"
 echo "{$SMALL, \"animation\": {\"fps\": 5, \"encoding\": \"float32\"}, \"geometry\": {\"codec\": \"raw\"}}" >"$WORK/raw.json"

@@ -92,6 +92,14 @@ inline std::map<std::string, std::string> pack_digests(const PackContents& c) {
   partition.value(p.width), partition.value(p.height), partition.value(p.texels);
   partition.value(p.neck_height), partition.value(p.waist_height), partition.value(p.up_axis);
   out["partition"] = partition.hex();
+  // note: only packs with images have this entry, so the digests of older sets stay as frozen.
+  if (!c.images.empty() || !c.variant_images.empty()) {
+    Fnv1a images;
+    for (const PackImage& image : c.images)
+      images.value(image.name), images.value(image.mime_type), images.value(image.data);
+    images.value(c.variant_images.first), images.value(c.variant_images.count);
+    out["images"] = images.hex();
+  }
   return out;
 }
 
