@@ -48,7 +48,8 @@ nlohmann::json to_json(const SkinnedAsset& asset) {
                                {"vertices", p.vertex_count()},
                                {"triangles", p.triangle_count()},
                                {"has_normals", !p.normals.empty()},
-                               {"has_uvs", !p.uvs.empty()}});
+                               {"has_uvs", !p.uvs.empty()},
+                               {"has_colors", !p.colors.empty()}});
   j["clips"] = nlohmann::json::array();
   for (const Clip& c : asset.clips)
     j["clips"].push_back(
@@ -75,9 +76,10 @@ void print_text(const SkinnedAsset& asset) {
         "             %d identical vertices welded (--keep-duplicate-vertices keeps them)\n",
         asset.stats.vertices_welded);
   for (const Primitive& p : asset.primitives)
-    std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s\n", p.name.c_str(),
+    std::printf("    %-24s material %2d  %6zu vertices  %6zu triangles%s%s%s\n", p.name.c_str(),
                 p.material, p.vertex_count(), p.triangle_count(),
-                p.normals.empty() ? "  no normals" : "", p.uvs.empty() ? "  no uvs" : "");
+                p.normals.empty() ? "  no normals" : "", p.uvs.empty() ? "  no uvs" : "",
+                p.colors.empty() ? "" : "  vertex colours");
   print_materials(asset.materials, asset.images);
   std::printf("  clips      %zu\n", asset.clips.size());
   for (const Clip& c : asset.clips)

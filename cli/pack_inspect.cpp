@@ -142,6 +142,7 @@ ordered_json to_json(const PackFile& pack) {
   j["materials"] = materials_json(c.materials);
   j["images"] = images_json(c.images);
   j["variant_images"] = variant_images_json(c.variant_images);
+  j["vertex_colors"] = c.vertex_colors.size();
   j["settings"] = settings_json(c.settings_json);
   ordered_json sizes = ordered_json::object();
   for (const PackChunk& ch : pack.chunks) sizes[pack_format::tag_name(ch.tag)] = ch.size;
@@ -216,6 +217,8 @@ void print_text(const PackFile& pack) {
               c.bounds.max[2], bbox_diagonal(c), c.bounds.radius);
   print_materials(c.materials, c.images);
   print_variant_images(c.variant_images);
+  if (!c.vertex_colors.empty())
+    std::printf("  colours    %zu vertex colours (COLOR_0, RGBA8)\n", c.vertex_colors.size());
   const ordered_json settings = settings_json(c.settings_json);
   if (settings.is_object()) {
     bool first = true;

@@ -34,6 +34,7 @@ layout(location = 4) flat in uint in_textures;
 layout(location = 5) flat in vec4 in_color;
 layout(location = 6) flat in vec2 in_partition;
 layout(location = 7) flat in uint in_material;
+layout(location = 8) in vec4 in_vertex_color;
 
 layout(location = 0) out vec4 out_color;
 
@@ -116,8 +117,8 @@ void main() {
         const vec3 uv1 = vec3(in_uv, 1.0);
         texel = texture(material_images, vec3(dot(m.uv_u.xyz, uv1), dot(m.uv_v.xyz, uv1), layer));
       }
-      if (m.uv_v.w >= 0.0 && texel.a * m.color.a < m.uv_v.w) discard;
-      albedo = texel.rgb * factor;
+      if (m.uv_v.w >= 0.0 && texel.a * m.color.a * in_vertex_color.a < m.uv_v.w) discard;
+      albedo = texel.rgb * factor * in_vertex_color.rgb;
     } else {
       const uint variant = (in_textures >> (8u * region)) & 0xFFu;
       const uint per_region = max(type_block.variants.w, 1u);

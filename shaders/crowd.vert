@@ -20,6 +20,10 @@ layout(location = 5) flat out vec4 out_color;      // hue shift, saturation, bri
                                                    // (static geometry: rgb, mode)
 layout(location = 6) flat out vec2 out_partition;  // the instance's neck and waist heights
 layout(location = 7) flat out uint out_material;   // index into the type's materials
+layout(location = 8) out vec4 out_vertex_color;    // the pack's COLOR_0 (display values), or white
+
+// The type's vertex colours (RGBA8 per vertex; one white entry for a type without).
+layout(std430, set = SKIN_SET, binding = 8) readonly buffer ColorBlock { uint vertex_colors[]; };
 
 void main() {
   if (kDrawMode == kDrawGround) {
@@ -32,6 +36,7 @@ void main() {
     out_color = vec4(0.0, 1.0, 1.0, float(kDrawGround));
     out_partition = vec2(0.0);
     out_material = 0u;
+    out_vertex_color = vec4(1.0);
     gl_Position = frame.view_proj * vec4(p, 1.0);
     return;
   }
@@ -45,6 +50,7 @@ void main() {
     out_color = vec4(v.color, float(kDrawStatic));
     out_partition = vec2(0.0);
     out_material = 0u;
+    out_vertex_color = vec4(1.0);
     gl_Position = frame.view_proj * vec4(v.position, 1.0);
     return;
   }
@@ -73,6 +79,7 @@ void main() {
     out_color = vec4(0.0);
     out_partition = vec2(0.0);
     out_material = 0u;
+    out_vertex_color = vec4(1.0);
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
     return;
   }
@@ -82,5 +89,8 @@ void main() {
   out_color = vec4(inst.color.xyz, float(kDrawCrowd));
   out_partition = vec2(inst.neck_height, inst.waist_height);
   out_material = v.joints_v.w >> 16;
+  // note: index 0 (the one white entry) for a type without colours: lavapipe reads both sides
+  // of a branch, so the index itself must stay in range.
+  out_vertex_color = unpackUnorm4x8(vertex_colors[corner.y * type_block.variant_images.w]);
   gl_Position = frame.view_proj * vec4(out_world, 1.0);
 }

@@ -104,6 +104,8 @@ std::string chunk_rule_problem(uint32_t tag, const PackContents& c, const HeadCo
                " vertices, HEAD says " + std::to_string(counts.vertices);
       return "";
     case kTagGeom:
+      if (!c.vertex_colors.empty() && c.vertex_colors.size() != counts.vertices)
+        return count_mismatch("VCOL", "vertices", counts.vertices, c.vertex_colors.size());
       return geometry_rules(c.geometry, counts);
     case kTagAnim:
       if (c.animation.rows != counts.animation_rows)

@@ -39,6 +39,9 @@ bool decode_material_extras(ByteReader& in, std::vector<PackMaterial>& out);
 bool has_material_extras(const std::vector<PackMaterial>& materials);
 void encode_images(const std::vector<PackImage>& images, ByteWriter& out);
 bool decode_images(ByteReader& in, std::vector<PackImage>& out);
+// VCOL (1.7): one RGBA8 per vertex.
+void encode_vertex_colors(const std::vector<uint32_t>& colors, ByteWriter& out);
+bool decode_vertex_colors(ByteReader& in, std::vector<uint32_t>& out);
 // VARS (1.7): per region, the first image and how many.
 void encode_variant_images(const PackVariantImages& variants, ByteWriter& out);
 bool decode_variant_images(ByteReader& in, PackVariantImages& out);

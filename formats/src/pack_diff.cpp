@@ -284,6 +284,15 @@ DiffSection diff_materials(const PackContents& a, const PackContents& b, const C
       ++images_differ;
     }
   }
+  // Vertex colours (VCOL): compared byte for byte; vertex order is GEOM's.
+  if (a.vertex_colors.size() != b.vertex_colors.size()) {
+    differ(s, "vertex colours " + arrow(a.vertex_colors.size(), b.vertex_colors.size()));
+  } else {
+    size_t changed = 0;
+    for (size_t v = 0; v < a.vertex_colors.size(); ++v)
+      changed += a.vertex_colors[v] != b.vertex_colors[v];
+    if (changed) differ(s, std::to_string(changed) + " vertex colours differ");
+  }
   static const char* const kRegions[3] = {"head", "upper body", "trousers"};
   for (int r = 0; r < 3; ++r) {
     const PackVariantImages &va = a.variant_images, &vb = b.variant_images;

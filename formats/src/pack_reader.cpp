@@ -84,6 +84,8 @@ constexpr KnownChunk kKnownChunks[] = {
     {kTagPart, kWrappedVersion, true, kPartVersion,
      decode_part<&C::partition, pack_io::decode_partition>},
     {kTagImgs, kImgsVersion, false, 0, decode_part<&C::images, pack_io::decode_images>},
+    {kTagVcol, kWrappedVersion, false, kVcolVersion,
+     decode_part<&C::vertex_colors, pack_io::decode_vertex_colors>},
     {kTagVars, kVarsVersion, false, 0,
      decode_part<&C::variant_images, pack_io::decode_variant_images>},
 };

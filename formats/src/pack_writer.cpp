@@ -219,6 +219,8 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
   pack_io::encode_geometry(contents.geometry, contents.progressive, options,
                            add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
+  if (!contents.vertex_colors.empty())
+    pack_io::encode_vertex_colors(contents.vertex_colors, add(kTagVcol, kVcolVersion));
   const bool compressed = options.compression == PackCompression::kZstd;
   pack_io::encode_animation(contents.animation, compressed, bounded_animation,
                             add(kTagAnim, bounded_animation ? kAnimVersion

@@ -131,7 +131,8 @@ void transfer_asset(Wire& w, Asset& a) {
   });
   w.list(a.images, [&](auto& i) { fields(w, i.name, i.mime_type, i.width, i.height, i.data); });
   w.list(a.primitives, [&](auto& p) {
-    fields(w, p.name, p.material, p.positions, p.normals, p.uvs, p.joints, p.weights, p.indices);
+    fields(w, p.name, p.material, p.positions, p.normals, p.uvs, p.colors, p.joints, p.weights,
+           p.indices);
   });
   w.list(a.clips, [&](auto& c) {
     fields(w, c.name, c.duration);

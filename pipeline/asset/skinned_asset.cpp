@@ -135,6 +135,11 @@ static void validate_or_throw(const SkinnedAsset& asset) {
     if (!p.normals.empty() && p.normals.size() != n)
       fail(who + " has a normal count unlike its vertex count");
     if (!p.uvs.empty() && p.uvs.size() != n) fail(who + " has a UV count unlike its vertex count");
+    if (!p.colors.empty() && p.colors.size() != n)
+      fail(who + " has a vertex colour count unlike its vertex count");
+    for (const glm::vec4& c : p.colors)
+      for (int k = 0; k < 4; ++k)
+        if (!(c[k] >= 0.0f && c[k] <= 1.0f)) fail(who + " has a vertex colour outside [0, 1]");
     if (p.indices.size() % 3 != 0) fail(who + " has an index count that is not a multiple of 3");
     for (uint32_t i : p.indices)
       if (i >= n) fail(who + " has a triangle index out of range");

@@ -26,6 +26,7 @@ void append_floats(std::string& key, const float* values, int count) {
 size_t weld_primitive(Primitive& p) {
   const size_t n = p.vertex_count();
   const bool normals = p.normals.size() == n, uvs = p.uvs.size() == n;
+  const bool colors = p.colors.size() == n;
   const bool skin = p.joints.size() == n && p.weights.size() == n;
   // Kept vertices by every attribute but the normal, which is compared with a tolerance.
   std::unordered_map<std::string, std::vector<uint32_t>> kept_with;
@@ -37,6 +38,7 @@ size_t weld_primitive(Primitive& p) {
     key.clear();
     append_floats(key, &p.positions[v].x, 3);
     if (uvs) append_floats(key, &p.uvs[v].x, 2);
+    if (colors) append_floats(key, &p.colors[v].x, 4);
     if (skin) {
       key.append(reinterpret_cast<const char*>(p.joints[v].data()), sizeof(p.joints[v]));
       append_floats(key, p.weights[v].data(), 4);
@@ -52,6 +54,7 @@ size_t weld_primitive(Primitive& p) {
       p.positions[kept] = p.positions[v];
       if (normals) p.normals[kept] = p.normals[v];
       if (uvs) p.uvs[kept] = p.uvs[v];
+      if (colors) p.colors[kept] = p.colors[v];
       if (skin) p.joints[kept] = p.joints[v], p.weights[kept] = p.weights[v];
       candidates.push_back(kept);
       remap[v] = kept++;
@@ -61,6 +64,7 @@ size_t weld_primitive(Primitive& p) {
   p.positions.resize(kept);
   if (normals) p.normals.resize(kept);
   if (uvs) p.uvs.resize(kept);
+  if (colors) p.colors.resize(kept);
   if (skin) p.joints.resize(kept), p.weights.resize(kept);
   for (uint32_t& index : p.indices)
     if (index < n) index = remap[index];  // out-of-range indices stay for validate_asset

@@ -50,6 +50,32 @@ std::vector<std::pair<uint32_t, uint32_t>> vertex_origins(const SkinnedAsset& as
   return origin;
 }
 
+// The vertices' COLOR_0 in pack order as RGBA8 (colour channels sRGB-encoded, the display
+// values the renderer shades in; alpha linear); vertices of primitives without colours are
+// white. Empty when every vertex is white: such colours change nothing (exporters often write
+// them), so they cost no bytes.
+std::vector<uint32_t> vertex_colors(const SkinnedAsset& asset, const ProgressiveMesh& pm) {
+  const auto origin = vertex_origins(asset);
+  const auto byte = [](float x, bool srgb) {
+    const double v =
+        srgb ? (x <= 0.0031308f ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055) : double{x};
+    return static_cast<uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+  };
+  std::vector<uint32_t> out(pm.vertex_count(), 0xFFFFFFFFu);
+  bool any = false;
+  for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+    const auto [prim, v] = origin[pm.vertex_source[i]];
+    const Primitive& p = asset.primitives[prim];
+    if (p.colors.empty()) continue;
+    const glm::vec4& c = p.colors[v];
+    out[i] =
+        byte(c.r, true) | byte(c.g, true) << 8 | byte(c.b, true) << 16 | byte(c.a, false) << 24;
+    any = any || out[i] != 0xFFFFFFFFu;
+  }
+  if (!any) out.clear();
+  return out;
+}
+
 void fill_geometry(const SkinnedAsset& asset, const ProgressiveMesh& pm,
                    const std::vector<std::vector<uint8_t>>& regions,
                    std::vector<PackMaterial>& materials, PackGeometry& g) {
@@ -259,6 +285,7 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
   }
   pack.images = asset.images;
   fill_geometry(asset, pm, partition.vertex_regions, pack.materials, pack.geometry);
+  pack.vertex_colors = vertex_colors(asset, pm);
   add_variant_images(settings.variant_images, pack);
   for (const Joint& j : asset.skeleton.joints) {
     PackJoint out;

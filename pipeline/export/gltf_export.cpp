@@ -384,6 +384,11 @@ Json write_primitive(const Primitive& p, size_t joint_count, const std::vector<M
     }
     attributes["TEXCOORD_0"] = bin.add_floats(data, 2, "VEC2", kArrayBuffer, false);
   }
+  if (!p.colors.empty()) {
+    data.clear();
+    for (const glm::vec4& c : p.colors) data.insert(data.end(), {c.r, c.g, c.b, c.a});
+    attributes["COLOR_0"] = bin.add_floats(data, 4, "VEC4", kArrayBuffer, false);
+  }
   std::vector<uint16_t> joints16;
   joints16.reserve(n * 4);
   data.clear();

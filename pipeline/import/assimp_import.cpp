@@ -307,6 +307,21 @@ Primitive convert_geometry(const aiMesh& mesh, const glm::dmat4& to_model, int m
       }
     }
   }
+  if (mesh.HasVertexColors(0)) {
+    p.colors.resize(n);
+    for (unsigned v = 0; v < n; ++v) {
+      const aiColor4D& in = mesh.mColors[0][v];
+      glm::vec4 c(in.r, in.g, in.b, in.a);
+      for (int k = 0; k < 4; ++k) {
+        if (!std::isfinite(c[k])) {
+          c[k] = 1.0f;
+          ++counts.bad_attributes;
+        }
+        c[k] = std::clamp(c[k], 0.0f, 1.0f);
+      }
+      p.colors[v] = c;
+    }
+  }
   // note: a mirroring transform turns faces inside out; swapping two corners keeps them
   // facing the way they did in the file.
   const bool mirrored = glm::determinant(glm::dmat3(to_model)) < 0.0;

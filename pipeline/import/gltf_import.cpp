@@ -443,6 +443,22 @@ class GltfImporter {
         }
       }
     }
+    if (attr("COLOR_0") >= 0) {
+      // note: RGB or RGBA, float or normalized integers (read_accessor applies the rule).
+      const AccessorData c =
+          read_accessor(model_, attr("COLOR_0"), {3, 4}, path_, "COLOR_0 of " + who);
+      if (c.count == n) {
+        out.colors.resize(n);
+        for (size_t v = 0; v < n; ++v) {
+          glm::vec4 rgba(1.0f);
+          for (int k = 0; k < c.components; ++k) {
+            const double x = c.at(v, k);
+            rgba[k] = std::isfinite(x) ? static_cast<float>(std::clamp(x, 0.0, 1.0)) : 1.0f;
+          }
+          out.colors[v] = rgba;
+        }
+      }
+    }
     read_skin_weights(p, who, skin, rigid_joint, out);
     read_indices(p, who, mode, out);
     asset_.primitives.push_back(std::move(out));

@@ -116,6 +116,7 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
     dst.positions.push_back(src.positions[v]);
     if (!src.normals.empty()) dst.normals.push_back(src.normals[v]);
     if (!src.uvs.empty()) dst.uvs.push_back(src.uvs[v]);
+    if (!src.colors.empty()) dst.colors.push_back(src.colors[v]);
     dst.joints.push_back(src.joints[v]);
     dst.weights.push_back(src.weights[v]);
   }

@@ -38,6 +38,7 @@ void multiply4(const float a[16], const float b[16], float out[16]);
 
 struct TypeResources {
   GpuBuffer constants, vertices, animation, poses, morphs, materials;
+  GpuBuffer colors;  // the pack's vertex colours (VCOL), or one white
   GpuImage mask, images;
   VkDescriptorSet set = VK_NULL_HANDLE;
   uint32_t vertex_count = 0, joints = 0;

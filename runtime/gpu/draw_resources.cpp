@@ -71,6 +71,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   if (Status s = create_set_layout(d, frame_bindings, frame_layout); !s) return s;
   if (Status s = create_set_layout(d, type_bindings, type_layout); !s) return s;
@@ -81,7 +82,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 + 6 * type_count + 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 + 7 * type_count + 8},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + 2 * type_count},
   };
   if (Status s = create_descriptor_pool(d, sizes, 2 + type_count, pool); !s) return s;
@@ -185,7 +186,10 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   k.variants[3] = swatches_per_region;
   const PackVariantImages& vi = c.variant_images;
   for (int r = 0; r < 3; ++r) k.variant_images[r] = vi.first[r] | vi.count[r] << 16;
-  k.variant_images[3] = 0;
+  // note: 1 when the pack has vertex colours (VCOL) for every vertex: crowd.vert reads them.
+  const bool colored =
+      c.vertex_colors.size() == c.geometry.vertex_count() && !c.vertex_colors.empty();
+  k.variant_images[3] = colored ? 1 : 0;
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   if (Status s = create_filled_buffer(*context, storage, MemoryKind::kHostVisible, &k, sizeof(k),
@@ -225,6 +229,13 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
     return s;
 
   if (Status s = GpuBuffer::create(*context, 48, storage, MemoryKind::kHostVisible, out.poses); !s)
+    return s;
+
+  const uint32_t white = 0xFFFFFFFFu;
+  if (Status s = create_filled_buffer(
+          *context, storage, MemoryKind::kDeviceLocal, colored ? c.vertex_colors.data() : &white,
+          colored ? c.vertex_colors.size() * sizeof(uint32_t) : sizeof(white), out.colors);
+      !s)
     return s;
 
   GpuMaterials materials;
@@ -290,6 +301,7 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
       .buffer(5, t.morphs.descriptor())
       .buffer(6, t.materials.descriptor())
       .image(7, {material_sampler, t.images.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL})
+      .buffer(8, t.colors.descriptor())
       .apply(context->device());
 }
 
@@ -312,7 +324,7 @@ CrowdDraw::Memory CrowdDraw::memory() const {
   Memory out;
   for (const TypeResources& t : m.types)
     out.per_type.push_back(t.constants.size() + t.vertices.size() + t.animation.size() +
-                           t.poses.size() + t.morphs.size() + t.materials.size() +
+                           t.poses.size() + t.morphs.size() + t.materials.size() + t.colors.size() +
                            image_bytes(t.mask) + image_bytes(t.images));
   for (const GpuBuffer* b :
        {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})

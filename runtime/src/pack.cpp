@@ -140,7 +140,7 @@ struct Pack::Impl {
   }
 
   void clear(uint32_t parts) {
-    if (parts & kPackGeometry) contents.geometry = PackGeometry{};
+    if (parts & kPackGeometry) contents.geometry = PackGeometry{}, contents.vertex_colors.clear();
     if (parts & kPackAnimation) contents.animation = AnimationTexture{};
     if (parts & kPackPartition) contents.partition = PartitionMask{};
     loaded &= ~(parts & ~uint32_t{kPackTables});
@@ -151,6 +151,9 @@ struct Pack::Impl {
                          : part == kPackAnimation ? pack_format::kTagAnim
                                                   : pack_format::kTagPart;
     Status s = read_chunk(tag);
+    // note: VCOL (1.7, optional) is per-vertex data: it travels with GEOM.
+    if (s && part == kPackGeometry && find(pack_format::kTagVcol))
+      s = read_chunk(pack_format::kTagVcol);
     if (s && (part == kPackGeometry || part == kPackAnimation))
       if (Status rules = check_pack_chunk(tag, contents, counts); !rules) s = fail(rules.message());
     if (!s) {

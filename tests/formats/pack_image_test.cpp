@@ -239,5 +239,52 @@ TEST(PackImage, VariantImagesOutsideTheImagesOrTooManyAreRefused) {
   refused([](test::RawChunk& v) { v.payload.resize(20); }, "chunk VARS");
 }
 
+// Vertex colours (VCOL, 1.7): one RGBA8 per vertex, stored as is or as a zstd frame, skipped
+// by older readers, refused when their count is not GEOM's.
+TEST(PackImage, VertexColoursRoundTripCompressedOrNot) {
+  PackContents c = test::make_test_contents();
+  for (uint32_t v = 0; v < c.geometry.vertex_count(); ++v)
+    c.vertex_colors.push_back(0xFF000000u | v * 2654435761u >> 8);
+  for (PackCompression compression : {PackCompression::kZstd, PackCompression::kNone}) {
+    PackWriteOptions options;
+    options.compression = compression;
+    const std::vector<uint8_t> bytes = test::pack_bytes(c, options);
+    EXPECT_EQ(test::find_chunk(bytes, pack_format::kTagVcol).version,
+              compression == PackCompression::kZstd ? 2u : 1u);
+    PackContents back;
+    const Status s = read_pack(bytes.data(), bytes.size(), back);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(back.vertex_colors, c.vertex_colors);
+  }
+  std::vector<test::RawChunk> kept;
+  for (test::RawChunk& chunk : test::split_pack(test::pack_bytes(c)))
+    if (chunk.tag != pack_format::kTagVcol) kept.push_back(std::move(chunk));
+  const std::vector<uint8_t> old = test::assemble_pack(kept, 1, 6);
+  PackContents back;
+  ASSERT_TRUE(read_pack(old.data(), old.size(), back).ok());
+  EXPECT_TRUE(back.vertex_colors.empty());
+
+  // A hostile VCOL one colour short, checksums right: the reader refuses the pack.
+  PackWriteOptions plain;
+  plain.compression = PackCompression::kNone;
+  std::vector<test::RawChunk> chunks = test::split_pack(test::pack_bytes(c, plain));
+  for (test::RawChunk& chunk : chunks)
+    if (chunk.tag == pack_format::kTagVcol) {
+      chunk.payload[0] -= 1;
+      chunk.payload.resize(chunk.payload.size() - 4);
+    }
+  const std::vector<uint8_t> short_colours = test::assemble_pack(chunks);
+  Status r = read_pack(short_colours.data(), short_colours.size(), back);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("VCOL"), std::string::npos) << r.message();
+
+  c.vertex_colors.pop_back();
+  const Status s = validate_pack_contents(c);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("VCOL"), std::string::npos) << s.message();
+  std::vector<uint8_t> bytes;
+  EXPECT_EQ(write_pack(c, {}, bytes).code(), StatusCode::kInvalidArgument);
+}
+
 }  // namespace
 }  // namespace crowdbake

@@ -3,6 +3,7 @@
 // surface within the encodings' tolerance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -156,6 +157,43 @@ TEST(PackBuilder, SameInputGivesTheSameBytesWhateverTheThreads) {
     else
       EXPECT_EQ(bytes, first) << threads << " threads";
   }
+}
+
+// Vertex colours (COLOR_0) travel from the asset through the glTF exporter and importer and
+// the bake into the pack (VCOL) in pack vertex order, sRGB-encoded; all-white colours are
+// not stored at all.
+TEST(PackBuilder, VertexColoursReachThePackInItsVertexOrder) {
+  test::TempDir dir;
+  SkinnedAsset source = samples::make_spectator_character();
+  // Linear 0.5 red above 1.2 m (sRGB 188), linear 0.2 blue with alpha 0.5 below.
+  const auto colour_at = [](const glm::vec3& p) {
+    return p.y > 1.2f ? glm::vec4(0.5f, 0.0f, 0.0f, 1.0f) : glm::vec4(0.0f, 0.0f, 0.2f, 0.5f);
+  };
+  for (Primitive& p : source.primitives) {
+    p.colors.clear();
+    for (const glm::vec3& x : p.positions) p.colors.push_back(colour_at(x));
+  }
+  const std::string glb = (dir.path() / "coloured.glb").string();
+  ASSERT_TRUE(export_glb(source, glb).ok());
+  SkinnedAsset asset;
+  ASSERT_TRUE(import_asset(glb, {}, asset).ok());
+  for (const Primitive& p : asset.primitives) ASSERT_EQ(p.colors.size(), p.vertex_count());
+  BakeReport report;
+  const PackContents pack = test::build_pack_or_throw(asset, BakeSettings{}, report);
+  const std::vector<uint8_t> bytes = test::pack_bytes(pack, BakeSettings{}.pack);
+  PackContents back;
+  ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), back).ok());
+  ASSERT_EQ(back.vertex_colors.size(), back.geometry.vertex_count());
+  for (uint32_t v = 0; v < back.geometry.vertex_count(); ++v) {
+    const float y = pack.geometry.positions[3 * v + 1];
+    // sRGB(0.5) = 0.7354 -> 188; sRGB(0.2) = 0.4845 -> 124; alpha stays linear: 128.
+    const uint32_t expected = y > 1.2f ? 0xFF0000BCu : 0x807C0000u;
+    ASSERT_EQ(back.vertex_colors[v], expected) << "vertex " << v << " at height " << y;
+  }
+
+  for (Primitive& p : asset.primitives) std::fill(p.colors.begin(), p.colors.end(), glm::vec4(1));
+  EXPECT_TRUE(test::build_pack_or_throw(asset, BakeSettings{}, report).vertex_colors.empty())
+      << "white vertex colours change nothing and cost nothing";
 }
 
 // The README's example of a build tool cooking a pack through the Status API, step for step;

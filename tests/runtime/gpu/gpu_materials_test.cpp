@@ -212,5 +212,34 @@ TEST_F(MaterialShadingTest, VariantImagesReplaceTheirOwnRegionOnly) {
   EXPECT_EQ(dominated_by(beyond, 0) + dominated_by(beyond, 2), 0u);
 }
 
+// White materials; vertex colours (VCOL) red above the pack's waist height, white below.
+void red_top_vertex_colours(PackContents& c) {
+  for (PackMaterial& m : c.materials) m.base_color = {1.0f, 1.0f, 1.0f, 1.0f};
+  const uint32_t n = c.geometry.vertex_count();
+  c.vertex_colors.assign(n, 0xFFFFFFFFu);
+  const std::array<float, 3> up = c.partition.up_axis;
+  for (uint32_t v = 0; v < n; ++v) {
+    const float* p = &c.geometry.positions[3 * v];
+    if (p[0] * up[0] + p[1] * up[1] + p[2] * up[2] > c.partition.waist_height)
+      c.vertex_colors[v] = 0xFF1010E6u;  // R 230, G 16, B 16
+  }
+}
+
+TEST_F(MaterialShadingTest, VertexColoursMultiplyTheMaterial) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  const Image coloured = render_spectator(red_top_vertex_colours, Shading::kMaterial);
+  EXPECT_GT(dominated_by(coloured, 0), 300u) << "the upper body carries its vertices' red";
+  EXPECT_EQ(dominated_by(coloured, 1) + dominated_by(coloured, 2), 0u);
+  const Image white = render_spectator(
+      [](PackContents& c) {
+        for (PackMaterial& m : c.materials) m.base_color = {1.0f, 1.0f, 1.0f, 1.0f};
+      },
+      Shading::kMaterial);
+  EXPECT_EQ(dominated_by(white, 0), 0u) << "without colours nothing is red";
+  // Swatch shading ignores the pack's colours, as it ignores its materials.
+  const Image swatches = render_spectator(red_top_vertex_colours, Shading::kSwatches);
+  EXPECT_LT(dominated_by(swatches, 0), dominated_by(coloured, 0) / 3);
+}
+
 }  // namespace
 }  // namespace crowdbake

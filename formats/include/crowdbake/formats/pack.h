@@ -155,6 +155,10 @@ struct PackContents {
   std::vector<PackMaterial> materials;
   std::vector<PackImage> images;  // IMGS (1.2, optional): the materials' base colour images
   PackVariantImages variant_images;  // VARS (1.7, optional): per-region image variants
+  // VCOL (1.7, optional): the vertices' colours (COLOR_0), one RGBA8 per GEOM vertex in its
+  // order, R in the low byte, colour channels sRGB-encoded (display values), alpha linear.
+  // Empty: none, or every vertex white (the bake then stores none).
+  std::vector<uint32_t> vertex_colors;
   PackGeometry geometry;
   PackProgressive progressive;
   PackLevelErrors level_errors;

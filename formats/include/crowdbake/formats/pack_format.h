@@ -13,7 +13,7 @@ namespace crowdbake {
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
 // additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights);
 // 1.5: ANIM v3 (error-bounded animation coding); 1.6: GEOM v3 (the predictive codec);
-// 1.7: VARS (per-region variant images)
+// 1.7: VARS (per-region variant images), VCOL (vertex colours)
 constexpr uint16_t kPackVersionMinor = 7;
 
 namespace pack_format {
@@ -47,6 +47,8 @@ constexpr uint32_t kTagLerr = make_tag('L', 'E', 'R', 'R');  // level errors (1.
 constexpr uint32_t kTagGeom = make_tag('G', 'E', 'O', 'M');  // vertices and triangles
 constexpr uint32_t kTagAnim = make_tag('A', 'N', 'I', 'M');  // animation texture
 constexpr uint32_t kTagPart = make_tag('P', 'A', 'R', 'T');  // partition mask
+constexpr uint32_t kTagVcol =
+    make_tag('V', 'C', 'O', 'L');  // vertex colours (1.7, optional; read with GEOM)
 constexpr uint32_t kTagImgs = make_tag('I', 'M', 'G', 'S');  // material images (1.2, optional)
 
 // Layout version of each chunk's payload this build writes and reads (it reads exactly
@@ -72,6 +74,7 @@ constexpr uint32_t kPartVersion = 1;
 constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;
 constexpr uint32_t kVarsVersion = 1;
+constexpr uint32_t kVcolVersion = 1;  // 2: the v1 payload as a zstd frame (§2.5)
 
 // Header flags: bits 0-15 are required features (a reader rejects a pack with a bit it
 // does not know), bits 16-31 optional hints (ignored when unknown). v1.0 defines none.

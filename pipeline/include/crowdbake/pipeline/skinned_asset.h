@@ -67,6 +67,7 @@ struct Primitive {
   std::vector<glm::vec3> positions;  // bind-pose positions in model space
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
+  std::vector<glm::vec4> colors;  // COLOR_0: linear RGBA in [0, 1] (glTF's rule), or empty
   std::vector<std::array<uint16_t, 4>> joints;
   std::vector<std::array<float, 4>> weights;
   std::vector<uint32_t> indices;  // triangle list
