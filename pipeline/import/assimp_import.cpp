@@ -196,7 +196,7 @@ std::vector<MeshPlacement> resolve_inverse_binds(const aiScene& scene, const Nod
     std::vector<std::pair<int, glm::dmat4>> binds;  // (joint, inverse bind in model space)
     for (unsigned b = 0; b < mesh.mNumBones; ++b) {
       const aiBone& bone = *mesh.mBones[b];
-      const int joint = joint_of_node[table.by_name.at(bone.mName.C_Str())];
+      const int joint = joint_of_node[ai::bone_node(table, static_cast<unsigned>(m), bone)];
       const glm::dmat4 offset = ai::to_glm(bone.mOffsetMatrix);
       const glm::dmat4 inverse_bind = offset * to_mesh;
       if (!ai::is_finite(offset) || !ai::is_finite(inverse_bind) ||
@@ -347,14 +347,14 @@ Primitive convert_geometry(const aiMesh& mesh, const glm::dmat4& to_model, int m
   return p;
 }
 
-void add_skin_weights(const aiMesh& mesh, const NodeTable& table,
+void add_skin_weights(const aiMesh& mesh, unsigned mesh_index, const NodeTable& table,
                       const std::vector<int>& joint_of_node, int fallback_joint,
                       const std::string& path, Primitive& p, ImportStats& stats) {
   const unsigned n = mesh.mNumVertices;
   std::vector<std::vector<Influence>> influences(n);
   for (unsigned b = 0; b < mesh.mNumBones; ++b) {
     const aiBone& bone = *mesh.mBones[b];
-    const int joint = joint_of_node[table.by_name.at(bone.mName.C_Str())];
+    const int joint = joint_of_node[ai::bone_node(table, mesh_index, bone)];
     if (bone.mNumWeights > 0 && !bone.mWeights)
       throw input_error(path, "mesh '" + p.name + "': bone '" + bone.mName.C_Str() +
                                   "' lists weights it does not store; the file is corrupt");
@@ -462,6 +462,7 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
   asset.files.push_back(path);
   const NodeTable table = ai::build_node_table(scene, path);
   ai::SceneCharacters found = ai::find_characters(scene, table, path);
+  ai::attach_accessories(scene, table, found);
   if (found.characters.empty())
     throw input_error(path,
                       "no skin: crowdbake needs a skinned character; export with an "
@@ -489,6 +490,7 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
   };
   for (int m : character.skinned_meshes) note_material(m);
   for (const auto& [m, node] : character.rigid_meshes) note_material(m);
+  for (const auto& accessory : character.accessory_meshes) note_material(accessory[0]);
   std::vector<int> material_slot(scene.mNumMaterials, -1);
   MaterialImages images(asset, path, options.strict_textures);
   for (unsigned index : used) {
@@ -515,8 +517,8 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
                                    path, counts);
     const std::vector<int>& nodes = table.mesh_nodes[m];
     const int home = nodes.empty() ? -1 : ai::nearest_joint(table, nodes.front(), is_joint);
-    add_skin_weights(mesh, table, joint_of_node, home >= 0 ? joint_of_node[home] : 0, path, p,
-                     asset.stats);
+    add_skin_weights(mesh, static_cast<unsigned>(m), table, joint_of_node,
+                     home >= 0 ? joint_of_node[home] : 0, path, p, asset.stats);
     asset.stats.polygons_triangulated += polygons_per_mesh[m];
     if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
     asset.primitives.push_back(std::move(p));
@@ -537,6 +539,25 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
     if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
     asset.warnings.push_back("mesh '" + p.name + "' has no skin; bound rigidly to joint '" +
                              asset.skeleton.joints[joint].name + "'");
+    asset.primitives.push_back(std::move(p));
+  }
+  for (const auto& [m, node, joint_node] : character.accessory_meshes) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    const int joint = joint_of_node[joint_node];
+    // The mesh where its own (unmoving) armature holds it at rest, following the joint.
+    const glm::dmat4 to_model = glm::inverse(asset.skeleton.joints[joint].inverse_bind) *
+                                glm::inverse(table.global[joint_node]) * table.global[node];
+    Primitive p =
+        convert_geometry(mesh, to_model, material_slot[mesh.mMaterialIndex], path, counts);
+    p.joints.assign(p.positions.size(), {static_cast<uint16_t>(joint), 0, 0, 0});
+    p.weights.assign(p.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
+    asset.stats.polygons_triangulated += polygons_per_mesh[m];
+    ++asset.stats.rigid_primitives;
+    if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
+    asset.warnings.push_back("mesh '" + p.name + "' is skinned to an armature no clip moves ('" +
+                             std::string(mesh.mBones[0]->mName.C_Str()) +
+                             "'); bound rigidly to joint '" + asset.skeleton.joints[joint].name +
+                             "', the nearest to it");
     asset.primitives.push_back(std::move(p));
   }
   if (!morphed.empty())

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 #include <numeric>
 #include <unordered_set>
 
@@ -51,6 +52,7 @@ NodeTable build_node_table(const aiScene& scene, const std::string& path) {
     table.local.push_back(local);
     table.global.push_back(global);
     table.by_name.emplace(name, index);
+    table.all_by_name[name].push_back(index);
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
       const unsigned mesh = node->mMeshes[i];
       if (mesh >= scene.mNumMeshes)
@@ -63,6 +65,40 @@ NodeTable build_node_table(const aiScene& scene, const std::string& path) {
       if (node->mChildren[i]) stack.emplace_back(node->mChildren[i], index);
   }
   return table;
+}
+
+int bone_node(const NodeTable& table, unsigned mesh, const aiBone& bone, bool* tie) {
+  if (tie) *tie = false;
+  const auto it = table.all_by_name.find(bone.mName.C_Str());
+  if (it == table.all_by_name.end()) return -1;
+  const std::vector<int>& candidates = it->second;
+  if (candidates.size() == 1) return candidates.front();
+  const glm::dmat4 mesh_global = mesh < table.mesh_nodes.size() && !table.mesh_nodes[mesh].empty()
+                                     ? table.global[table.mesh_nodes[mesh].front()]
+                                     : glm::dmat4(1.0);
+  const glm::dmat4 offset = to_glm(bone.mOffsetMatrix);
+  // note: measured against the mesh transform's own size, so centimetre and metre files agree.
+  double scale = 1e-12;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(mesh_global[c][r]));
+  int best = candidates.front();
+  double best_residual = std::numeric_limits<double>::infinity(), second = best_residual;
+  for (int node : candidates) {
+    const glm::dmat4 d = table.global[node] * offset - mesh_global;
+    double residual = 0.0;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r) residual = std::max(residual, std::abs(d[c][r]));
+    if (!std::isfinite(residual)) continue;
+    if (residual < best_residual) {
+      second = best_residual;
+      best_residual = residual;
+      best = node;
+    } else {
+      second = std::min(second, residual);
+    }
+  }
+  if (tie) *tie = !(best_residual <= 1e-3 * scale && second > 10.0 * best_residual);
+  return best;
 }
 
 namespace {
@@ -103,16 +139,18 @@ SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
         throw input_error(path, "mesh '" + std::string(mesh->mName.C_Str()) +
                                     "' has a missing bone; the file is corrupt");
       const std::string name = bone->mName.C_Str();
-      const auto it = table.by_name.find(name);
-      if (it == table.by_name.end())
+      bool tie = false;
+      const int node = bone_node(table, m, *bone, &tie);
+      if (node < 0)
         throw input_error(path, "mesh '" + std::string(mesh->mName.C_Str()) + "': bone '" + name +
                                     "' names no node in the scene; export the armature together "
                                     "with the mesh");
-      if (name_count[name] > 1 && ambiguous.insert(name).second)
+      if (tie && ambiguous.insert(name).second)
         out.warnings.push_back(std::to_string(name_count[name]) + " nodes are named '" + name +
-                               "'; the bone of that name uses the first in the node tree");
-      is_bone[it->second] = true;
-      mesh_bone_nodes[m].push_back(it->second);
+                               "' and the bind pose does not tell which one a bone drives; the "
+                               "bone of that name uses the first in the node tree");
+      is_bone[node] = true;
+      mesh_bone_nodes[m].push_back(node);
     }
   }
 

@@ -5,6 +5,7 @@
 
 #include <assimp/matrix4x4.h>
 
+#include <array>
 #include <glm/glm.hpp>
 #include <string>
 #include <unordered_map>
@@ -15,6 +16,7 @@
 
 struct aiScene;
 struct aiNode;
+struct aiBone;
 
 namespace crowdbake::ai {
 
@@ -30,11 +32,18 @@ struct NodeTable {
   std::vector<glm::dmat4> local;                 // the node's stored transform
   std::vector<glm::dmat4> global;                // product of stored transforms from the scene root
   std::unordered_map<std::string, int> by_name;  // first node of each name
-  std::vector<std::vector<int>> mesh_nodes;      // per scene mesh: nodes that reference it
+  std::unordered_map<std::string, std::vector<int>> all_by_name;  // every node of each name
+  std::vector<std::vector<int>> mesh_nodes;  // per scene mesh: nodes that reference it
 };
 
 // Throws input_error (naming path) for NaN/Inf transforms or out-of-range mesh indices.
 NodeTable build_node_table(const aiScene& scene, const std::string& path);
+
+// The node that bone `bone` of scene mesh `mesh` drives, or -1 when no node has its name.
+// Where several nodes share the name (two armatures, each with a "Bone"), the bind relation
+// decides: the bone's node times its offset matrix gives the mesh node's transform. `tie` is
+// set when that cannot tell them apart (the first in the node tree is taken).
+int bone_node(const NodeTable& table, unsigned mesh, const aiBone& bone, bool* tie = nullptr);
 
 // One group of bones with no joint in common with any other group, with the meshes that
 // move with it.
@@ -42,6 +51,9 @@ struct Character {
   std::vector<int> joint_nodes;                   // node indices, depth-first order
   std::vector<int> skinned_meshes;                // scene mesh indices
   std::vector<std::pair<int, int>> rigid_meshes;  // (scene mesh, node) bound to one joint
+  // Meshes of an accessory armature (attach_accessories): (scene mesh, its node, the joint
+  // node it is bound to rigidly).
+  std::vector<std::array<int, 3>> accessory_meshes;
   size_t skinned_vertices = 0;
 };
 
@@ -57,6 +69,11 @@ struct SceneCharacters {
 // character. Throws input_error when a bone names no node.
 SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
                                 const std::string& path);
+
+// An armature no clip moves, whose meshes lie on the largest character at rest (a hat on a
+// one-bone armature of its own), is not a character: its meshes become that character's
+// accessory_meshes, bound to the joint nearest to each, and it leaves `found`.
+void attach_accessories(const aiScene& scene, const NodeTable& table, SceneCharacters& found);
 
 // Nearest node at or above `node` for which is_joint_node(node) holds, or -1.
 template <typename Pred>

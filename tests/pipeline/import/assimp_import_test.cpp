@@ -482,6 +482,44 @@ TEST(AssimpImport, DisjointSkeletonsPickTheLargestAndSaySo) {
   EXPECT_EQ(error_of(path, first).kind(), Error::Kind::kUsage);
 }
 
+// A hat rigged to an armature of its own that no clip moves (the Quaternius Cowboy's) is an
+// accessory of the character it sits on: bound rigidly to the nearest joint, not skipped as a
+// second character and not bound to another armature's bone of the same name.
+TEST(AssimpImport, UnanimatedAccessoryArmatureFollowsTheNearestJoint) {
+  TempDir dir;
+  std::vector<DaeJoint> joints = two_joints();
+  // note: the body's bind-pose vertices lie at x 2..3 (body()); the hat sits on them.
+  joints.push_back({"hat_bone", -1, "1 0 0 2.5 0 1 0 1 0 0 1 0 0 0 0 1"});  // at (2.5,1,0)
+  DaeMesh hat;
+  hat.name = "hat";
+  hat.positions = {2.3f, 1.1f, 0, 2.7f, 1.1f, 0, 2.5f, 1.3f, 0};
+  hat.vcount = {3};
+  hat.corners = {0, 1, 2};
+  hat.joints = {"hat_bone"};
+  hat.inverse_binds = {"1 0 0 -2.5 0 1 0 -1 0 0 1 0 0 0 0 1"};
+  hat.influences.assign(3, {{0, 1.0f}});
+  const DaeAnimation lift{
+      "b1", {0.0f, 2.0f}, {"1 0 0 0 0 1 0 1 0 0 1 0 0 0 0 1", "1 0 0 0 0 1 0 3 0 0 1 0 0 0 0 1"}};
+  const SkinnedAsset a =
+      test::import_assimp_or_throw(write(dir, "a.dae", collada(joints, {body(), hat}, {lift})), {});
+  test::validate_or_throw(a);
+  EXPECT_FALSE(mentions(a, "characters")) << "one character, wearing its hat";
+  EXPECT_TRUE(mentions(a, "armature no clip moves"));
+  ASSERT_EQ(a.skeleton.joints.size(), 2u);
+  ASSERT_EQ(a.primitives.size(), 2u);
+  const Primitive& p = a.primitives[1];  // the accessory comes after the skinned meshes
+  for (size_t v = 0; v < p.vertex_count(); ++v) {
+    EXPECT_EQ(a.skeleton.joints[p.joints[v][0]].name, "b1") << "the joint nearest to the hat";
+    EXPECT_FLOAT_EQ(p.weights[v][0], 1.0f);
+  }
+  // At rest the hat stays where the file holds it; when b1 rises by 2, so does the hat.
+  const std::vector<glm::dvec3> rest = skin_asset(a, nullptr, 0.0);
+  const std::vector<glm::dvec3> lifted = skin_asset(a, &a.clips[0], 2.0);
+  ASSERT_EQ(rest.size(), 6u);
+  expect_near(rest[5], {2.5, 1.3, 0});
+  expect_near(lifted[5], {2.5, 3.3, 0});
+}
+
 TEST(AssimpImport, AnimatedNonJointNodeIsReportedAsIgnored) {
   TempDir dir;
   // The skinned mesh's node n0 is not a joint and moves no joint or rigid mesh (a skinned
