@@ -384,7 +384,9 @@ Json write_primitive(const Primitive& p, size_t joint_count, const std::vector<M
     }
     attributes["TEXCOORD_0"] = bin.add_floats(data, 2, "VEC2", kArrayBuffer, false);
   }
-  if (!p.colors.empty()) {
+  // note: white vertex colours change nothing (exporters often write them): not written.
+  if (std::any_of(p.colors.begin(), p.colors.end(),
+                  [](const glm::vec4& c) { return c != glm::vec4(1.0f); })) {
     data.clear();
     for (const glm::vec4& c : p.colors) data.insert(data.end(), {c.r, c.g, c.b, c.a});
     attributes["COLOR_0"] = bin.add_floats(data, 4, "VEC4", kArrayBuffer, false);

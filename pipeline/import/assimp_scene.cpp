@@ -77,10 +77,6 @@ int bone_node(const NodeTable& table, unsigned mesh, const aiBone& bone, bool* t
                                      ? table.global[table.mesh_nodes[mesh].front()]
                                      : glm::dmat4(1.0);
   const glm::dmat4 offset = to_glm(bone.mOffsetMatrix);
-  // note: measured against the mesh transform's own size, so centimetre and metre files agree.
-  double scale = 1e-12;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r) scale = std::max(scale, std::abs(mesh_global[c][r]));
   int best = candidates.front();
   double best_residual = std::numeric_limits<double>::infinity(), second = best_residual;
   for (int node : candidates) {
@@ -97,7 +93,8 @@ int bone_node(const NodeTable& table, unsigned mesh, const aiBone& bone, bool* t
       second = std::min(second, residual);
     }
   }
-  if (tie) *tie = !(best_residual <= 1e-3 * scale && second > 10.0 * best_residual);
+  // note: a clear winner fits the relation ten times better than any other node of the name.
+  if (tie) *tie = !(second > 10.0 * best_residual);
   return best;
 }
 
@@ -148,7 +145,7 @@ SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
       if (tie && ambiguous.insert(name).second)
         out.warnings.push_back(std::to_string(name_count[name]) + " nodes are named '" + name +
                                "' and the bind pose does not tell which one a bone drives; the "
-                               "bone of that name uses the first in the node tree");
+                               "bone of that name uses the one that fits it best");
       is_bone[node] = true;
       mesh_bone_nodes[m].push_back(node);
     }

@@ -42,7 +42,7 @@ NodeTable build_node_table(const aiScene& scene, const std::string& path);
 // The node that bone `bone` of scene mesh `mesh` drives, or -1 when no node has its name.
 // Where several nodes share the name (two armatures, each with a "Bone"), the bind relation
 // decides: the bone's node times its offset matrix gives the mesh node's transform. `tie` is
-// set when that cannot tell them apart (the first in the node tree is taken).
+// set when no node fits ten times better than the others (the best fit is still taken).
 int bone_node(const NodeTable& table, unsigned mesh, const aiBone& bone, bool* tie = nullptr);
 
 // One group of bones with no joint in common with any other group, with the meshes that
