@@ -523,41 +523,36 @@ SkinnedAsset convert_scene(const aiScene& scene, const std::string& path,
     if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
     asset.primitives.push_back(std::move(p));
   }
-  for (const auto& [m, node] : character.rigid_meshes) {
-    const aiMesh& mesh = *scene.mMeshes[m];
-    const int joint_node = ai::nearest_joint(table, node, is_joint);
-    const int joint = joint_of_node[joint_node];
-    // Keep the mesh where it sits relative to its joint at rest, with the joint at its bind pose.
+  // Rigid bindings: meshes without a skin under a joint, and accessory armatures' meshes
+  // (attach_accessories), each kept where it sits at rest relative to its joint.
+  struct RigidBinding {
+    int mesh, node, joint_node;
+    bool accessory;
+  };
+  std::vector<RigidBinding> rigid;
+  for (const auto& [m, node] : character.rigid_meshes)
+    rigid.push_back({m, node, ai::nearest_joint(table, node, is_joint), false});
+  for (const auto& [m, node, joint_node] : character.accessory_meshes)
+    rigid.push_back({m, node, joint_node, true});
+  for (const RigidBinding& r : rigid) {
+    const aiMesh& mesh = *scene.mMeshes[r.mesh];
+    const int joint = joint_of_node[r.joint_node];
     const glm::dmat4 to_model = glm::inverse(asset.skeleton.joints[joint].inverse_bind) *
-                                glm::inverse(table.global[joint_node]) * table.global[node];
+                                glm::inverse(table.global[r.joint_node]) * table.global[r.node];
     Primitive p =
         convert_geometry(mesh, to_model, material_slot[mesh.mMaterialIndex], path, counts);
     p.joints.assign(p.positions.size(), {static_cast<uint16_t>(joint), 0, 0, 0});
     p.weights.assign(p.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
-    asset.stats.polygons_triangulated += polygons_per_mesh[m];
+    asset.stats.polygons_triangulated += polygons_per_mesh[r.mesh];
     ++asset.stats.rigid_primitives;
     if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
-    asset.warnings.push_back("mesh '" + p.name + "' has no skin; bound rigidly to joint '" +
-                             asset.skeleton.joints[joint].name + "'");
-    asset.primitives.push_back(std::move(p));
-  }
-  for (const auto& [m, node, joint_node] : character.accessory_meshes) {
-    const aiMesh& mesh = *scene.mMeshes[m];
-    const int joint = joint_of_node[joint_node];
-    // The mesh where its own (unmoving) armature holds it at rest, following the joint.
-    const glm::dmat4 to_model = glm::inverse(asset.skeleton.joints[joint].inverse_bind) *
-                                glm::inverse(table.global[joint_node]) * table.global[node];
-    Primitive p =
-        convert_geometry(mesh, to_model, material_slot[mesh.mMaterialIndex], path, counts);
-    p.joints.assign(p.positions.size(), {static_cast<uint16_t>(joint), 0, 0, 0});
-    p.weights.assign(p.positions.size(), {1.0f, 0.0f, 0.0f, 0.0f});
-    asset.stats.polygons_triangulated += polygons_per_mesh[m];
-    ++asset.stats.rigid_primitives;
-    if (mesh.mNumAnimMeshes > 0) morphed.push_back(p.name);
-    asset.warnings.push_back("mesh '" + p.name + "' is skinned to an armature no clip moves ('" +
-                             std::string(mesh.mBones[0]->mName.C_Str()) +
-                             "'); bound rigidly to joint '" + asset.skeleton.joints[joint].name +
-                             "', the nearest to it");
+    const std::string& joint_name = asset.skeleton.joints[joint].name;
+    asset.warnings.push_back(
+        r.accessory
+            ? "mesh '" + p.name + "' is skinned to an armature no clip moves ('" +
+                  mesh.mBones[0]->mName.C_Str() + "'); bound rigidly to joint '" + joint_name +
+                  "', the nearest to it"
+            : "mesh '" + p.name + "' has no skin; bound rigidly to joint '" + joint_name + "'");
     asset.primitives.push_back(std::move(p));
   }
   if (!morphed.empty())
