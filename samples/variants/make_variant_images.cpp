@@ -23,7 +23,7 @@ void rotate_hue(uint8_t* rgb, float degrees) {
   float c[3] = {rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f};
   const float mx = std::max({c[0], c[1], c[2]}), mn = std::min({c[0], c[1], c[2]}), d = mx - mn;
   if (d <= 0.0f) return;  // grey: no hue to turn
-  float h = mx == c[0] ? std::fmod((c[1] - c[2]) / d + 6.0f, 6.0f)
+  float h = mx == c[0]   ? std::fmod((c[1] - c[2]) / d + 6.0f, 6.0f)
             : mx == c[1] ? (c[2] - c[0]) / d + 2.0f
                          : (c[0] - c[1]) / d + 4.0f;
   h = std::fmod(h + degrees / 60.0f + 6.0f, 6.0f);
