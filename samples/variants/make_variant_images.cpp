@@ -1,6 +1,6 @@
 // Writes hue-shifted copies of one of a pack's images as PNG files: ready-made variant images
 // for the bake config's "variants" (docs/materials.md), painted on the character's own UV
-// layout. scripts/render-variants.sh uses it for docs/variant-images.png.
+// layout. scripts/render-real-crowd.sh uses it for docs/variant-images.png.
 //   make_variant_images PACK -o DIR --hue 120 --hue 240 [--image 0]
 #include <stb_image_write.h>
 
