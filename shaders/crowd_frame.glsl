@@ -29,9 +29,11 @@ layout(std430, set = 0, binding = 5) readonly buffer BaseBlock { uint skin_base[
 layout(std430, set = 0, binding = 6) readonly buffer SkinnedBlock { vec4 skinned[]; };
 // Instanced static levels: the instance of gl_InstanceIndex (CrowdCompute's instance list).
 layout(std430, set = 0, binding = 7) readonly buffer InstanceListBlock { uint instance_list[]; };
-// Static geometry (runtime/static_geometry.h), two vec4 per vertex: position and RGBA8 colour
-// bits, normal and an unused w. Three vertices a triangle, no index buffer.
-layout(std430, set = 0, binding = 8) readonly buffer StaticBlock { vec4 static_vertices[]; };
+// Static geometry (runtime/static_geometry.h), two uvec4 per vertex: the bits of the position's
+// floats and the RGBA8 colour, the bits of the normal's and an unused w. Three vertices a
+// triangle, no index buffer. (Unsigned words: a colour read as a float could be a NaN that a
+// driver need not keep bit for bit.)
+layout(std430, set = 0, binding = 8) readonly buffer StaticBlock { uvec4 static_vertices[]; };
 
 
 // Push constants of every crowd draw: where the type's corners start. (Nothing pushed steers
@@ -66,8 +68,9 @@ struct StaticVertex {
 };
 StaticVertex static_vertex() {
   const uint i = 2u * uint(gl_VertexIndex);
-  const vec4 a = static_vertices[i];
-  return StaticVertex(a.xyz, static_vertices[i + 1u].xyz, unpackUnorm4x8(floatBitsToUint(a.w)).rgb);
+  const uvec4 a = static_vertices[i];
+  return StaticVertex(uintBitsToFloat(a.xyz), uintBitsToFloat(static_vertices[i + 1u].xyz),
+                      unpackUnorm4x8(a.w).rgb);
 }
 
 // The (instance, vertex of its type) a vertex shader invocation draws.

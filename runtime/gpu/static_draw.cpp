@@ -14,11 +14,11 @@ namespace {
 
 struct GpuStaticVertex {
   float position[3];
-  uint32_t color;  // RGBA8, read as the bits of position.w
+  uint32_t color;  // RGBA8 (the w of the shader's first uvec4)
   float normal[3];
   float unused;
 };
-static_assert(sizeof(GpuStaticVertex) == 32, "two vec4 per vertex (crowd_frame.glsl)");
+static_assert(sizeof(GpuStaticVertex) == 32, "two uvec4 per vertex (crowd_frame.glsl)");
 
 }  // namespace
 
