@@ -153,7 +153,7 @@ struct PackContents {
   std::vector<PackJoint> joints;
   std::vector<PackClip> clips;
   std::vector<PackMaterial> materials;
-  std::vector<PackImage> images;  // IMGS (1.2, optional): the materials' base colour images
+  std::vector<PackImage> images;     // IMGS (1.2, optional): the materials' base colour images
   PackVariantImages variant_images;  // VARS (1.7, optional): per-region image variants
   // VCOL (1.7, optional): the vertices' colours (COLOR_0), one RGBA8 per GEOM vertex in its
   // order, R in the low byte, colour channels sRGB-encoded (display values), alpha linear.

@@ -83,7 +83,7 @@ constexpr uint32_t kRequiredFlagsMask = 0x0000ffffu;
 // Reader limits (docs/pack-format.md "Limits"). Counts above these are rejected before
 // anything is allocated.
 constexpr uint32_t kMaxChunks = 256;
-constexpr uint32_t kMaxVariantImages = 255;  // per region: an instance's choice is one byte
+constexpr uint32_t kMaxVariantImages = 255;        // per region: an instance's choice is one byte
 constexpr uint32_t kMaxStringBytes = 65536;        // names, texture references
 constexpr uint32_t kMaxSettingsBytes = 16u << 20;  // HEAD settings_json
 constexpr uint32_t kMaxJoints = 65535;             // joint indices are uint16
