@@ -89,8 +89,8 @@ void main() {
   out_color = vec4(inst.color.xyz, float(kDrawCrowd));
   out_partition = vec2(inst.neck_height, inst.waist_height);
   out_material = v.joints_v.w >> 16;
-  // note: index 0 (the one white entry) for a type without colours: lavapipe reads both sides
-  // of a branch, so the index itself must stay in range.
-  out_vertex_color = unpackUnorm4x8(vertex_colors[corner.y * type_block.variant_images.w]);
+  // note: a type without colours has one white entry, which every vertex reads.
+  out_vertex_color =
+      unpackUnorm4x8(vertex_colors[min(corner.y, uint(vertex_colors.length()) - 1u)]);
   gl_Position = frame.view_proj * vec4(out_world, 1.0);
 }

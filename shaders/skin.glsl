@@ -32,8 +32,7 @@ layout(std430, set = SKIN_SET, binding = 0) readonly buffer TypeBlock {
   vec4 up_neck;          // the pack's up axis, its neck height
   vec4 waist_mask;       // the pack's waist height, mask width, mask height, 1 = material shading
   uvec4 variants;        // texture variants: head, upper body, trousers; swatches per region
-  uvec4 variant_images;  // per region: the pack's variant images, first layer | count << 16;
-                         // w: 1 = the type has vertex colours
+  uvec4 variant_images;  // per region: the pack's variant images, first layer | count << 16
 }
 type_block;
 

@@ -1,12 +1,11 @@
 #include "variant_images.h"
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "crowdbake/formats/pack_format.h"
 #include "crowdbake/formats/pack_image.h"
 #include "crowdbake/pipeline/error.h"
+#include "crowdbake/pipeline/input_file.h"
 
 namespace crowdbake {
 namespace {
@@ -14,19 +13,14 @@ namespace {
 const char* const kRegions[3] = {"head", "upper_body", "trousers"};
 
 std::vector<uint8_t> read_bytes(const std::string& file, const std::string& key) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (ec)
+  std::vector<uint8_t> bytes;
+  if (const Status s = read_input_file(file, "a PNG or JPEG image", bytes); !s)
     throw input_error(file, "bake config " + key + ": cannot read the variant image (" +
-                                ec.message() + "); check the path, relative to the config file");
-  if (size > pack_format::kMaxImageBytes)
-    throw input_error(file, "bake config " + key + ": " + std::to_string(size) +
+                                s.message() + "); check the path, relative to the config file");
+  if (bytes.size() > pack_format::kMaxImageBytes)
+    throw input_error(file, "bake config " + key + ": " + std::to_string(bytes.size()) +
                                 " bytes, more than the limit of " +
                                 std::to_string(pack_format::kMaxImageBytes));
-  std::ifstream in(file, std::ios::binary);
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) throw input_error(file, "bake config " + key + ": cannot read the file");
   return bytes;
 }
 

@@ -25,12 +25,17 @@ std::vector<glm::dvec3> world_vertices(const aiScene& scene, const NodeTable& ta
 
 }  // namespace
 
+size_t largest_character(const SceneCharacters& found) {
+  size_t pick = 0;
+  for (size_t c = 1; c < found.characters.size(); ++c)
+    if (found.characters[c].skinned_vertices > found.characters[pick].skinned_vertices) pick = c;
+  return pick;
+}
+
 void attach_accessories(const aiScene& scene, const NodeTable& table, SceneCharacters& found) {
   const size_t count = found.characters.size();
   if (count < 2) return;
-  size_t main = 0;
-  for (size_t c = 1; c < count; ++c)
-    if (found.characters[c].skinned_vertices > found.characters[main].skinned_vertices) main = c;
+  const size_t main = largest_character(found);
   // The main character's bind-pose box, grown by a quarter of its diagonal (a hat sits above
   // the head).
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());

@@ -52,8 +52,7 @@ size_t pick_character(const ai::SceneCharacters& found, const NodeTable& table,
                       std::to_string(count - 1) + ")");
     pick = static_cast<size_t>(options.character);
   } else {
-    for (size_t c = 1; c < count; ++c)
-      if (found.characters[c].skinned_vertices > found.characters[pick].skinned_vertices) pick = c;
+    pick = ai::largest_character(found);
   }
   if (count > 1) {
     auto describe = [&](size_t c) {

@@ -70,6 +70,9 @@ struct SceneCharacters {
 SceneCharacters find_characters(const aiScene& scene, const NodeTable& table,
                                 const std::string& path);
 
+// The character with the most skinned vertices (the first of equals): the default pick.
+size_t largest_character(const SceneCharacters& found);
+
 // An armature no clip moves, whose meshes lie on the largest character at rest (a hat on a
 // one-bone armature of its own), is not a character: its meshes become that character's
 // accessory_meshes, bound to the joint nearest to each, and it leaves `found`.

@@ -186,10 +186,7 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   k.variants[3] = swatches_per_region;
   const PackVariantImages& vi = c.variant_images;
   for (int r = 0; r < 3; ++r) k.variant_images[r] = vi.first[r] | vi.count[r] << 16;
-  // note: 1 when the pack has vertex colours (VCOL) for every vertex: crowd.vert reads them.
-  const bool colored =
-      c.vertex_colors.size() == c.geometry.vertex_count() && !c.vertex_colors.empty();
-  k.variant_images[3] = colored ? 1 : 0;
+  k.variant_images[3] = 0;
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   if (Status s = create_filled_buffer(*context, storage, MemoryKind::kHostVisible, &k, sizeof(k),
@@ -231,6 +228,9 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
   if (Status s = GpuBuffer::create(*context, 48, storage, MemoryKind::kHostVisible, out.poses); !s)
     return s;
 
+  // note: a type without vertex colours (VCOL) gets one white entry, which crowd.vert reads.
+  const bool colored =
+      !c.vertex_colors.empty() && c.vertex_colors.size() == c.geometry.vertex_count();
   const uint32_t white = 0xFFFFFFFFu;
   if (Status s = create_filled_buffer(
           *context, storage, MemoryKind::kDeviceLocal, colored ? c.vertex_colors.data() : &white,

@@ -392,9 +392,7 @@ std::optional<StandStyle> parse_stand(const Json& v, const std::string& path,
       style.seat_back = static_cast<float>(number_at_least(*p, path + ".seat_back", 0, true));
     if (const Json* p = find(v, "seats")) style.seats = boolean(*p, path + ".seats");
   }
-  SeatGridShape shape;
-  shape.rows = g.rows, shape.columns = g.columns;
-  if (stand_vertex_bound(shape, style) > kMaxStaticVertices)
+  if (stand_vertex_bound(g.shape(), style) > kMaxStaticVertices)
     fail(path, "a stand under " + std::to_string(uint64_t{g.rows} * g.columns) +
                    " seats would need more than " + std::to_string(kMaxStaticVertices) +
                    " vertices: draw it without seats (\"seats\": false) or split the grid");
@@ -607,9 +605,7 @@ RawScene read_scene_file(const Json& root, const SceneLoadOptions& options) {
   uint64_t static_vertices = 0;
   for (const RawGenerator& g : s.generators) {
     if (!g.stand) continue;
-    SeatGridShape shape;
-    shape.rows = g.rows, shape.columns = g.columns;
-    static_vertices += stand_vertex_bound(shape, *g.stand);
+    static_vertices += stand_vertex_bound(g.shape(), *g.stand);
   }
   if (static_vertices > kMaxStaticVertices)
     fail("generators", "the stands together would need " + std::to_string(static_vertices) +

@@ -84,6 +84,16 @@ struct RawGenerator {
   bool random_yaw = false;
   float empty_probability = 0.0f;
   std::optional<StandStyle> stand;  // "stand": the static stand under the seats
+  // The seat grid's geometry, as the stand under it needs it.
+  SeatGridShape shape() const {
+    SeatGridShape s;
+    s.origin = origin;
+    s.rows = rows, s.columns = columns;
+    s.spacing[0] = spacing[0], s.spacing[1] = spacing[1];
+    s.row_rise = row_rise;
+    s.yaw_degrees = yaw_degrees;
+    return s;
+  }
   // scatter
   uint32_t count = 0;
   float rect_min[2] = {0.0f, 0.0f}, rect_max[2] = {0.0f, 0.0f};

@@ -210,15 +210,7 @@ void build_instances(const RawScene& raw, const SceneLoadOptions& options, Scene
           out.add(in);
         }
       }
-      if (g.stand) {
-        SeatGridShape shape;
-        shape.origin = g.origin;
-        shape.rows = g.rows, shape.columns = g.columns;
-        shape.spacing[0] = g.spacing[0], shape.spacing[1] = g.spacing[1];
-        shape.row_rise = g.row_rise;
-        shape.yaw_degrees = g.yaw_degrees;
-        add_stand(shape, *g.stand, scene.static_geometry);
-      }
+      if (g.stand) add_stand(g.shape(), *g.stand, scene.static_geometry);
     } else {
       for (uint32_t k = 0; k < g.count; ++k) {
         Random rng(mix(g.seed, k, 2));

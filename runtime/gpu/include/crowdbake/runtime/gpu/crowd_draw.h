@@ -111,7 +111,6 @@ struct TypeConstants {
   uint32_t variants[4];  // head, upper body, trousers, swatch layers per region
   // Per region (head, upper body, trousers): the pack's variant images (PackVariantImages) as
   // first layer | count << 16; variant k >= 1 of an instance draws layer first + k - 1.
-  // w: 1 when the type has vertex colours (type set binding 8).
   uint32_t variant_images[4];
 };
 
