@@ -127,6 +127,7 @@ int run_bake(const BakeCommandSettings& s) {
          "animation: the texture as the pack stores it vs direct evaluation at the baked frames; "
          "animation_coding: what the pack's animation coding alone moved a vertex; both / bbox "
          "diagonal"}};
+    j["images"] = {{"count", pack.images.size()}, {"bytes_saved", report.image_bytes_saved}};
     j["partition"] = {{"heights", report.partition_heights},
                       {"neck_height", pack.partition.neck_height},
                       {"waist_height", pack.partition.waist_height}};

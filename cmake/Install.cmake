@@ -56,7 +56,7 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(crowdbake_deb_depends "libdraco-dev, libmeshoptimizer-dev, libglm-dev, nlohmann-json3-dev"
                           "libvulkan-dev, libgmp-dev, libstb-dev, libzstd-dev")
 if(CROWDBAKE_BUILD_PIPELINE)
-  list(APPEND crowdbake_deb_depends "libassimp-dev")
+  list(APPEND crowdbake_deb_depends "libassimp-dev, libjpeg-dev")
 endif()
 if(CROWDBAKE_BUILD_CLI)
   list(APPEND crowdbake_deb_depends "libopenimageio2.4, mesa-vulkan-drivers")

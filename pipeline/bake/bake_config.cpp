@@ -29,6 +29,8 @@ constexpr std::array<std::pair<const char*, AnimationEncoding>, 3> kEncodings = 
      {"quantized", AnimationEncoding::kQuantized}}};
 constexpr std::array<std::pair<const char*, PackCompression>, 2> kCompressions = {
     {{"zstd", PackCompression::kZstd}, {"none", PackCompression::kNone}}};
+constexpr std::array<std::pair<const char*, bool>, 2> kImageCodings = {
+    {{"optimized", true}, {"source", false}}};
 constexpr std::array<std::pair<const char*, GeometryCodec>, 4> kCodecs = {
     {{"predictive", GeometryCodec::kPredictive},
      {"draco", GeometryCodec::kDraco},
@@ -151,9 +153,11 @@ class ConfigReader {
   }
 
   void pack(const Json& body) {
-    json_reader::check_object(body, "pack", {"compression"});
+    json_reader::check_object(body, "pack", {"compression", "images"});
     if (const Json* p = find(body, "compression"))
       out_.pack.compression = json_reader::choice(*p, "pack.compression", kCompressions);
+    if (const Json* p = find(body, "images"))
+      out_.optimize_images = json_reader::choice(*p, "pack.images", kImageCodings);
   }
 
   void variants(const Json& body) {
@@ -229,6 +233,7 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["geometry"]["uv_bits"] = s.pack.uv_bits;
   j["geometry"]["weight_bits"] = s.pack.weight_bits;
   j["pack"]["compression"] = name_of(kCompressions, s.pack.compression);
+  j["pack"]["images"] = name_of(kImageCodings, s.optimize_images);
   // note: only when given, so packs baked without variants keep their settings text.
   static const char* const kRegions[3] = {"head", "upper_body", "trousers"};
   for (int r = 0; r < 3; ++r)

@@ -16,6 +16,7 @@
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "import/node_transform.h"
+#include "jpeg_recoding.h"
 #include "variant_images.h"
 
 namespace crowdbake {
@@ -287,6 +288,7 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
   fill_geometry(asset, pm, partition.vertex_regions, pack.materials, pack.geometry);
   pack.vertex_colors = vertex_colors(asset, pm);
   add_variant_images(settings.variant_images, pack);
+  if (settings.optimize_images) report.image_bytes_saved = recode_jpeg_images(pack.images);
   for (const Joint& j : asset.skeleton.joints) {
     PackJoint out;
     out.name = j.name;

@@ -11,6 +11,7 @@
 
 #include "cli/cli_runner.h"
 #include "crowdbake/formats/pack.h"
+#include "crowdbake/formats/pack_image.h"
 #include "gltf_test_builder.h"
 #include "test_png.h"
 
@@ -24,12 +25,14 @@ void write_bytes(const std::filesystem::path& path, const std::vector<uint8_t>& 
 }
 
 // Bakes the generated spectator (fast settings) with `variants` (the config's "variants"
-// object) into dir/out.crowdpack, its depfile dir/out.d.
+// object) into dir/out.crowdpack, its depfile dir/out.d; `pack` is the config's "pack" object.
 test::CommandResult bake(const test::TempDir& dir, const std::string& variants,
-                         const std::string& input = CROWDBAKE_SPECTATOR_GLB) {
+                         const std::string& input = CROWDBAKE_SPECTATOR_GLB,
+                         const nlohmann::json& pack = nlohmann::json::object()) {
   std::ifstream fast(CROWDBAKE_FAST_BAKE_CONFIG);
   nlohmann::json config = nlohmann::json::parse(fast);
   config["variants"] = nlohmann::json::parse(variants);
+  if (!pack.empty()) config["pack"] = pack;
   std::ofstream(dir / "config.json") << config.dump();
   return test::run_crowdbake({"bake", input, "-o", (dir / "out.crowdpack").string(), "--config",
                               (dir / "config.json").string(), "--depfile", (dir / "out.d").string(),
@@ -87,6 +90,42 @@ TEST(VariantImages, BakedInspectedListedAndDiffed) {
             std::string::npos)
       << r.out;
   EXPECT_EQ(r.out.find("trousers variant images"), std::string::npos) << r.out;
+}
+
+// pack.images: "optimized" (the default) stores a JPEG re-coded losslessly, "source" as the
+// file held it; both decode to the same pixels, and the report says what was saved.
+TEST(VariantImages, JpegsAreStoredLosslesslyRecodedUnlessAskedForTheSource) {
+  test::TempDir dir;
+  const std::vector<uint8_t> jpeg = test::detailed_image(64, 64, 90);
+  write_bytes(dir / "shirt.jpg", jpeg);
+  test::CommandResult r = bake(dir, R"({"upper_body": ["shirt.jpg"]})");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PackContents optimized = read_back(dir / "out.crowdpack");
+  ASSERT_EQ(optimized.images.size(), 1u);
+  EXPECT_LT(optimized.images[0].data.size(), jpeg.size());
+  EXPECT_NE(optimized.settings_json.find(R"("images":"optimized")"), std::string::npos)
+      << optimized.settings_json;
+
+  r = bake(dir, R"({"upper_body": ["shirt.jpg"]})", CROWDBAKE_SPECTATOR_GLB,
+           {{"images", "source"}});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PackContents source = read_back(dir / "out.crowdpack");
+  ASSERT_EQ(source.images.size(), 1u);
+  EXPECT_EQ(source.images[0].data, jpeg);
+
+  std::vector<uint8_t> a, b;
+  std::string why;
+  ASSERT_TRUE(decode_pack_image(optimized.images[0], a, why)) << why;
+  ASSERT_TRUE(decode_pack_image(source.images[0], b, why)) << why;
+  EXPECT_EQ(a, b);
+
+  std::filesystem::remove(dir / "out.crowdpack");
+  r = bake(dir, R"({"upper_body": ["shirt.jpg"]})", CROWDBAKE_SPECTATOR_GLB,
+           {{"images", "recompressed"}});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("pack.images: expected one of optimized, source"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.crowdpack"));
 }
 
 TEST(VariantImagesErrors, NameTheKeyAndWriteNothing) {

@@ -49,6 +49,9 @@ struct BakeSettings {
   // there instead of the character's own base colour image (bake config "variants",
   // docs/bake-config.md). Paths as given, or resolved against the config file's folder.
   std::array<std::vector<std::string>, 3> variant_images;
+  // Re-code JPEG images losslessly with Huffman tables fitted to each (bake config
+  // pack.images "optimized"; false: "source", the bytes as the source held them).
+  bool optimize_images = true;
 };
 
 // Reads a bake configuration (docs/bake-config.md) over the defaults. Relative paths in
@@ -78,6 +81,8 @@ struct BakeReport {
   std::string animation_coding;
   double animation_coding_max_error = 0.0;
   double animation_coding_mean_error = 0.0;
+  // Bytes the lossless re-coding of JPEG images took off (BakeSettings::optimize_images).
+  uint64_t image_bytes_saved = 0;
 };
 
 // Builds the pack contents into `out`. Deterministic for equal inputs and settings, whatever
