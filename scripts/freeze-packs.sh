@@ -29,10 +29,14 @@ echo "{$SMALL, \"animation\": {\"fps\": 10}, \"variants\": {\"upper_body\": [\"r
 echo "{$SMALL, \"animation\": {\"fps\": 10}, \"geometry\": {\"codec\": \"draco\"}}" >"$WORK/draco.json"
 echo "{$SMALL, \"animation\": {\"fps\": 10, \"encoding\": \"float16\"}, \"geometry\": {\"codec\": \"meshopt\"}}" >"$WORK/meshopt.json"
 echo "{$SMALL, \"animation\": {\"fps\": 5, \"encoding\": \"float32\"}, \"geometry\": {\"codec\": \"raw\"}}" >"$WORK/raw.json"
+# Vertex colours (VCOL, 1.7) on the default codecs.
+"$BUILD/samples/limb_chain/make_limb_chain" -o "$WORK/limb_colors.glb" --triangles 400 --joints 4 --vertex-colors >/dev/null
+echo "{$SMALL, \"animation\": {\"fps\": 10}}" >"$WORK/colors.json"
 "$CB" bake "$WORK/spectator.glb" -o "$WORK/spectator_predictive.crowdpack" --config "$WORK/predictive.json" --quiet
 "$CB" bake "$WORK/spectator.glb" -o "$WORK/spectator_draco.crowdpack" --config "$WORK/draco.json" --quiet
 "$CB" bake "$WORK/limb.glb" -o "$WORK/limb_meshopt_float16.crowdpack" --config "$WORK/meshopt.json" --quiet
 "$CB" bake "$WORK/limb.glb" -o "$WORK/limb_raw_float32.crowdpack" --config "$WORK/raw.json" --quiet
+"$CB" bake "$WORK/limb_colors.glb" -o "$WORK/limb_vertex_colors.crowdpack" --config "$WORK/colors.json" --quiet
 VERSION="$(od -A n -t u2 -j 8 -N 4 "$WORK/limb_raw_float32.crowdpack" |
   awk '{print $1 "." $2}')"
 [ -n "$VERSION" ] || { echo "freeze-packs: could not read the format version" >&2; exit 1; }

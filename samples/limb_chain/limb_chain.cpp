@@ -56,6 +56,10 @@ SkinnedAsset make_limb_chain(const LimbChainOptions& options) {
     p.uvs.push_back({static_cast<float>(u), static_cast<float>(x.y / options.length)});
     p.joints.push_back(ids);
     p.weights.push_back(w);
+    if (options.vertex_colors) {
+      const float t = static_cast<float>(std::clamp(x.y / options.length, 0.0, 1.0));
+      p.colors.push_back({1.0f - t, 0.25f, t, 1.0f});
+    }
     return static_cast<uint32_t>(p.positions.size() - 1);
   };
   // note: each ring has segments + 1 vertices; the last repeats the first's position with

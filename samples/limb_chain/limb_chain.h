@@ -15,6 +15,9 @@ struct LimbChainOptions {
   int joints = 8;
   double length = 2.0;  // model units along +Y
   double radius = 0.1;
+  // COLOR_0 on every vertex: a red-to-blue gradient along the chain (a non-white vertex
+  // colour the shared assets lack, for the VCOL chunk's frozen pack).
+  bool vertex_colors = false;
 };
 
 SkinnedAsset make_limb_chain(const LimbChainOptions& options = {});

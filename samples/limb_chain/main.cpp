@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   app.add_option("--triangles", options.triangles, "approximate triangle count")
       ->check(CLI::Range(100u, 20000000u));
   app.add_option("--joints", options.joints, "joints in the chain")->check(CLI::Range(1, 256));
+  app.add_flag("--vertex-colors", options.vertex_colors,
+               "give every vertex a colour (COLOR_0), red at the root to blue at the tip");
   CLI11_PARSE(app, argc, argv);
   try {
     const crowdbake::SkinnedAsset asset = crowdbake::samples::make_limb_chain(options);

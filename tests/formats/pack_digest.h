@@ -92,6 +92,12 @@ inline std::map<std::string, std::string> pack_digests(const PackContents& c) {
   partition.value(p.width), partition.value(p.height), partition.value(p.texels);
   partition.value(p.neck_height), partition.value(p.waist_height), partition.value(p.up_axis);
   out["partition"] = partition.hex();
+  // note: only packs with vertex colours (1.7) have this entry, as with images below.
+  if (!c.vertex_colors.empty()) {
+    Fnv1a colors;
+    colors.value(c.vertex_colors);
+    out["vertex_colors"] = colors.hex();
+  }
   // note: only packs with images have this entry, so the digests of older sets stay as frozen.
   if (!c.images.empty() || !c.variant_images.empty()) {
     Fnv1a images;

@@ -1,6 +1,6 @@
 // The generated limb chain (the pipeline at scale): the size asked for, a valid character,
 // and one that simplifies with every progressive-mesh invariant (a quick size here; the
-// 1M-triangle run is in docs/accuracy.md, "At scale").
+// 1M-triangle run is in docs/accuracy.md, "At scale"); vertex colours when asked.
 #include "limb_chain.h"
 
 #include <gtest/gtest.h>
@@ -30,6 +30,23 @@ TEST(LimbChain, HasTheAskedSizeAndIsValid) {
     for (size_t v = 0; v < bind.size(); ++v)
       moved = std::max(moved, glm::length(bent[v] - bind[v]));
     EXPECT_GT(moved, 0.1 * o.length);
+  }
+}
+
+TEST(LimbChain, VertexColoursRunRedToBlueOnlyWhenAsked) {
+  samples::LimbChainOptions o;
+  o.triangles = 1000;
+  EXPECT_TRUE(samples::make_limb_chain(o).primitives[0].colors.empty());
+  o.vertex_colors = true;
+  const SkinnedAsset a = samples::make_limb_chain(o);
+  EXPECT_NO_THROW(test::validate_or_throw(a));
+  const Primitive& p = a.primitives[0];
+  ASSERT_EQ(p.colors.size(), p.positions.size());
+  for (size_t v = 0; v < p.positions.size(); ++v) {
+    const float t = p.positions[v].y / static_cast<float>(o.length);
+    EXPECT_NEAR(p.colors[v].r, 1.0f - t, 1e-5f) << v;
+    EXPECT_NEAR(p.colors[v].b, t, 1e-5f) << v;
+    EXPECT_EQ(p.colors[v].a, 1.0f);
   }
 }
 
