@@ -512,15 +512,51 @@ class Collapser {
       lo[j] = glm::min(lo[j], at(0, p)), hi[j] = glm::max(hi[j], at(0, p));
     }
     const double limit = kLimbFraction * glm::length(all_hi - all_lo);
+    const std::vector<char> tips = chain_tips(lo, hi, limit);
     limb_.assign(positions, kNoLimb);
     limb_positions_.assign(joints, 0);
     for (uint32_t p = 0; p < positions; ++p) {
       const uint16_t j = mesh_.dominant_joint[p];
-      if (incident_[p].empty() || small_part_[p] || !(glm::length(hi[j] - lo[j]) >= limit))
+      if (incident_[p].empty() || small_part_[p] ||
+          !(glm::length(hi[j] - lo[j]) >= limit || tips[j]))
         continue;
       limb_[p] = j;
       ++limb_positions_[j];
     }
+  }
+
+  // Joints ending a chain (joints whose parent has no other child, as in a tail of short
+  // bones) whose positions together span at least `limit`: the chain's last joint with
+  // positions of its own, so the chain thins towards its tip instead of vanishing.
+  std::vector<char> chain_tips(const std::vector<glm::dvec3>& lo, const std::vector<glm::dvec3>& hi,
+                               double limit) const {
+    const size_t joints = std::min(lo.size(), mesh_.joint_parent.size());
+    std::vector<char> tips(lo.size(), 0);
+    std::vector<int> children(joints, 0);
+    for (size_t j = 0; j < joints; ++j)
+      if (const int p = mesh_.joint_parent[j]; p >= 0 && static_cast<size_t>(p) < joints)
+        ++children[p];
+    const auto has_positions = [&](size_t j) { return lo[j].x <= hi[j].x; };
+    for (size_t j = 0; j < joints; ++j) {
+      if (!has_positions(j)) continue;
+      // note: j is its chain's tip when no joint below it in the chain has positions.
+      bool deeper = false;
+      for (size_t k = 0; k < joints && !deeper; ++k)
+        for (int a = mesh_.joint_parent[k]; a >= 0 && !deeper; a = mesh_.joint_parent[a]) {
+          if (static_cast<size_t>(a) == j) deeper = has_positions(k) && children[j] == 1;
+          if (static_cast<size_t>(a) >= joints || children[a] != 1) break;
+        }
+      if (deeper) continue;
+      glm::dvec3 chain_lo = lo[j], chain_hi = hi[j];
+      for (int a = static_cast<int>(j); a >= 0 && static_cast<size_t>(a) < joints;) {
+        chain_lo = glm::min(chain_lo, lo[a]), chain_hi = glm::max(chain_hi, hi[a]);
+        const int up = mesh_.joint_parent[a];
+        if (up < 0 || static_cast<size_t>(up) >= joints || children[up] != 1) break;
+        a = up;
+      }
+      tips[j] = glm::length(chain_hi - chain_lo) >= limit;
+    }
+    return tips;
   }
 
   double bind_area(uint32_t t) const {

@@ -60,6 +60,7 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
     mesh.position_of[v] = it->second;
   }
   const uint32_t positions = mesh.position_count();
+  for (const Joint& j : asset.skeleton.joints) mesh.joint_parent.push_back(j.parent);
   mesh.dominant_joint.resize(positions);
   for (uint32_t p = 0; p < positions; ++p) {
     const VertexRef& r = refs[mesh.representative[p]];

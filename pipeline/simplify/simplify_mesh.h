@@ -19,6 +19,7 @@ struct SimplifyMesh {
   std::vector<uint32_t> wedges;          //   wedge_offset[p+1]), ascending vertex ids
   std::vector<uint32_t> representative;  // position -> lowest vertex id (its skin weights)
   std::vector<uint16_t> dominant_joint;  // position -> its representative's heaviest joint
+  std::vector<int> joint_parent;         // per skeleton joint, -1 for a root
   // Wedges at one position that share primitive and UV are one attribute class (they
   // differ at most in normal, as in flat-shaded exports): collapses may map them onto
   // each other. class_of[v] is the lowest vertex id of v's class.

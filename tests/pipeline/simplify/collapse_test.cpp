@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -235,6 +236,25 @@ TEST(CollapseLimbs, SingleMeshCharactersKeepEveryLimbAtTheirMinimum) {
     expect_every_limb_at_the_minimum(
         test::import_or_throw((test::shared_assets() / path).string()));
   }
+}
+
+// The Rat's tail is seven short bones, none a tenth of the character: as a chain they keep
+// their tip, so the minimum still reaches the end of the tail (it vanished before).
+TEST(CollapseLimbs, ChainOfShortBonesKeepsItsTip) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  const SkinnedAsset a =
+      test::import_or_throw((test::shared_assets() / "Quaternius_Rat/Rat.fbx").string());
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
+  EXPECT_EQ(check_progressive_mesh(pm).message(), "");
+  const std::vector<glm::vec3> positions = all_positions(a);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  // note: the tail points along -Z; its tip is the character's lowest z.
+  float reach = hi.z;
+  for (uint32_t i : pm.reconstruct(pm.min_vertices))
+    reach = std::min(reach, positions[pm.vertex_source[i]].z);
+  EXPECT_LT(reach - lo.z, 0.1f * glm::length(hi - lo))
+      << "the minimum (" << pm.min_vertices << " vertices) stops short of the tail's tip";
 }
 
 // S = 64 at 10% of the spectator's vertices is no worse than S = 16 beyond the spread S = 16
