@@ -496,8 +496,9 @@ class Collapser {
     for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[root_of[p]];
   }
 
-  // Joints whose dominant positions outside the small parts span at least kLimbFraction of
-  // the character's diagonal (bind pose); limb_[p] is p's joint when that joint is a limb.
+  // The tips of chains whose dominant positions outside the small parts span at least
+  // kLimbFraction of the character's diagonal (bind pose); limb_[p] is p's joint when that
+  // joint is such a tip.
   void mark_limbs() {
     const uint32_t positions = mesh_.position_count();
     uint32_t joints = 0;
@@ -517,17 +518,16 @@ class Collapser {
     limb_positions_.assign(joints, 0);
     for (uint32_t p = 0; p < positions; ++p) {
       const uint16_t j = mesh_.dominant_joint[p];
-      if (incident_[p].empty() || small_part_[p] ||
-          !(glm::length(hi[j] - lo[j]) >= limit || tips[j]))
-        continue;
+      if (incident_[p].empty() || small_part_[p] || !tips[j]) continue;
       limb_[p] = j;
       ++limb_positions_[j];
     }
   }
 
-  // Joints ending a chain (joints whose parent has no other child, as in a tail of short
-  // bones) whose positions together span at least `limit`: the chain's last joint with
-  // positions of its own, so the chain thins towards its tip instead of vanishing.
+  // The last joint with positions of its own in each chain (bones whose parent has no other
+  // child: a tail of short bones, an arm down to the hand) whose positions together span at
+  // least `limit`, so the chain thins towards its tip instead of vanishing; one bone with
+  // several children ends a chain of its own.
   std::vector<char> chain_tips(const std::vector<glm::dvec3>& lo, const std::vector<glm::dvec3>& hi,
                                double limit) const {
     const size_t joints = std::min(lo.size(), mesh_.joint_parent.size());

@@ -35,11 +35,12 @@ constexpr double kLeftBehindWeight = 3.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
-// A joint whose dominant positions (outside the small parts) span at least this fraction
-// of the character's bind-pose diagonal is a limb: its last such position is never
-// collapsed onto another joint's, so a limb, head or tail thins to a spike at the lowest
-// levels instead of vanishing.
-constexpr double kLimbFraction = 0.1;
+// A chain of bones (each the only child of its parent) whose dominant positions (outside
+// the small parts) span at least this fraction of the character's bind-pose diagonal is a
+// limb: the last position of its tip joint (the chain's last joint with positions) is
+// never collapsed onto another joint's, so a limb, head or tail thins to a spike reaching
+// its tip at the lowest levels instead of vanishing.
+constexpr double kLimbFraction = 0.15;
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
