@@ -530,30 +530,25 @@ class Collapser {
   // several children ends a chain of its own.
   std::vector<char> chain_tips(const std::vector<glm::dvec3>& lo, const std::vector<glm::dvec3>& hi,
                                double limit) const {
-    const size_t joints = std::min(lo.size(), mesh_.joint_parent.size());
+    const int joints = static_cast<int>(std::min(lo.size(), mesh_.joint_parent.size()));
+    const auto has_positions = [&](int j) { return j >= 0 && j < joints && lo[j].x <= hi[j].x; };
+    const auto parent = [&](int j) { return mesh_.joint_parent[j]; };
+    std::vector<int> children(joints, 0), only_child(joints, -1);
+    for (int j = 0; j < joints; ++j)
+      if (const int p = parent(j); p >= 0 && p < joints) ++children[p], only_child[p] = j;
+    for (int j = 0; j < joints; ++j)
+      if (children[j] != 1) only_child[j] = -1;
+    // note: joints come in topological order (parent < child), so one backward pass sees a
+    // joint's chain below it first. below[j]: a joint further down j's chain has positions.
+    std::vector<char> below(joints, 0);
+    for (int j = joints - 1; j >= 0; --j)
+      if (const int c = only_child[j]; c >= 0) below[j] = has_positions(c) || below[c];
     std::vector<char> tips(lo.size(), 0);
-    std::vector<int> children(joints, 0);
-    for (size_t j = 0; j < joints; ++j)
-      if (const int p = mesh_.joint_parent[j]; p >= 0 && static_cast<size_t>(p) < joints)
-        ++children[p];
-    const auto has_positions = [&](size_t j) { return lo[j].x <= hi[j].x; };
-    for (size_t j = 0; j < joints; ++j) {
-      if (!has_positions(j)) continue;
-      // note: j is its chain's tip when no joint below it in the chain has positions.
-      bool deeper = false;
-      for (size_t k = 0; k < joints && !deeper; ++k)
-        for (int a = mesh_.joint_parent[k]; a >= 0 && !deeper; a = mesh_.joint_parent[a]) {
-          if (static_cast<size_t>(a) == j) deeper = has_positions(k) && children[j] == 1;
-          if (static_cast<size_t>(a) >= joints || children[a] != 1) break;
-        }
-      if (deeper) continue;
+    for (int j = 0; j < joints; ++j) {
+      if (!has_positions(j) || below[j]) continue;
       glm::dvec3 chain_lo = lo[j], chain_hi = hi[j];
-      for (int a = static_cast<int>(j); a >= 0 && static_cast<size_t>(a) < joints;) {
+      for (int a = parent(j); a >= 0 && a < joints && only_child[a] >= 0; a = parent(a))
         chain_lo = glm::min(chain_lo, lo[a]), chain_hi = glm::max(chain_hi, hi[a]);
-        const int up = mesh_.joint_parent[a];
-        if (up < 0 || static_cast<size_t>(up) >= joints || children[up] != 1) break;
-        a = up;
-      }
       tips[j] = glm::length(chain_hi - chain_lo) >= limit;
     }
     return tips;
