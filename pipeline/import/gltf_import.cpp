@@ -103,13 +103,9 @@ class GltfImporter {
     std::set<int> joint_nodes;
     for (int s : skins_)
       joint_nodes.insert(model_.skins[s].joints.begin(), model_.skins[s].joints.end());
-    // note: the bind shape's frame is that of the skin's own joints (before animated
-    // ancestors join the skeleton), so stored positions do not depend on which nodes move.
-    for (int n : tree_.preorder)
-      if (joint_nodes.count(n)) {
-        scene_from_bind_ = tree_.parent[n] >= 0 ? tree_.global(tree_.parent[n]) : glm::dmat4(1.0);
-        break;
-      }
+    // note: the bind frame is found before animated ancestors join the skeleton, so
+    // stored positions do not depend on which nodes move.
+    scene_from_bind_ = bind_frame(joint_nodes);
     const std::vector<int> kept = keep_animated_nodes(joint_nodes);
     joint_nodes.insert(kept.begin(), kept.end());
     joint_of_node_.assign(model_.nodes.size(), -1);
@@ -154,6 +150,34 @@ class GltfImporter {
         if (!set[j]) skeleton.joints[j].inverse_bind = ibm[k] * to_scene, set[j] = 1;
       }
     }
+  }
+
+  // The frame the bind shape's positions are in, as seen in the scene. When the rest pose
+  // is the bind pose, every joint's world · inverse bind is that frame (CesiumMan: its
+  // Z-up root); otherwise the skinned mesh node's world transform says it, as three.js
+  // reads it (a mesh at the root beside a scaled armature: positions already in the scene).
+  glm::dmat4 bind_frame(const std::set<int>& joint_nodes) const {
+    const tg::Skin& skin = model_.skins[skins_[0]];
+    const std::vector<glm::dmat4> ibm = inverse_binds(skins_[0]);
+    const glm::dmat4 first = tree_.global(skin.joints[0]) * ibm[0];
+    const double scale = std::max({glm::length(first[0]), glm::length(first[1]),
+                                   glm::length(first[2]), glm::length(first[3]), 1e-30});
+    bool agree = std::isfinite(glm::determinant(first)) &&
+                 std::fabs(glm::determinant(first)) > 1e-12 * scale * scale * scale;
+    for (size_t k = 1; agree && k < skin.joints.size(); ++k) {
+      const glm::dmat4 m = tree_.global(skin.joints[k]) * ibm[k];
+      for (int i = 0; i < 16 && agree; ++i)
+        agree = std::fabs(m[i / 4][i % 4] - first[i / 4][i % 4]) <= 1e-4 * scale;
+    }
+    if (agree) return first;
+    for (int n = 0; n < static_cast<int>(model_.nodes.size()); ++n)
+      if (model_.nodes[n].mesh >= 0 &&
+          std::find(skins_.begin(), skins_.end(), model_.nodes[n].skin) != skins_.end())
+        return tree_.global(n);
+    for (int n : tree_.preorder)
+      if (joint_nodes.count(n))
+        return tree_.parent[n] >= 0 ? tree_.global(tree_.parent[n]) : glm::dmat4(1.0);
+    return glm::dmat4(1.0);
   }
 
   // Moving nodes that are not skin joints but move the character become joints
@@ -225,7 +249,7 @@ class GltfImporter {
     return -1;
   }
 
-  std::vector<glm::dmat4> inverse_binds(int s) {
+  std::vector<glm::dmat4> inverse_binds(int s) const {
     const tg::Skin& skin = model_.skins[s];
     std::vector<glm::dmat4> result(skin.joints.size(), glm::dmat4(1.0));
     if (skin.inverseBindMatrices < 0) return result;

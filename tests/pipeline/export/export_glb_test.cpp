@@ -270,6 +270,16 @@ TEST_F(ExportGlb, MaterialsKeepTheirImagesModesAndUvTransforms) {
   }
 }
 
+std::pair<glm::dvec3, glm::dvec3> bind_bounds(const SkinnedAsset& a) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const Primitive& p : a.primitives)
+    for (const glm::vec3& x : p.positions) {
+      lo = glm::min(lo, glm::dvec3(x));
+      hi = glm::max(hi, glm::dvec3(x));
+    }
+  return {lo, hi};
+}
+
 // Every shared character, imported, exported and imported again, animates as imported
 // (within float32 precision of its size).
 TEST_F(ExportGlb, ReexportedSharedCharactersAnimateAsImported) {
@@ -289,6 +299,10 @@ TEST_F(ExportGlb, ReexportedSharedCharactersAnimateAsImported) {
       hi = glm::max(hi, p);
     }
     EXPECT_LT(max_skinned_difference(original, back), 1e-5 * glm::length(hi - lo));
+    // The bind shape too: its bounds set the error unit and the preview's camera.
+    const auto [blo, bhi] = bind_bounds(original);
+    const auto [rlo, rhi] = bind_bounds(back);
+    EXPECT_LT(glm::length(rlo - blo) + glm::length(rhi - bhi), 1e-5 * glm::length(bhi - blo));
   }
 }
 

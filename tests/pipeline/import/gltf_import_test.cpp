@@ -256,6 +256,36 @@ TEST(GltfImport, AnimatedMatrixAncestorOfRootIsFolded) {
   expect_near(p[2], {0, 0, -2});
 }
 
+TEST(GltfImport, BindShapeStaysInTheSceneWhenTheRestPoseIsNotTheBindPose) {
+  // As crowdbake's own .glb export of an FBX character is laid out: the mesh node at the
+  // root, the skeleton under a scaled "_pre" node, inverse binds that include that scale,
+  // and node rests that are not the bind pose. Taking the skeleton's parent as the bind
+  // frame scaled the character by 100 on every round trip.
+  TempDir dir;
+  GltfBuilder b = test::two_bone_character();
+  const int pre = b.node({{"name", "root_pre"}, {"scale", {100.0, 100.0, 100.0}}}, true);
+  b.doc["nodes"][pre]["children"] = nlohmann::json::array({0});
+  b.doc["scenes"][0]["nodes"] = {pre, 2};
+  b.doc["nodes"][2].erase("translation");
+  const float h = static_cast<float>(std::sqrt(0.5));
+  b.doc["nodes"][1]["rotation"] = {0.0, 0.0, h, h};
+  const float s = 0.01f;
+  b.doc["skins"][0]["inverseBindMatrices"] =
+      b.floats({s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, 0, 0,  0, 1,
+                s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, 0, -1, 0, 1},
+               "MAT4");
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] =
+      b.floats({0, 0, 0, 100, 0, 0, 0, 200, 0}, "VEC3");
+  const SkinnedAsset a = load(b, dir);
+  ASSERT_EQ(a.primitives.size(), 1u);
+  expect_near(glm::dvec3(a.primitives[0].positions[1]), {100, 0, 0}, 1e-3);
+  expect_near(glm::dvec3(a.primitives[0].positions[2]), {0, 200, 0}, 1e-3);
+  // Skinning is unchanged by the choice of frame: at rest the tip's vertex is turned 90°.
+  const std::vector<glm::dvec3> p = skin_asset(a, nullptr, 0.0);
+  expect_near(p[1], {100, 0, 0}, 1e-3);
+  expect_near(p[2], {-100, 100, 0}, 1e-3);
+}
+
 TEST(GltfImport, ShearedJointMatrixFallsBackToStaticTransform) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
