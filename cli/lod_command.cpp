@@ -32,6 +32,17 @@ int run_lod(const LodSettings& settings) {
                               ? static_cast<uint32_t>(settings.vertices)
                               : static_cast<uint32_t>(std::lround(settings.ratio * total));
 
+  if (wanted >= total) {
+    // note: the full level is the character as imported, in its own vertex order; the
+    // progressive mesh's order made every tool reading this file (an index optimiser, a
+    // peer simplifier) give results that changed with the simplifier's settings.
+    throw_if_failed(export_glb(asset, settings.output));
+    if (!settings.quiet)
+      std::printf("%s -> %s\n  vertices   %u of %u: full resolution, as imported\n",
+                  settings.input.c_str(), settings.output.c_str(), total, total);
+    return 0;
+  }
+
   SimplifyReport report;
   ProgressiveMesh pm;
   throw_if_failed(simplify(asset, settings.simplify, pm, &report));
