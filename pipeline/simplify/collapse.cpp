@@ -9,9 +9,10 @@
 namespace crowdbake {
 namespace {
 
-// note: a collapse may turn a face by at most ~75° in the bind pose (cos = 0.25, the
-// fold guard meshoptimizer uses); that is the one geometric refusal.
-constexpr double kMinBindNormalDot = 0.25;
+// note: a collapse may not turn a face by 90° or more in the bind pose (no face may flip
+// there); that is the one geometric refusal. meshoptimizer's ~75° (cos = 0.25) refused
+// collapses the lowest levels need: docs/simplification.md, "Fold guard".
+constexpr double kMinBindNormalDot = 0.0;
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
 
@@ -560,7 +561,7 @@ class Collapser {
     return 0.5 * glm::length(glm::cross(b - a, c - a));
   }
 
-  // True when moving `from` onto `to` turns a surviving face by more than ~75° in the
+  // True when moving `from` onto `to` turns a surviving face by 90° or more in the
   // bind pose.
   bool folds_in_bind_pose(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
     for (uint32_t t : moved) {
