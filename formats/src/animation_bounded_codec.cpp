@@ -8,6 +8,7 @@
 
 #include "byte_reader.h"
 #include "byte_writer.h"
+#include "pack_compression.h"
 #include "similarity.h"
 
 namespace crowdbake::pack_io {
@@ -23,9 +24,14 @@ constexpr double kImpliedMinimum = 0.25;
 constexpr double kSnorm = 32767.0;
 constexpr int kMaxTolerance = 8191;  // lane units; the residual step 2k + 1 stays below 2^14
 constexpr int kTightenRounds = 24;
-// The loosening search: up to this many steps of this factor on every tolerance at once.
-constexpr int kLoosenSteps = 4;
-constexpr double kLoosenFactor = 1.4;
+// The loosening search: every tolerance at once times kLoosenFactor^k, k = 1 … kLoosenSteps,
+// and of the scales that hold the bound the one whose stream zstd codes smallest is kept.
+// Every step is tried until the error is well past the bound: neither the error nor the coded
+// size is monotonic in the scale (rounding lines up differently at each), and stopping at the
+// first failure of coarser steps left up to 5% of the coded bytes on the table.
+constexpr int kLoosenSteps = 48;
+constexpr double kLoosenFactor = 1.05;
+constexpr double kLoosenGiveUp = 1.25;  // times the bound: larger scales only grow the error
 // A parent whose scale falls below this fraction of its largest is not coded against.
 constexpr double kSmallestParentScale = 1e-3;
 constexpr size_t kJointFixedBytes = 4 + 1 + 12;  // parent, implied component, pivot
@@ -551,20 +557,25 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
   scaled(scale);
   Measured m = code_and_measure();
   if (m.max_error <= bound) {
-    bool coded_at_scale = true;  // the texture and residuals hold the coding at `scale`
-    for (int step = 0; step < kLoosenSteps && coded_at_scale; ++step) {
-      scaled(scale * kLoosenFactor);
+    const auto coded_bytes = [&]() {
+      std::vector<uint8_t> stream;
+      write_stream(codes, segments, residuals, stream);
+      return zstd_frame(stream).size();
+    };
+    size_t best_bytes = coded_bytes();
+    const auto attempt = [&](double trial) {
+      scaled(trial);
       const Measured looser = code_and_measure();
-      coded_at_scale = looser.max_error <= bound;
-      if (coded_at_scale) {
-        scale *= kLoosenFactor;
-        m = looser;
-      }
-    }
-    if (!coded_at_scale) {
-      scaled(scale);
-      m = code_and_measure();
-    }
+      if (looser.max_error > bound) return looser.max_error <= kLoosenGiveUp * bound;
+      const size_t bytes = coded_bytes();
+      if (bytes < best_bytes) best_bytes = bytes, scale = trial;
+      return true;
+    };
+    double trial = 1.0;
+    for (int step = 0; step < kLoosenSteps; ++step)
+      if (!attempt(trial *= kLoosenFactor)) break;
+    scaled(scale);
+    m = code_and_measure();
   }
   for (int round = 0; m.max_error > bound; ++round) {
     bool tightened = false;
