@@ -161,9 +161,8 @@ class GltfImporter {
     const std::vector<glm::dmat4> ibm = inverse_binds(skins_[0]);
     const glm::dmat4 first = tree_.global(skin.joints[0]) * ibm[0];
     const double scale = std::max({glm::length(first[0]), glm::length(first[1]),
-                                   glm::length(first[2]), glm::length(first[3]), 1e-30});
-    bool agree = std::isfinite(glm::determinant(first)) &&
-                 std::fabs(glm::determinant(first)) > 1e-12 * scale * scale * scale;
+                                   glm::length(first[2]), glm::length(first[3])});
+    bool agree = usable_frame(first);
     for (size_t k = 1; agree && k < skin.joints.size(); ++k) {
       const glm::dmat4 m = tree_.global(skin.joints[k]) * ibm[k];
       for (int i = 0; i < 16 && agree; ++i)
@@ -172,12 +171,26 @@ class GltfImporter {
     if (agree) return first;
     for (int n = 0; n < static_cast<int>(model_.nodes.size()); ++n)
       if (model_.nodes[n].mesh >= 0 &&
-          std::find(skins_.begin(), skins_.end(), model_.nodes[n].skin) != skins_.end())
-        return tree_.global(n);
+          std::find(skins_.begin(), skins_.end(), model_.nodes[n].skin) != skins_.end()) {
+        if (usable_frame(tree_.global(n))) return tree_.global(n);
+        break;
+      }
     for (int n : tree_.preorder)
-      if (joint_nodes.count(n))
-        return tree_.parent[n] >= 0 ? tree_.global(tree_.parent[n]) : glm::dmat4(1.0);
+      if (joint_nodes.count(n)) {
+        const int parent = tree_.parent[n];
+        if (parent >= 0 && usable_frame(tree_.global(parent))) return tree_.global(parent);
+        break;
+      }
     return glm::dmat4(1.0);
+  }
+
+  // A frame the positions can be moved out of: finite, and invertible relative to its size.
+  static bool usable_frame(const glm::dmat4& m) {
+    for (int i = 0; i < 16; ++i)
+      if (!std::isfinite(m[i / 4][i % 4])) return false;
+    const double size = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    const double det = glm::determinant(glm::dmat3(m));
+    return size > 0.0 && std::isfinite(det) && std::fabs(det) > 1e-12 * size * size * size;
   }
 
   // Moving nodes that are not skin joints but move the character become joints
