@@ -286,6 +286,20 @@ TEST(GltfImport, BindShapeStaysInTheSceneWhenTheRestPoseIsNotTheBindPose) {
   expect_near(p[2], {-100, 100, 0}, 1e-3);
 }
 
+// A skinned mesh node scaled to zero gives no frame to move positions out of: they stay as
+// stored (finite), and skinning is unchanged.
+TEST(GltfImport, DegenerateMeshNodeFrameIsNotUsed) {
+  TempDir dir;
+  GltfBuilder b = test::two_bone_character();
+  const float h = static_cast<float>(std::sqrt(0.5));
+  b.doc["nodes"][1]["rotation"] = {0.0, 0.0, h, h};  // rest is not the bind pose
+  b.doc["nodes"][2]["scale"] = {0.0, 0.0, 0.0};
+  const SkinnedAsset a = load(b, dir);
+  expect_near(glm::dvec3(a.primitives[0].positions[2]), {0, 2, 0});
+  const std::vector<glm::dvec3> p = skin_asset(a, nullptr, 0.0);
+  expect_near(p[2], {-1, 1, 0});
+}
+
 TEST(GltfImport, ShearedJointMatrixFallsBackToStaticTransform) {
   TempDir dir;
   GltfBuilder b = test::two_bone_character();
