@@ -28,7 +28,7 @@ constexpr int kTightenRounds = 24;
 // and of the scales that hold the bound the one whose stream zstd codes smallest is kept.
 // Every step is tried until the error is well past the bound: neither the error nor the coded
 // size is monotonic in the scale (rounding lines up differently at each), and stopping at the
-// first failure of coarser steps left up to 5% of the coded bytes on the table.
+// first failure of coarser steps left up to 6% of the coded bytes on the table.
 constexpr int kLoosenSteps = 48;
 constexpr double kLoosenFactor = 1.05;
 constexpr double kLoosenGiveUp = 1.25;  // times the bound: larger scales only grow the error
