@@ -142,6 +142,54 @@ TEST(CollapseSeams, SpectatorNeverCracks) {
             100);
 }
 
+// The fold guard: no collapse flips a surviving face in the bind pose (its normal turns by
+// 90° or more), checked at every step from one usable level to the next. Returns the steps.
+int expect_no_bind_pose_flip(const SkinnedAsset& asset) {
+  const ProgressiveMesh pm = test::simplify_or_throw(asset, SimplifyOptions{});
+  const std::vector<glm::vec3> positions = all_positions(asset);
+  const auto normal = [&](const std::vector<uint32_t>& lod, size_t t) {
+    const glm::dvec3 a(positions[pm.vertex_source[lod[3 * t]]]),
+        b(positions[pm.vertex_source[lod[3 * t + 1]]]),
+        c(positions[pm.vertex_source[lod[3 * t + 2]]]);
+    return glm::cross(b - a, c - a);
+  };
+  std::vector<uint32_t> before = pm.reconstruct(pm.vertex_count());
+  int steps = 0;
+  for (uint32_t n = pm.vertex_count(); n > pm.min_vertices; --n) {
+    const std::vector<uint32_t> after = pm.reconstruct(n - 1);
+    if (after == before) continue;
+    ++steps;
+    for (size_t t = 0; t < after.size() / 3; ++t) {
+      const glm::dvec3 p = normal(before, t), q = normal(after, t);
+      const double lp = glm::length(p), lq = glm::length(q);
+      if (!(lp > 0.0)) continue;
+      if (!(glm::dot(p, q) > -1e-6 * lp * lq)) {
+        ADD_FAILURE() << "triangle " << t << " flips in the bind pose going down to "
+                      << pm.usable_vertices(n - 1) << " vertices";
+        return steps;
+      }
+    }
+    before = after;
+  }
+  return steps;
+}
+
+TEST(CollapseFolds, NoCollapseFlipsAFaceInTheBindPose) {
+  EXPECT_GT(expect_no_bind_pose_flip(samples::make_spectator_character()), 100);
+}
+
+// Without the guard these flip faces (the spectator does not).
+TEST(CollapseFolds, SharedCharactersFlipNoFaceInTheBindPose) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  for (const char* path :
+       {"Quaternius_Zombie/Zombie.fbx", "Quaternius_Fish/Fish.fbx", "Fox/Fox.glb"}) {
+    SCOPED_TRACE(path);
+    EXPECT_GT(
+        expect_no_bind_pose_flip(test::import_or_throw((test::shared_assets() / path).string())),
+        10);
+  }
+}
+
 TEST(CollapseSeams, PerCornerCharactersNeverCrack) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   // Every corner its own vertex (flat-shaded FBX exports), several materials.
