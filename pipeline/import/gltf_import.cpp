@@ -172,13 +172,15 @@ class GltfImporter {
     for (int n = 0; n < static_cast<int>(model_.nodes.size()); ++n)
       if (model_.nodes[n].mesh >= 0 &&
           std::find(skins_.begin(), skins_.end(), model_.nodes[n].skin) != skins_.end()) {
-        if (usable_frame(tree_.global(n))) return tree_.global(n);
+        const glm::dmat4 mesh_frame = tree_.global(n);
+        if (usable_frame(mesh_frame)) return mesh_frame;
         break;
       }
     for (int n : tree_.preorder)
       if (joint_nodes.count(n)) {
-        const int parent = tree_.parent[n];
-        if (parent >= 0 && usable_frame(tree_.global(parent))) return tree_.global(parent);
+        const glm::dmat4 parent_frame =
+            tree_.parent[n] >= 0 ? tree_.global(tree_.parent[n]) : glm::dmat4(1.0);
+        if (usable_frame(parent_frame)) return parent_frame;
         break;
       }
     return glm::dmat4(1.0);
