@@ -138,6 +138,8 @@ void add_bench_render(Commands& c) {
                                "Instances of the popping dolly (default 1000; 0 = skip)");
   bench_render_cmd->add_option("--pop-frames", bench_render.pop_frames,
                                "Frames of the dolly at 30 frames/s (default 60)");
+  bench_render_cmd->add_option("--far-size", bench_render.far_size,
+                               "Seats of the far stand, 200 a row (default 10000; 0 = skip)");
   bench_render_cmd->add_option("--pop-budget", bench_render.pop_budget,
                                "Continuous budget of the dolly (default 25% of full vertices)");
   bench_render_cmd->add_flag("--pop-only", bench_render.pop_only,

@@ -135,6 +135,12 @@ ordered_json to_json(const PackFile& pack) {
                     {"neck_height", m.neck_height},
                     {"waist_height", m.waist_height},
                     {"up_axis", m.up_axis}};
+  if (!c.impostor.empty()) {
+    const PackImpostor& i = c.impostor;
+    j["impostor"] = {{"views", i.views},   {"frames", i.frames},         {"width", i.width},
+                     {"height", i.height}, {"half_width", i.half_width}, {"bottom", i.bottom},
+                     {"top", i.top}};
+  }
   j["bounds"] = {{"min", c.bounds.min},
                  {"max", c.bounds.max},
                  {"diagonal", bbox_diagonal(c)},
@@ -212,6 +218,11 @@ void print_text(const PackFile& pack) {
       m.width, m.height, static_cast<unsigned long long>(texels[0]),
       static_cast<unsigned long long>(texels[1]), static_cast<unsigned long long>(texels[2]),
       static_cast<unsigned long long>(texels[3]), m.neck_height, m.waist_height);
+  if (!c.impostor.empty())
+    std::printf(
+        "  impostor   %u views x %u frames of %u x %u texels, cell %g wide, %g to %g high\n",
+        c.impostor.views, c.impostor.frames, c.impostor.width, c.impostor.height,
+        2.0 * c.impostor.half_width, c.impostor.bottom, c.impostor.top);
   std::printf("  bounds     min (%g, %g, %g), max (%g, %g, %g), diagonal %g, radius %g\n",
               c.bounds.min[0], c.bounds.min[1], c.bounds.min[2], c.bounds.max[0], c.bounds.max[1],
               c.bounds.max[2], bbox_diagonal(c), c.bounds.radius);

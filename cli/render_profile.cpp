@@ -60,12 +60,13 @@ std::string format_profile(const runtime::gpu::FrameProfile& profile, const std:
   }
   std::snprintf(line, sizeof line, "  %-22s %10.3f %10.3f\n", "total", cpu, gpu);
   out += line;
-  std::snprintf(line, sizeof line,
-                "  instances %u, visible %u, drawn %u, not drawn (buffer full) %u\n"
-                "  vertices %llu, triangles %llu\n",
-                profile.instances, profile.visible, profile.drawn, profile.overflow,
-                static_cast<unsigned long long>(profile.vertices),
-                static_cast<unsigned long long>(profile.triangles));
+  std::snprintf(
+      line, sizeof line,
+      "  instances %u, visible %u, drawn %u (%u as impostors), not drawn (buffer full) %u\n"
+      "  vertices %llu, triangles %llu\n",
+      profile.instances, profile.visible, profile.drawn, profile.impostors, profile.overflow,
+      static_cast<unsigned long long>(profile.vertices),
+      static_cast<unsigned long long>(profile.triangles));
   out += line;
   return out;
 }
@@ -83,6 +84,7 @@ std::string stats_json(const std::vector<runtime::gpu::FrameProfile>& frames,
     j["visible"] = f.visible;
     j["drawn"] = f.drawn;
     j["not_drawn"] = f.overflow;
+    j["impostors"] = f.impostors;
     j["vertices"] = f.vertices;
     j["triangles"] = f.triangles;
     j["budget"] = f.budget;

@@ -10,6 +10,7 @@
 #include "skin_common.glsl"
 #include "crowd_frame.glsl"
 #include "skin.glsl"
+#include "impostor.glsl"
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
@@ -24,6 +25,41 @@ layout(location = 8) out vec4 out_vertex_color;    // the pack's COLOR_0 (displa
 
 // The type's vertex colours (RGBA8 per vertex; one white entry for a type without).
 layout(std430, set = SKIN_SET, binding = 8) readonly buffer ColorBlock { uint vertex_colors[]; };
+
+// kDrawImpostor: corner gl_VertexIndex of instance impostor_list[gl_InstanceIndex]'s quad, standing
+// on the character's up axis and turned to the camera about it; the cell is the view nearest
+// the camera's direction at the frame showing the instance's row. Hands crowd.frag the texel
+// coordinates (out_uv), the cell (out_height) and the instance (out_material).
+void draw_impostor_corner() {
+  const uint id = impostor_list[gl_InstanceIndex];
+  const GpuInstance inst = instances[id];
+  const mat4x3 world = instance_world(inst);
+  const vec3 up = impostor.up.xyz, a = impostor.across.xyz, b = cross(a, up);
+  const vec3 eye = inverse(mat3(world)) * (frame.eye.xyz - world[3]);
+  const vec3 d = eye - impostor.centre.xyz;
+  const float phi = atan(dot(d, a), dot(d, b));
+  const uint views = max(impostor.shape.x, 1u);
+  const float step = 6.28318530718 / float(views);
+  const uint view = uint(int(round(phi / step)) + int(views)) % views;
+  const uint rows = uint(impostor.rect.w);
+  const uint f = inst.row0 < rows ? impostor.impostor_words[inst.row0] : 0u;
+  const uint k = uint[6](0u, 1u, 2u, 0u, 2u, 3u)[uint(gl_VertexIndex) % 6u];
+  const vec2 uv = vec2(k == 1u || k == 2u ? 1.0 : 0.0, k >= 2u ? 0.0 : 1.0);  // v: down
+  const vec3 right = cos(phi) * a - sin(phi) * b;
+  const vec3 base = impostor.centre.xyz - up * dot(impostor.centre.xyz, up);
+  const vec3 p = base + right * ((2.0 * uv.x - 1.0) * impostor.rect.x) +
+                 up * mix(impostor.rect.z, impostor.rect.y, uv.y);
+  out_world = world * vec4(p, 1.0);
+  out_normal = vec3(0.0);
+  out_uv = uv * vec2(impostor.shape.zw);
+  out_height = float(view * impostor.shape.y + f);
+  out_textures = inst.textures;
+  out_color = vec4(inst.color.xyz, float(kDrawImpostor));
+  out_partition = vec2(inst.neck_height, inst.waist_height);
+  out_material = id;
+  out_vertex_color = vec4(1.0);
+  gl_Position = frame.view_proj * vec4(out_world, 1.0);
+}
 
 void main() {
   if (kDrawMode == kDrawGround) {
@@ -52,6 +88,10 @@ void main() {
     out_material = 0u;
     out_vertex_color = vec4(1.0);
     gl_Position = frame.view_proj * vec4(v.position, 1.0);
+    return;
+  }
+  if (kDrawMode == kDrawImpostor) {
+    draw_impostor_corner();
     return;
   }
   const uvec2 corner = drawn_corner();

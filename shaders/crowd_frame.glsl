@@ -49,6 +49,7 @@ const uint kDrawGround = 1u;     // the ground quad
 const uint kDrawInstanced = 2u;  // CrowdCompute's instanced static levels (indexed, instanced)
 const uint kDrawInstancedSlots = 3u;  // the same when every instance has skinned slots
 const uint kDrawStatic = 4u;          // the scene's static geometry (stands, pitch)
+const uint kDrawImpostor = 5u;  // far instances as camera-facing quads (impostor.glsl)
 // What the pipeline draws (a specialization constant: each kind is its own pipeline).
 layout(constant_id = 1) const uint kDrawMode = kDrawCrowd;
 

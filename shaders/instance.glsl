@@ -17,13 +17,14 @@ struct GpuInstance {
   float blend23;
   float crossfade;
   uint pose;  // 0xFFFFFFFF: skin from the animation texture
-  uint textures;  // head | upper << 8 | trousers << 16
+  uint textures;  // head | upper << 8 | trousers << 16 | kImpostorBit: drawn as an impostor
   float neck_height;
   float waist_height;
   vec4 color;  // hue shift (deg), saturation, brightness, |scale| (culling radius factor)
 };
 
 const uint kNoPose = 0xFFFFFFFFu;
+const uint kImpostorBit = 0x80000000u;
 
 // The world matrix as a mat4x3 usable as `instance_world(g) * vec4(p, 1)`.
 mat4x3 instance_world(GpuInstance g) {

@@ -42,7 +42,8 @@ void main() {
     precise float cz = g.world2.x * b.x + g.world2.y * b.y + g.world2.z * b.z + g.world2.w;
     precise float r = t.bounds.w * g.color.w;
     const vec3 c = vec3(cx, cy, cz);
-    const bool visible = sphere_visible(c, r);
+    // note: an instance drawn as an impostor (update_frame's choice) is not the mesh path's.
+    const bool visible = sphere_visible(c, r) && (g.textures & kImpostorBit) == 0u;
     if (visible && error_mode) {
       // τ_i (lod_error_threshold) kept in weights[i]; Σ n_i at every step of the ladder.
       double area, distance;

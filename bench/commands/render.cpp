@@ -18,6 +18,8 @@
 #include "cli/render_device.h"
 #include "cli/render_plan.h"
 #include "commands/child.h"
+#include "commands/render_far.h"
+#include "commands/render_frame.h"
 #include "commands/render_report.h"
 #include "commands/render_scene.h"
 #include "commands/work_folder.h"
@@ -30,13 +32,11 @@ namespace crowdbake::bench {
 
 // The render command's pieces (cli/render_plan.h, cli/render_device.h) and images (cli/image_*.h).
 using cli::check_output_file;
-using cli::check_validation;
 using cli::make_renderer;
 using cli::open_vulkan;
 using cli::parse_resolution;
 using cli::psnr;
 using cli::RgbaImage;
-using cli::to_rgba;
 using cli::write_png;
 namespace fs = std::filesystem;
 namespace gpu = runtime::gpu;
@@ -53,16 +53,6 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-double gpu_total(const gpu::FrameProfile& p) {
-  double ms = 0;
-  for (const gpu::PassTiming& pass : p.passes) ms += pass.gpu_ms;
-  return ms;
-}
-
-RgbaImage shrink4(const RgbaImage& image) {
-  return downscale(image, std::max(1u, image.width / 4), std::max(1u, image.height / 4));
-}
-
 const char* mode_name(runtime::LodMode mode) {
   switch (mode) {
     case runtime::LodMode::kContinuous:
@@ -75,26 +65,6 @@ const char* mode_name(runtime::LodMode mode) {
       return "full";
   }
   return "?";
-}
-
-struct Frame {
-  RgbaImage image;
-  gpu::FrameProfile profile;
-  double wall_ms = 0;
-};
-
-Frame render_frame(gpu::VulkanContext& context, gpu::Renderer& renderer,
-                   const runtime::Scene& scene, float time) {
-  Frame f;
-  gpu::Image image;
-  const auto start = std::chrono::steady_clock::now();
-  const runtime::Status s = renderer.render(scene, time, image, &f.profile);
-  f.wall_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (!s.ok()) throw input_error("bench", s.message());
-  check_validation(context);
-  f.image = to_rgba(std::move(image));
-  return f;
 }
 
 // Times `frames` renders after `warmup` untimed ones; the row's counts and the returned image
@@ -437,6 +407,7 @@ void write_results(const BenchRenderSettings& s, const RenderBenchResult& result
   const fs::path out(s.out);
   if (!s.pop_only) {
     write_render_csv(result, (out / "render-bench.csv").string());
+    if (s.far_size > 0) write_far_csv(result, (out / "render-far.csv").string());
     write_render_plot_data(result, (out / "render-bench.dat").string());
   }
   if (s.pop_size > 0) {
@@ -459,6 +430,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
     s.pop_size = 60;
     s.pop_frames = 4;
     s.pop_only = false;
+    s.far_size = 200;
   }
   check_settings(s);
   uint32_t width = 0, height = 0;
@@ -470,7 +442,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
   std::string pack = s.pack;
   if (pack.empty()) {
     pack = (work / "spectator.crowdpack").string();
-    bake_sample_pack(pack);
+    bake_sample_pack(pack, true);
   }
   pack = fs::absolute(pack).string();
 
@@ -489,6 +461,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
   for (uint32_t n : s.pop_only ? std::vector<uint32_t>{} : s.sizes)
     measure_stand(*context, pack, n, s, width, height, result);
   if (s.pop_size > 0) measure_popping(*context, pack, s, width, height, result);
+  if (s.far_size > 0 && !s.pop_only) measure_far(*context, pack, s, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("\ntotal %.1f s\n", result.seconds);
   write_results(s, result);

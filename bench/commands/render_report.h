@@ -46,6 +46,16 @@ struct PopRow {
   std::vector<double> per_pair, per_pair_4x, error_jumps, pop_pixels;
 };
 
+// A far stand (a few pixels a spectator): one selection at one camera distance.
+struct FarRow {
+  std::string view;       // "~5 px", "~2.6 px"
+  std::string selection;  // full, coarsest level, error mode meshes, error mode + impostors
+  uint64_t triangles = 0;
+  uint32_t impostors = 0;
+  double gpu_ms = 0;
+  double psnr = 0, psnr_4x = 0;  // over the stand's box in the full-resolution image
+};
+
 struct RenderBenchResult {
   std::string device;
   uint32_t width = 0, height = 0;
@@ -54,6 +64,8 @@ struct RenderBenchResult {
   std::vector<RenderBenchRow> rows;
   uint32_t pop_instances = 0, pop_frames = 0;
   std::vector<PopRow> pops;
+  uint32_t far_instances = 0;
+  std::vector<FarRow> far;
   double seconds = 0;
 };
 

@@ -23,9 +23,10 @@ std::array<float, 3> stand_centre(const StandLayout& l) {
 
 }  // namespace
 
-void bake_sample_pack(const std::string& path) {
+void bake_sample_pack(const std::string& path, bool impostor) {
   const SkinnedAsset asset = samples::make_spectator_character();
   BakeSettings settings;
+  if (impostor) settings.impostor = {8, 4, 32};
   BakeReport report;
   PackContents pack;
   throw_if_failed(build_pack(asset, settings, report, pack));

@@ -11,8 +11,9 @@
 
 namespace crowdbake::bench {
 
-// Bakes the generated spectator (samples/spectator, default bake settings) into `path`.
-void bake_sample_pack(const std::string& path);
+// Bakes the generated spectator (samples/spectator, default bake settings; with `impostor`, an
+// impostor of 8 views, 4 frames a clip, 32 texels high) into `path`.
+void bake_sample_pack(const std::string& path, bool impostor = false);
 
 struct StandLayout {
   uint32_t rows = 0, columns = 0;          // full rows; a last partial row holds the rest

@@ -84,6 +84,20 @@ std::string progressive_rules(const PackProgressive& p, const HeadCounts& counts
   return "";
 }
 
+// The impostor's rows are the animation's, its materials MATL's.
+std::string impostor_rules(const PackImpostor& m, const HeadCounts& counts) {
+  if (m.empty()) return "";
+  if (m.frame_of_row.size() != counts.animation_rows)
+    return count_mismatch("IMPS", "animation rows", counts.animation_rows, m.frame_of_row.size());
+  for (size_t i = 1; i < m.texels.size(); i += 2) {
+    const uint32_t material = (m.texels[i] >> 16) & 0xFFu;
+    if (material != PackImpostor::kEmptyTexel && material >= counts.materials)
+      return "IMPS: texel " + std::to_string(i / 2) + " has material " + std::to_string(material) +
+             ", HEAD says " + std::to_string(counts.materials) + " materials";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string chunk_rule_problem(uint32_t tag, const PackContents& c, const HeadCounts& counts) {
@@ -114,6 +128,8 @@ std::string chunk_rule_problem(uint32_t tag, const PackContents& c, const HeadCo
         return "ANIM: " + std::to_string(c.animation.joints) +
                " joints per row, the skeleton has " + std::to_string(counts.joints);
       return "";
+    case pack_format::kTagImps:
+      return impostor_rules(c.impostor, counts);
     default:
       return "";
   }

@@ -45,6 +45,10 @@ bool decode_vertex_colors(ByteReader& in, std::vector<uint32_t>& out);
 // VARS (1.7): per region, the first image and how many.
 void encode_variant_images(const PackVariantImages& variants, ByteWriter& out);
 bool decode_variant_images(ByteReader& in, PackVariantImages& out);
+void encode_impostor(const PackImpostor& impostor, ByteWriter& out);
+bool decode_impostor(ByteReader& in, PackImpostor& out);
+// Counts and rectangle in range (empty when fine); the arrays are not looked at.
+std::string impostor_shape_problem(const PackImpostor& impostor);
 
 void encode_bounds(const PackBounds& bounds, ByteWriter& out);
 bool decode_bounds(ByteReader& in, PackBounds& out);

@@ -46,7 +46,7 @@ uint16_t load(const std::vector<uint8_t>& data, size_t lane) {
 bool is_wrappable(uint32_t tag) {
   using namespace pack_format;
   return tag == kTagSkel || tag == kTagClip || tag == kTagProg || tag == kTagPart ||
-         tag == kTagVcol;
+         tag == kTagVcol || tag == kTagImps;
 }
 
 std::vector<uint8_t> zstd_frame(const std::vector<uint8_t>& bytes) {

@@ -88,6 +88,8 @@ constexpr KnownChunk kKnownChunks[] = {
      decode_part<&C::vertex_colors, pack_io::decode_vertex_colors>},
     {kTagVars, kVarsVersion, false, 0,
      decode_part<&C::variant_images, pack_io::decode_variant_images>},
+    {kTagImps, kWrappedVersion, false, kImpsVersion,
+     decode_part<&C::impostor, pack_io::decode_impostor>},
 };
 
 const KnownChunk* find_known(uint32_t tag) {

@@ -221,11 +221,29 @@ std::string check_partition(const PartitionMask& p) {
   return "";
 }
 
+std::string check_impostor(const PackImpostor& m) {
+  if (m.empty()) return m.texels.empty() && m.frame_of_row.empty() ? "" : "data without views";
+  if (std::string problem = impostor_shape_problem(m); !problem.empty()) return problem;
+  if (m.texels.size() != 2 * size_t{m.views} * m.frames * m.cell_texels())
+    return std::to_string(m.texels.size()) + " texel words, the shape needs " +
+           std::to_string(2 * size_t{m.views} * m.frames * m.cell_texels());
+  for (size_t r = 0; r < m.frame_of_row.size(); ++r)
+    if (m.frame_of_row[r] >= m.frames)
+      return "row " + std::to_string(r) + " shows frame " + std::to_string(m.frame_of_row[r]) +
+             " of " + std::to_string(m.frames);
+  for (size_t i = 1; i < m.texels.size(); i += 2)
+    if (((m.texels[i] >> 16) & 0xFFu) == PackImpostor::kEmptyTexel &&
+        (m.texels[i] != PackImpostor::kEmptyWord1 || m.texels[i - 1] != 0))
+      return "empty texel " + std::to_string(i / 2) + " has data";
+  return "";
+}
+
 std::string check_cross_references(const PackContents& c) {
   // note: a whole pack is checked with its own counts, which HEAD records (pack_chunk_rules).
   const HeadCounts counts = head_counts(c);
-  for (uint32_t tag : {pack_format::kTagGeom, pack_format::kTagMatl, pack_format::kTagLerr,
-                       pack_format::kTagProg, pack_format::kTagClip, pack_format::kTagAnim})
+  for (uint32_t tag :
+       {pack_format::kTagGeom, pack_format::kTagMatl, pack_format::kTagLerr, pack_format::kTagProg,
+        pack_format::kTagClip, pack_format::kTagAnim, pack_format::kTagImps})
     if (std::string problem = chunk_rule_problem(tag, c, counts); !problem.empty()) return problem;
   return "";
 }

@@ -21,6 +21,9 @@ std::string check_level_errors(const PackLevelErrors& errors);
 std::string check_geometry(const PackGeometry& geometry);
 std::string check_animation(const AnimationTexture& animation);
 std::string check_partition(const PartitionMask& partition);
+// Shape, rectangle, frame indices and texels (materials are checked against MATL with the
+// cross references).
+std::string check_impostor(const PackImpostor& impostor);
 // Rules between parts: joint and material indices, clip rows, progressive sizes.
 std::string check_cross_references(const PackContents& contents);
 

@@ -186,6 +186,7 @@ Status validate_pack_contents(const PackContents& c) {
       {"ANIM", check_animation(c.animation)},
       {"PART", check_partition(c.partition)},
       {"IMGS", check_images(c.images)},
+      {"IMPS", check_impostor(c.impostor)},
   };
   for (const auto& [tag, problem] : checks)
     if (!problem.empty())
@@ -229,6 +230,8 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
   pack_io::encode_partition(contents.partition, add(kTagPart, kPartVersion));
   if (!contents.images.empty())
     pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));
+  if (!contents.impostor.empty())
+    pack_io::encode_impostor(contents.impostor, add(kTagImps, kImpsVersion));
   if (compressed)
     for (EncodedChunk& chunk : chunks)
       if (pack_io::is_wrappable(chunk.tag)) {

@@ -53,7 +53,7 @@ class ConfigReader {
   void read(const Json& doc) {
     json_reader::check_object(doc, "",
                               {"comment", "simplify", "level_errors", "animation", "partition",
-                               "geometry", "pack", "variants"});
+                               "geometry", "pack", "variants", "impostor"});
     if (const Json* p = find(doc, "simplify")) simplify(*p);
     if (const Json* p = find(doc, "level_errors")) level_errors(*p);
     if (const Json* p = find(doc, "animation")) animation(*p);
@@ -61,6 +61,7 @@ class ConfigReader {
     if (const Json* p = find(doc, "geometry")) geometry(*p);
     if (const Json* p = find(doc, "pack")) pack(*p);
     if (const Json* p = find(doc, "variants")) variants(*p);
+    if (const Json* p = find(doc, "impostor")) impostor(*p);
   }
 
  private:
@@ -160,6 +161,19 @@ class ConfigReader {
       out_.optimize_images = json_reader::choice(*p, "pack.images", kImageCodings);
   }
 
+  void impostor(const Json& body) {
+    ImpostorOptions& o = out_.impostor;
+    json_reader::check_object(body, "impostor", {"views", "frames_per_clip", "height"});
+    const int64_t side = pack_format::kMaxImpostorSide;
+    if (const Json* p = find(body, "views"))
+      o.views = static_cast<uint32_t>(json_reader::integer(*p, "impostor.views", 0, side));
+    if (const Json* p = find(body, "frames_per_clip"))
+      o.frames_per_clip =
+          static_cast<uint32_t>(json_reader::integer(*p, "impostor.frames_per_clip", 1, 1024));
+    if (const Json* p = find(body, "height"))
+      o.height = static_cast<uint32_t>(json_reader::integer(*p, "impostor.height", 1, side));
+  }
+
   void variants(const Json& body) {
     static const char* const kRegions[3] = {"head", "upper_body", "trousers"};
     json_reader::check_object(body, "variants", {"head", "upper_body", "trousers"});
@@ -239,6 +253,11 @@ std::string bake_settings_json(const BakeSettings& s) {
   for (int r = 0; r < 3; ++r)
     for (const std::string& file : s.variant_images[r])
       j["variants"][kRegions[r]].push_back(std::filesystem::path(file).filename().string());
+  if (s.impostor.views > 0) {  // note: only when on, so other packs keep their settings text
+    j["impostor"]["views"] = s.impostor.views;
+    j["impostor"]["frames_per_clip"] = s.impostor.frames_per_clip;
+    j["impostor"]["height"] = s.impostor.height;
+  }
   return j.dump();
 }
 

@@ -317,6 +317,11 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
     pack.bounds.min[k] = static_cast<float>(lo[k]), pack.bounds.max[k] = static_cast<float>(hi[k]);
   // note: the bake measures what a reader will get.
   const double diagonal = std::max(glm::length(hi - lo), 1e-30);
+  if (settings.impostor.views > 0) {
+    if (const Status s = bake_impostor(pack, settings.impostor, pack.impostor); !s)
+      throw Error(Error::Kind::kUsage, asset.source, s.message());
+    clock.done("impostor");
+  }
   StoredAnimation stored;
   if (const Status s = stored_animation(pack, settings.pack, stored); !s)
     throw Error(Error::Kind::kUsage, asset.source, s.message());

@@ -34,8 +34,9 @@ Status CrowdDraw::Impl::create_pipelines(VkRenderPass pass, bool shadow,
 Status CrowdDraw::Impl::create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,
                                                  VkPipeline& out, uint32_t mode,
                                                  VkSampleCountFlagBits samples) {
-  // Specialization constants: 0 = the animation encoding, 1 = what is drawn (kMode*).
-  const Specialization specialization({0, 1}, {encoding, mode});
+  // Specialization constants: 0 = the animation encoding, 1 = what is drawn (kMode*), 2 = the
+  // target's samples per pixel (impostors write their own sample masks).
+  const Specialization specialization({0, 1, 2}, {encoding, mode, static_cast<uint32_t>(samples)});
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -198,10 +199,14 @@ Status CrowdDraw::Impl::color_pipeline(const HostTarget& target, ColorPipeline*&
   if (s.ok() && static_vertex_count > 0 && !types.empty())
     s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.static_geometry,
                                  kModeStatic, p.samples);
+  if (s.ok() && any_impostor)
+    s = create_graphics_pipeline(p.render_pass, false, types[0].encoding, p.impostor, kModeImpostor,
+                                 p.samples);
   if (!s) {
     destroy_pipelines(context->device(), p.pipelines);
     vkDestroyPipeline(context->device(), p.ground, nullptr);
     vkDestroyPipeline(context->device(), p.static_geometry, nullptr);
+    vkDestroyPipeline(context->device(), p.impostor, nullptr);
     vkDestroyRenderPass(context->device(), p.render_pass, nullptr);
     return s;
   }
@@ -307,6 +312,7 @@ Status CrowdDraw::record_color(VkCommandBuffer cmd, const HostTarget& target,
                                        pipeline->instanced[m.skin_fallback], pipeline->samples);
         !s)
       return s;
+    m.record_impostors(cmd, pipeline->impostor);
     if (m.constants.ground_min[3] != 0.0f && pipeline->ground != VK_NULL_HANDLE) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->ground);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline_layout, 1, 1,

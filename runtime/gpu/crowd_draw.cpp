@@ -66,6 +66,10 @@ Status CrowdDraw::create(VulkanContext& context, const Scene& scene, const DrawS
     impl->write_type_set(impl->types[i]);
   }
 
+  if (Status s = GpuBuffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   MemoryKind::kHostVisible, impl->impostor_list);
+      !s)
+    return s;
   if (Status s = impl->create_swatches(); !s) return s;
   if (Status s = impl->create_static_geometry(scene.static_geometry); !s) return s;
   if (Status s = impl->create_shadow(); !s) return s;
@@ -91,6 +95,7 @@ Status CrowdDraw::update(const Scene& scene, const FrameState& state, const Effe
   const GpuBuffer& lods = compute.instance_lod_buffer();
   bool sets_dirty = false;
   if (Status s = m.update_skin_pass(scene, state, compute, sets_dirty); !s) return s;
+  if (Status s = m.update_impostors(scene, state, sets_dirty); !s) return s;
   if (Status s = m.update_frame_constants(scene, state); !s) return s;
 
   if (Status s = check_poses(scene, effects, m.types); !s) return s;

@@ -38,7 +38,10 @@ void multiply4(const float a[16], const float b[16], float out[16]);
 
 struct TypeResources {
   GpuBuffer constants, vertices, animation, poses, morphs, materials;
-  GpuBuffer colors;  // the pack's vertex colours (VCOL), or one white
+  GpuBuffer colors;    // the pack's vertex colours (VCOL), or one white
+  GpuBuffer impostor;  // GpuImpostorHeader, frames of rows, texels (impostor.glsl); a header
+                       // of zeros for a type without one
+  uint32_t impostor_first = 0, impostor_count = 0;  // this frame: its run of the impostor list
   GpuImage mask, images;
   VkDescriptorSet set = VK_NULL_HANDLE;
   uint32_t vertex_count = 0, joints = 0;
@@ -57,11 +60,19 @@ struct ColorPipeline {
   VkPipeline instanced[2][kEncodings] = {};
   VkPipeline ground = VK_NULL_HANDLE;
   VkPipeline static_geometry = VK_NULL_HANDLE;  // made when the scene has static geometry
+  VkPipeline impostor = VK_NULL_HANDLE;         // made when some type has an impostor
 };
 
 // Pipeline kinds (crowd_frame.glsl kDrawMode).
 constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2, kModeInstancedSlots = 3,
-                   kModeStatic = 4;
+                   kModeStatic = 4, kModeImpostor = 5;
+
+// The head of a type's impostor buffer (shaders/impostor.glsl ImpostorBlock), std430.
+struct GpuImpostorHeader {
+  uint32_t shape[4];  // views, frames, width, height (views 0: none)
+  float rect[4];      // half width, bottom, top, animation rows
+  float up[4], across[4], centre[4];
+};
 
 struct CrowdDraw::Impl {
   VulkanContext* context = nullptr;
@@ -84,6 +95,8 @@ struct CrowdDraw::Impl {
   VkPipeline shadow_pipelines[kEncodings] = {};
   VkPipeline shadow_instanced[2][kEncodings] = {};
   VkPipeline shadow_static = VK_NULL_HANDLE;
+  GpuBuffer impostor_list;    // impostor_draw.cpp: this frame's impostor instances by type
+  bool any_impostor = false;  // some type has an impostor
   GpuBuffer static_vertices;  // static_draw.cpp
   uint32_t static_vertex_count = 0;
   bool skin_fallback = false;  // this frame: some instance may find no skinned slots
@@ -141,6 +154,12 @@ struct CrowdDraw::Impl {
   // colour or shadow pass's kModeStatic one).
   Status create_static_geometry(const StaticGeometry& geometry);
   void record_static(VkCommandBuffer cmd, VkPipeline pipeline) const;
+
+  // impostor_draw.cpp: a type's impostor buffer; this frame's impostor list (sets_dirty when
+  // it was replaced); the impostor draws (pipeline bound, frame set bound).
+  Status create_impostor(const PackContents& pack, TypeResources& out);
+  Status update_impostors(const Scene& scene, const FrameState& state, bool& sets_dirty);
+  void record_impostors(VkCommandBuffer cmd, VkPipeline pipeline) const;
 
   // color_pass.cpp
   Status create_graphics_pipeline(VkRenderPass pass, bool shadow, uint32_t encoding,

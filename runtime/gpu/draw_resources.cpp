@@ -20,6 +20,7 @@ CrowdDraw::Impl::~Impl() {
     destroy_pipelines(d, p.instanced);
     vkDestroyPipeline(d, p.ground, nullptr);
     vkDestroyPipeline(d, p.static_geometry, nullptr);
+    vkDestroyPipeline(d, p.impostor, nullptr);
     vkDestroyRenderPass(d, p.render_pass, nullptr);
   }
   destroy_pipelines(d, shadow_pipelines);
@@ -61,6 +62,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   const VkDescriptorSetLayoutBinding type_bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
@@ -72,6 +74,7 @@ Status CrowdDraw::Impl::create_layouts() {
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   if (Status s = create_set_layout(d, frame_bindings, frame_layout); !s) return s;
   if (Status s = create_set_layout(d, type_bindings, type_layout); !s) return s;
@@ -82,7 +85,7 @@ Status CrowdDraw::Impl::create_layouts() {
 
   const uint32_t type_count = static_cast<uint32_t>(std::max<size_t>(types.size(), 1));
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 + 7 * type_count + 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 + 8 * type_count + 8},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + 2 * type_count},
   };
   if (Status s = create_descriptor_pool(d, sizes, 2 + type_count, pool); !s) return s;
@@ -238,6 +241,8 @@ Status CrowdDraw::Impl::create_type(const CharacterType& type, TypeResources& ou
       !s)
     return s;
 
+  if (Status s = create_impostor(c, out); !s) return s;
+
   GpuMaterials materials;
   if (Status s = make_gpu_materials(c, materials); !s)
     return {s.code(), "character type '" + type.name + "': " + s.message()};
@@ -279,6 +284,7 @@ void CrowdDraw::Impl::write_frame_set() {
       .buffer(6, skinned.descriptor())
       .buffer(7, {bound_instance_list, 0, VK_WHOLE_SIZE})
       .buffer(8, static_vertices.descriptor())
+      .buffer(9, impostor_list.descriptor())
       .apply(context->device());
 }
 
@@ -302,6 +308,7 @@ void CrowdDraw::Impl::write_type_set(const TypeResources& t) {
       .buffer(6, t.materials.descriptor())
       .image(7, {material_sampler, t.images.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL})
       .buffer(8, t.colors.descriptor())
+      .buffer(9, t.impostor.descriptor())
       .apply(context->device());
 }
 
@@ -325,11 +332,12 @@ CrowdDraw::Memory CrowdDraw::memory() const {
   for (const TypeResources& t : m.types)
     out.per_type.push_back(t.constants.size() + t.vertices.size() + t.animation.size() +
                            t.poses.size() + t.morphs.size() + t.materials.size() + t.colors.size() +
-                           image_bytes(t.mask) + image_bytes(t.images));
+                           t.impostor.size() + image_bytes(t.mask) + image_bytes(t.images));
   for (const GpuBuffer* b :
        {&m.skin_params, &m.type_args, &m.skin_list, &m.skin_base, &m.skinned, &m.palette})
     out.skinning += b->size();
-  out.frame = m.frame_buffer.size() + image_bytes(m.swatches) + image_bytes(m.shadow_map);
+  out.frame = m.frame_buffer.size() + m.impostor_list.size() + image_bytes(m.swatches) +
+              image_bytes(m.shadow_map);
   out.static_geometry = m.static_vertices.size();
   return out;
 }

@@ -84,7 +84,7 @@ Status fill_gpu_instances(const Scene& scene, const FrameState& state, const Eff
       g.crossfade = fx.fade_weight[i];
     }
     g.pose = fx.has_poses() ? fx.pose[i] : kNoPose;
-    g.textures = in.textures[i];
+    g.textures = (in.textures[i] & ~kImpostorBit) | (state.impostor[i] ? kImpostorBit : 0u);
     g.neck_height = in.neck_height[i];
     g.waist_height = in.waist_height[i];
     g.color[0] = in.color[3 * i];

@@ -250,7 +250,9 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   CrowdComputeStats stats;
   if (Status s = m.compute->read_stats(stats); !s) return s;
   profile->instances = stats.instances;
-  profile->visible = stats.visible;
+  // note: the compute passes see the mesh path only; impostors were chosen on the CPU.
+  profile->impostors = m.state.impostor_count;
+  profile->visible = stats.visible + m.state.impostor_count;
   uint32_t slots = 0, no_room = 0;
   if (Status s = m.draw->read_skin_stats(slots, no_room); !s) return s;
   // note: without skinning slots an instance is not drawn, except on the instanced path whose
@@ -258,7 +260,8 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
   const uint32_t raw_no_room = no_room;
   if (m.compute->instanced()) no_room = 0;
   profile->overflow = stats.overflow_instances + no_room;
-  profile->drawn = stats.drawn_instances - std::min(no_room, stats.drawn_instances);
+  profile->drawn =
+      stats.drawn_instances - std::min(no_room, stats.drawn_instances) + m.state.impostor_count;
   profile->vertices = stats.selected_vertices;
   profile->budget = scene.lod.budget;
   profile->budget_exceeded =
@@ -280,6 +283,7 @@ Status Renderer::render(const Scene& scene, float time, Image& out, FrameProfile
     for (const VkDrawIndexedIndirectCommand& a : args)
       profile->triangles += uint64_t{a.indexCount} / 3 * a.instanceCount;
   }
+  profile->triangles += 2 * uint64_t{m.state.impostor_count};
   return {};
 }
 

@@ -20,6 +20,8 @@ Status check_lod_settings(const LodSettings& s) {
   if (!(s.min_t >= 0.0f && s.min_t <= 1.0f)) return invalid("min_t must be in [0, 1]");
   if (!(s.max_pixel_error > 0.0f) || !std::isfinite(s.max_pixel_error))
     return invalid("max_pixel_error must be a finite number of pixels > 0");
+  if (!(s.impostor_pixels >= 0.0f) || !std::isfinite(s.impostor_pixels))
+    return invalid("impostor_pixels must be a finite number of pixels >= 0 (0: off)");
   if (!(s.geomorph >= 0.0f && s.geomorph < 1.0f))
     return invalid("geomorph must be a fraction in [0, 1) (0: off)");
   if (s.discrete_level_count < 1 || s.discrete_level_count > kMaxDiscreteLevels)

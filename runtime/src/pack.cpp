@@ -142,7 +142,7 @@ struct Pack::Impl {
   void clear(uint32_t parts) {
     if (parts & kPackGeometry) contents.geometry = PackGeometry{}, contents.vertex_colors.clear();
     if (parts & kPackAnimation) contents.animation = AnimationTexture{};
-    if (parts & kPackPartition) contents.partition = PartitionMask{};
+    if (parts & kPackPartition) contents.partition = PartitionMask{}, contents.impostor = {};
     loaded &= ~(parts & ~uint32_t{kPackTables});
   }
 
@@ -154,6 +154,13 @@ struct Pack::Impl {
     // note: VCOL (1.7, optional) is per-vertex data: it travels with GEOM.
     if (s && part == kPackGeometry && find(pack_format::kTagVcol))
       s = read_chunk(pack_format::kTagVcol);
+    // note: IMPS (1.8, optional) is a look of the character, like the partition mask.
+    if (s && part == kPackPartition && find(pack_format::kTagImps)) {
+      s = read_chunk(pack_format::kTagImps);
+      if (s)
+        if (Status rules = check_pack_chunk(pack_format::kTagImps, contents, counts); !rules)
+          s = fail(rules.message());
+    }
     if (s && (part == kPackGeometry || part == kPackAnimation))
       if (Status rules = check_pack_chunk(tag, contents, counts); !rules) s = fail(rules.message());
     if (!s) {

@@ -123,7 +123,7 @@ void parse_lod(const Json& v, RawScene& s) {
   const std::string path = "lod";
   check_object(v, path,
                {"mode", "budget", "alpha", "min_t", "drop_below_min_t", "max_pixel_error",
-                "geomorph", "discrete_levels"});
+                "geomorph", "discrete_levels", "impostor_pixels"});
   LodSettings& l = s.lod;
   if (const Json* p = find(v, "mode")) {
     const std::string mode = string(*p, path + ".mode");
@@ -163,6 +163,12 @@ void parse_lod(const Json& v, RawScene& s) {
     if (!(f >= 0.0 && f < 1.0))
       fail(path + ".geomorph", "must be a fraction in [0, 1) (0: off), got " + show(f));
     l.geomorph = static_cast<float>(f);
+  }
+  if (const Json* p = find(v, "impostor_pixels")) {
+    const double px = number(*p, path + ".impostor_pixels");
+    if (!(px >= 0.0) || !std::isfinite(px) || px > 1e6)
+      fail(path + ".impostor_pixels", "must be a number of pixels >= 0 (0: off), got " + show(px));
+    l.impostor_pixels = static_cast<float>(px);
   }
   if (const Json* p = find(v, "drop_below_min_t"))
     l.drop_below_min_t = boolean(*p, path + ".drop_below_min_t");

@@ -12,6 +12,38 @@ namespace {
 
 Status invalid(const std::string& what) { return {StatusCode::kInvalidArgument, what}; }
 
+// Visible instances of a type with an impostor whose bounding sphere is less than
+// lod.impostor_pixels across leave the mesh path: they are not visible to LoD selection, the
+// impostor pass draws them. Full resolution means meshes: no impostors there.
+void select_impostors(const Scene& scene, FrameState& state) {
+  const size_t n = state.visible.size();
+  state.impostor.assign(n, 0);
+  state.impostor_count = 0;
+  const float limit = scene.lod.impostor_pixels;
+  if (!(limit > 0.0f) || scene.lod.mode == LodMode::kFull) return;
+  std::vector<uint8_t> has(scene.types.size(), 0);
+  bool any = false;
+  for (size_t t = 0; t < scene.types.size(); ++t) {
+    const Pack& pack = scene.types[t].pack;
+    has[t] = pack.has(kPackPartition) && !pack.contents().impostor.empty();
+    any = any || has[t];
+  }
+  if (!any) return;
+  const View& v = state.view;
+  for (size_t i = 0; i < n; ++i) {
+    if (!state.visible[i] || !has[scene.instances.type[i]]) continue;
+    const float* s = &state.spheres[4 * i];
+    const float dx = s[0] - v.eye[0], dy = s[1] - v.eye[1], dz = s[2] - v.eye[2];
+    // note: the distance along the view axis, as the projection scales by it.
+    const float depth = dx * v.forward[0] + dy * v.forward[1] + dz * v.forward[2];
+    if (!(depth > s[3])) continue;  // close enough to cut the near plane: a mesh
+    if (2.0f * s[3] * v.focal_pixels < limit * depth) {
+      state.impostor[i] = 1, state.visible[i] = 0;
+      ++state.impostor_count, --state.visible_count;
+    }
+  }
+}
+
 }  // namespace
 
 Status update_frame(const Scene& scene, float time, FrameState& state) {
@@ -69,6 +101,8 @@ Status update_frame(const Scene& scene, float time, FrameState& state) {
   cull.visible_count = &state.visible_count;
   if (!cull.Run())
     return invalid("instance arrays are inconsistent (sizes or type indices) for culling");
+
+  select_impostors(scene, state);
 
   LodSelectJob lod;
   lod.settings = scene.lod;

@@ -268,6 +268,53 @@ TEST(PackWriter, RefusesInvalidContents) {
             StatusCode::kInvalidArgument);
 }
 
+// A small hand-made impostor for the test character: 2 views, 2 frames of 3 x 2 texels, the
+// first texel of each cell empty.
+PackImpostor test_impostor(const PackContents& c) {
+  PackImpostor m;
+  m.views = 2, m.frames = 2, m.width = 3, m.height = 2;
+  m.half_width = 0.5f, m.bottom = -0.1f, m.top = 1.9f;
+  for (uint32_t r = 0; r < c.animation.rows; ++r) m.frame_of_row.push_back(r % 2);
+  for (uint32_t i = 0; i < m.views * m.frames * m.cell_texels(); ++i) {
+    const bool empty = i % m.cell_texels() == 0;
+    m.texels.push_back(empty ? 0u : 0x3C003800u + i);
+    m.texels.push_back(empty ? PackImpostor::kEmptyWord1 : (i % 3) << 16 | 0x7F00u | i << 24);
+  }
+  return m;
+}
+
+TEST(PackWriter, ImpostorRoundTripsAndBreakingItsRulesIsRefused) {
+  PackContents good = make_test_contents(4, 13);
+  good.impostor = test_impostor(good);
+  PackContents back;
+  const std::vector<uint8_t> bytes = test::pack_bytes(good);
+  ASSERT_TRUE(read_pack(bytes.data(), bytes.size(), back).ok());
+  EXPECT_EQ(back.impostor.texels, good.impostor.texels);
+  EXPECT_EQ(back.impostor.frame_of_row, good.impostor.frame_of_row);
+  EXPECT_EQ(back.impostor.top, good.impostor.top);
+  PackContents c = good;
+  c.impostor.frame_of_row[3] = 2;
+  expect_refused(c, "shows frame 2 of 2");
+  c = good;
+  c.impostor.frame_of_row.pop_back();
+  expect_refused(c, "animation rows");
+  c = good;
+  c.impostor.texels.pop_back();
+  expect_refused(c, "texel words");
+  c = good;
+  c.impostor.texels[3] = 7u << 16;  // texel 1: material 7 of 3
+  expect_refused(c, "has material 7");
+  c = good;
+  c.impostor.texels[0] = 1;  // an empty texel with a UV
+  expect_refused(c, "empty texel 0 has data");
+  c = good;
+  c.impostor.top = c.impostor.bottom;
+  expect_refused(c, "no area");
+  c = good;
+  c.impostor.width = 300;
+  expect_refused(c, "out of range");
+}
+
 TEST(PackWriter, ValidatePackContentsAcceptsTheTestCharacter) {
   const Status s = validate_pack_contents(make_test_contents());
   EXPECT_TRUE(s.ok()) << s.message();

@@ -116,6 +116,48 @@ TEST(UpdateFrame, NeedsOnlyThePackTables) {
   EXPECT_EQ(skin_instance(tables, 1, 0.0f, 100, positions).code(), StatusCode::kNotLoaded);
 }
 
+// Visible instances of a pack with an impostor whose bounding sphere is under
+// lod.impostor_pixels across are impostors, out of LoD selection; the rest are as before.
+TEST(UpdateFrame, SmallInstancesOfAPackWithAnImpostorAreImpostors) {
+  CROWDBAKE_REQUIRE_BAKED_PACKS();
+  Scene plain, scene;
+  const std::string lod = R"({"budget": 300000, "min_t": 1, "impostor_pixels": 60})";
+  ASSERT_TRUE(stadium(plain, kPackAll, lod));
+  ASSERT_TRUE(stadium(scene, kPackAll, lod, test::BakedPacks::get().spectator_impostor()));
+  ASSERT_FALSE(scene.types[0].pack.contents().impostor.empty());
+  FrameState before, state;
+  ASSERT_TRUE(update_frame(plain, 2.5f, before));
+  ASSERT_TRUE(update_frame(scene, 2.5f, state));
+  EXPECT_EQ(before.impostor_count, 0u);
+  uint32_t impostors = 0, meshes = 0;
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const bool seen = before.visible[i];
+    EXPECT_EQ(seen, state.visible[i] || state.impostor[i]) << i;
+    EXPECT_FALSE(state.visible[i] && state.impostor[i]) << i;
+    if (state.impostor[i]) {
+      ++impostors;
+      EXPECT_EQ(scene.instances.type[i], 0u) << "the kid's pack has no impostor";
+      EXPECT_EQ(state.vertex_count[i], 0u);
+      const float* s = &state.spheres[4 * i];
+      const float depth = (s[0] - state.view.eye[0]) * state.view.forward[0] +
+                          (s[1] - state.view.eye[1]) * state.view.forward[1] +
+                          (s[2] - state.view.eye[2]) * state.view.forward[2];
+      EXPECT_LT(2.0f * s[3] * state.view.focal_pixels / depth, 60.0f);
+    }
+    meshes += state.visible[i];
+  }
+  EXPECT_GT(impostors, 50u);
+  EXPECT_GT(meshes, 50u);
+  EXPECT_EQ(impostors, state.impostor_count);
+  EXPECT_EQ(meshes, state.visible_count);
+  EXPECT_EQ(state.lod.visible, meshes);
+  // Off: as the pack without one.
+  scene.lod.impostor_pixels = 0.0f;
+  ASSERT_TRUE(update_frame(scene, 2.5f, state));
+  EXPECT_EQ(state.impostor_count, 0u);
+  EXPECT_EQ(state.visible, before.visible);
+}
+
 TEST(UpdateFrame, ModesAndBudgets) {
   CROWDBAKE_REQUIRE_BAKED_PACKS();
   uint64_t continuous = 0, discrete = 0, full = 0, small_budget = 0, never_drop = 0;

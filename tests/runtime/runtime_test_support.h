@@ -50,6 +50,7 @@ inline int run_command(const std::string& command, std::string* log) {
 // folder removed at exit:
 //   spectator:     make_spectator (detail 1, seed 0), default bake (quantized animation, Draco)
 //   spectator_f32: make_spectator --detail 0 --seed 3, float32 animation, raw geometry
+//   spectator_impostor: the first with an impostor (8 views, 4 frames a clip, 32 texels high)
 class BakedPacks {
  public:
   static const BakedPacks& get() {
@@ -58,6 +59,7 @@ class BakedPacks {
   }
   const std::string& spectator() const { return spectator_; }
   const std::string& spectator_f32() const { return spectator_f32_; }
+  const std::string& spectator_impostor() const { return spectator_impostor_; }
   const std::string& error() const { return error_; }
   const std::filesystem::path& dir() const { return dir_; }
 
@@ -80,6 +82,10 @@ class BakedPacks {
                               "simplify": {"samples": 8},
                               "level_errors": {"samples": 4, "fps": 0.25}})";
     std::ofstream(quick) << R"({"level_errors": {"samples": 4, "fps": 0.25}})";
+    const auto impostor = (dir_ / "impostor.json").string();
+    std::ofstream(impostor) << R"({"level_errors": {"samples": 4, "fps": 0.25},
+                                 "impostor": {"views": 8, "frames_per_clip": 4, "height": 32}})";
+    spectator_impostor_ = (dir_ / "spectator_impostor.crowdpack").string();
     spectator_ = (dir_ / "spectator.crowdpack").string();
     spectator_f32_ = (dir_ / "spectator_f32.crowdpack").string();
     const std::string commands[] = {
@@ -89,6 +95,8 @@ class BakedPacks {
             quote(quick) + " --quiet",
         quote(crowdbake) + " bake " + quote(glb3) + " -o " + quote(spectator_f32_) + " --config " +
             quote(config) + " --quiet",
+        quote(crowdbake) + " bake " + quote(glb) + " -o " + quote(spectator_impostor_) +
+            " --config " + quote(impostor) + " --quiet",
     };
     for (const std::string& c : commands) {
       std::string log;
@@ -99,7 +107,7 @@ class BakedPacks {
     }
   }
   std::filesystem::path dir_;
-  std::string spectator_, spectator_f32_, error_;
+  std::string spectator_, spectator_f32_, spectator_impostor_, error_;
 };
 
 #define CROWDBAKE_REQUIRE_BAKED_PACKS()                               \

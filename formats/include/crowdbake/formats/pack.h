@@ -142,6 +142,32 @@ struct PackLevelErrors {
   std::vector<float> rms_error;  // area-weighted RMS
 };
 
+// A far character's stand-in (IMPS, pack 1.8, optional; docs/pack-format.md 3.14): the
+// full-resolution character seen from `views` directions around the up axis (the partition's
+// up_axis), horizontally, at `frames` frames of its clips; one cell of width × height texels
+// each, drawn by the runtime as a camera-facing quad where a character is a few pixels tall.
+// A texel holds what the colour pass needs of the surface nearest the viewer there, so the
+// instance's variety (variant, colour) still applies:
+//   word 0: UV as two IEEE halves (u low);
+//   word 1: normal, octahedral, two snorm8 (model space, bits 0-15) | material (bits 16-23) |
+//           bind-pose height along up_axis, unorm8 over bounds (bits 24-31);
+//   material kEmptyTexel: nothing there (word 0 zero, word 1 kEmptyWord1).
+struct PackImpostor {
+  static constexpr uint32_t kEmptyTexel = 0xFF;
+  static constexpr uint32_t kEmptyWord1 = kEmptyTexel << 16;  // an empty texel: words 0 and this
+  uint32_t views = 0, frames = 0, width = 0, height = 0;      // views == 0: no impostor
+  // The cell's rectangle in model units: across the view from -half_width to half_width around
+  // the bind-pose box's centre, along up_axis from bottom to top. Row 0 is the top.
+  float half_width = 0.0f, bottom = 0.0f, top = 0.0f;
+  // Per animation row, the impostor frame that shows it (< frames).
+  std::vector<uint32_t> frame_of_row;
+  // 2 words per texel, cells in [view][frame] order, texels row by row.
+  std::vector<uint32_t> texels;
+
+  bool empty() const { return views == 0; }
+  size_t cell_texels() const { return size_t{width} * height; }
+};
+
 struct PackBounds {
   std::array<float, 3> min{0, 0, 0}, max{0, 0, 0};  // bind pose
   float radius = 0.0f;  // bounding sphere over every baked frame, around the bind-box centre
@@ -165,6 +191,7 @@ struct PackContents {
   AnimationTexture animation;
   PartitionMask partition;
   PackBounds bounds;
+  PackImpostor impostor;  // IMPS (1.8, optional): empty when not baked
 };
 
 enum class GeometryCodec : uint32_t {

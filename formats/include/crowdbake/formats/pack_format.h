@@ -13,8 +13,8 @@ namespace crowdbake {
 constexpr uint16_t kPackVersionMajor = 1;  // incompatible layout changes: re-bake packs
 // additions; 1.3: ANIM v2 (compressed texels); 1.4: GEOM v2 (quantised skin weights);
 // 1.5: ANIM v3 (error-bounded animation coding); 1.6: GEOM v3 (the predictive codec);
-// 1.7: VARS (per-region variant images), VCOL (vertex colours)
-constexpr uint16_t kPackVersionMinor = 7;
+// 1.7: VARS (per-region variant images), VCOL (vertex colours); 1.8: IMPS (impostor)
+constexpr uint16_t kPackVersionMinor = 8;
 
 namespace pack_format {
 
@@ -50,6 +50,8 @@ constexpr uint32_t kTagPart = make_tag('P', 'A', 'R', 'T');  // partition mask
 constexpr uint32_t kTagVcol =
     make_tag('V', 'C', 'O', 'L');  // vertex colours (1.7, optional; read with GEOM)
 constexpr uint32_t kTagImgs = make_tag('I', 'M', 'G', 'S');  // material images (1.2, optional)
+constexpr uint32_t kTagImps =
+    make_tag('I', 'M', 'P', 'S');  // impostor (1.8, optional; read with PART)
 
 // Layout version of each chunk's payload this build writes and reads (it reads exactly
 // these; any other version of a known chunk is rejected).
@@ -75,6 +77,7 @@ constexpr uint32_t kMatxVersion = 1;
 constexpr uint32_t kImgsVersion = 1;
 constexpr uint32_t kVarsVersion = 1;
 constexpr uint32_t kVcolVersion = 1;  // 2: the v1 payload as a zstd frame (§2.5)
+constexpr uint32_t kImpsVersion = 1;  // 2: the v1 payload as a zstd frame (§2.5)
 
 // Header flags: bits 0-15 are required features (a reader rejects a pack with a bit it
 // does not know), bits 16-31 optional hints (ignored when unknown). v1.0 defines none.
@@ -100,6 +103,9 @@ constexpr uint32_t kMaxImageSide = 8192;        // material image width/height
 constexpr uint32_t kMaxImageBytes = 64u << 20;  // one stored (encoded) image
 constexpr uint32_t kMaxQuantizationBits = 24;   // 0 = unquantised float
 constexpr uint32_t kMaxWeightBits = 16;         // skin weights are stored as uint16
+constexpr uint32_t kMaxImpostorSide = 256;      // impostor cell width/height, views
+constexpr uint32_t kMaxImpostorFrames = 65535;
+constexpr uint64_t kMaxImpostorTexels = uint64_t{1} << 24;
 // A compressed GEOM chunk may not decode to more than this many bytes of arrays plus
 // kGeomExpansionRatio times its own size: bounds what a small hostile file can allocate.
 constexpr uint64_t kGeomExpansionSlack = 1u << 20;

@@ -9,6 +9,7 @@
 
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/pipeline/animation_bake.h"
+#include "crowdbake/pipeline/impostor_bake.h"
 #include "crowdbake/pipeline/partition_bake.h"
 #include "crowdbake/pipeline/simplify.h"
 #include "crowdbake/pipeline/skinned_asset.h"
@@ -42,6 +43,7 @@ struct BakeSettings {
   LevelErrorOptions level_errors;
   AnimationBakeOptions animation;
   PartitionOptions partition;
+  ImpostorOptions impostor;  // off by default (views 0): an impostor is 100-300 KB
   // Bakes code the animation within kDefaultAnimationError of the lossless texture
   // (docs/animation-encoding.md 6); the library's own default stays lossless.
   PackWriteOptions pack = default_bake_pack_options();

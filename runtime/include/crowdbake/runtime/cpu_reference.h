@@ -23,11 +23,13 @@ struct FrameState {
   std::vector<float> blend;            // weight of row1
   std::vector<float> world;            // 12 per instance: placement · root motion
   std::vector<float> spheres;          // 4 per instance: world bounding sphere (CullJob)
-  std::vector<uint8_t> visible;        // 1 visible, 0 culled
+  std::vector<uint8_t> visible;        // 1 visible and drawn as a mesh, 0 culled or impostor
+  std::vector<uint8_t> impostor;       // 1 visible and drawn as its pack's impostor
   std::vector<double> weights;         // w_i^(1/α) (LodSelectJob's pass 1)
   std::vector<uint32_t> vertex_count;  // selected vertices, 0 = not drawn (LodSelectJob)
   std::vector<float> morph;            // the geomorph's continuous count (LodSelectJob)
-  uint32_t visible_count = 0;
+  uint32_t visible_count = 0;          // visible instances drawn as meshes
+  uint32_t impostor_count = 0;         // visible instances drawn as impostors
   LodStats lod;
   std::vector<LodType> lod_types;  // per type
   // The mode this frame was selected in: the scene's, except error mode with a type whose pack

@@ -85,6 +85,8 @@ constexpr uint32_t kErrorLadderSteps = 32;
 
 constexpr uint32_t kMaxDiscreteLevels = 8;
 
+constexpr float kDefaultImpostorPixels = 8.0f;  // docs/performance.md, "Far characters"
+
 struct LodSettings {
   LodMode mode = LodMode::kContinuous;
   uint32_t budget = 1000000;  // N: vertices for all visible instances together, >= 1
@@ -101,6 +103,11 @@ struct LodSettings {
   // they cost accuracy and, on the popping dolly, more changed pixels than they remove
   // (docs/performance.md, "Geomorphs").
   float geomorph = 0.0f;
+  // Far characters: an instance whose bounding sphere is less than this many pixels across is
+  // drawn as its pack's impostor (PackImpostor, one camera-facing quad) instead of a level of
+  // its mesh; 0 turns impostors off. Types whose pack has none (or whose PART part is not
+  // loaded) always draw their mesh, and so does every instance in kFull mode.
+  float impostor_pixels = kDefaultImpostorPixels;
   // Discrete levels as fractions of the full vertex count, strictly decreasing, in (0, 1].
   std::array<float, kMaxDiscreteLevels> discrete_levels{1.0f, 0.5f, 0.25f, 0.125f};
   uint32_t discrete_level_count = 4;  // 1..kMaxDiscreteLevels

@@ -14,6 +14,8 @@
 
 namespace crowdbake::runtime::gpu {
 
+constexpr uint32_t kImpostorBit = 1u << 31;  // GpuInstance::textures (shaders/instance.glsl)
+
 struct GpuInstance {
   float world[12];      // 3x4 row-major: placement · root motion (FrameState::world)
   uint32_t type;        // character type index
@@ -23,7 +25,9 @@ struct GpuInstance {
   float blend23;        // weight of row3 between row2 and row3
   float crossfade;      // weight of the (row2,row3) pose; 0 = no crossfade
   uint32_t pose;        // index into the type's pose buffer, kNoPose = baked texture
-  uint32_t textures;    // head | upper << 8 | trousers << 16 (InstanceArrays::textures)
+  // head | upper << 8 | trousers << 16 (InstanceArrays::textures) | kImpostorBit when the
+  // instance is drawn as its pack's impostor (FrameState::impostor)
+  uint32_t textures;
   float neck_height, waist_height;
   // Hue shift (deg), saturation, brightness, and |scale|: the instance's uniform scale, which
   // culling multiplies the type's bounding radius by (CullJob: radius · |scale|, so the GPU

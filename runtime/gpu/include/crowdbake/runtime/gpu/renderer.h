@@ -53,7 +53,8 @@ struct FrameProfile {
   std::vector<PassTiming> passes;
   uint32_t instances = 0;        // in the scene
   uint32_t visible = 0;          // after frustum culling
-  uint32_t drawn = 0;            // drawn (selected and fitting the corner buffer)
+  uint32_t drawn = 0;            // drawn (selected and fitting the corner buffer), impostors too
+  uint32_t impostors = 0;        // drawn as their pack's impostor (LodSettings::impostor_pixels)
   uint32_t overflow = 0;         // selected but not drawn: the corner buffer was full
   uint64_t vertices = 0;         // Σ n_i: LoD vertices selected over the drawn instances
   uint64_t triangles = 0;        // triangles drawn (per pass; the shadow pass draws the same ones)

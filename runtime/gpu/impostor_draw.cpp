@@ -1,0 +1,93 @@
+// Far characters as impostors (PackImpostor, docs/gpu-rendering.md "Impostors"): each type's
+// impostor uploaded once, each frame's list of instances update_frame chose to draw that way,
+// and one instanced draw of six vertices per type with any.
+#include <cmath>
+#include <cstring>
+
+#include "crowd_draw_impl.h"
+#include "vk_helpers.h"
+
+namespace crowdbake::runtime::gpu {
+
+Status CrowdDraw::Impl::create_impostor(const PackContents& pack, TypeResources& out) {
+  const PackImpostor& m = pack.impostor;
+  GpuImpostorHeader h{};
+  std::vector<uint32_t> words;
+  if (!m.empty()) {
+    any_impostor = true;
+    h.shape[0] = m.views, h.shape[1] = m.frames, h.shape[2] = m.width, h.shape[3] = m.height;
+    h.rect[0] = m.half_width, h.rect[1] = m.bottom, h.rect[2] = m.top;
+    h.rect[3] = static_cast<float>(m.frame_of_row.size());
+    // note: the bake's frame (impostor_bake.cpp): up, across = up × (Z, or X for a Z-up axis),
+    // centred on the bind-pose box.
+    float up[3] = {pack.partition.up_axis[0], pack.partition.up_axis[1], pack.partition.up_axis[2]};
+    const float len = std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    if (std::isfinite(len) && len > 0.0f)
+      for (float& u : up) u /= len;
+    else
+      up[0] = 0.0f, up[1] = 1.0f, up[2] = 0.0f;
+    const float ref[3] = {std::fabs(up[2]) < 0.9f ? 0.0f : 1.0f, 0.0f,
+                          std::fabs(up[2]) < 0.9f ? 1.0f : 0.0f};
+    float a[3] = {up[1] * ref[2] - up[2] * ref[1], up[2] * ref[0] - up[0] * ref[2],
+                  up[0] * ref[1] - up[1] * ref[0]};
+    normalize3(a);
+    for (int k = 0; k < 3; ++k) {
+      h.up[k] = up[k], h.across[k] = a[k];
+      h.centre[k] = 0.5f * (pack.bounds.min[k] + pack.bounds.max[k]);
+    }
+    words.reserve(m.frame_of_row.size() + m.texels.size());
+    words.insert(words.end(), m.frame_of_row.begin(), m.frame_of_row.end());
+    words.insert(words.end(), m.texels.begin(), m.texels.end());
+  }
+  std::vector<uint8_t> bytes(sizeof h + words.size() * sizeof(uint32_t) + 16, 0);
+  std::memcpy(bytes.data(), &h, sizeof h);
+  if (!words.empty())
+    std::memcpy(bytes.data() + sizeof h, words.data(), words.size() * sizeof(uint32_t));
+  return create_filled_buffer(*context, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              MemoryKind::kDeviceLocal, bytes.data(), bytes.size(), out.impostor);
+}
+
+Status CrowdDraw::Impl::update_impostors(const Scene& scene, const FrameState& state,
+                                         bool& sets_dirty) {
+  std::vector<uint32_t> list;
+  list.reserve(state.impostor_count);
+  for (TypeResources& t : types) t.impostor_first = t.impostor_count = 0;
+  // note: grouped by type in instance order, so equal frames draw in equal order.
+  for (uint32_t t = 0; t < types.size(); ++t) {
+    types[t].impostor_first = static_cast<uint32_t>(list.size());
+    for (uint32_t i = 0; i < state.impostor.size(); ++i)
+      if (state.impostor[i] && scene.instances.type[i] == t) list.push_back(i);
+    types[t].impostor_count = static_cast<uint32_t>(list.size()) - types[t].impostor_first;
+  }
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(list.size() * sizeof(uint32_t), 16);
+  if (!impostor_list.valid() || impostor_list.size() < bytes) {
+    GpuBuffer grown;
+    if (Status s =
+            GpuBuffer::create(*context, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              MemoryKind::kHostVisible, grown);
+        !s)
+      return s;
+    impostor_list = std::move(grown);
+    sets_dirty = true;
+  }
+  if (list.empty()) return {};
+  return impostor_list.upload(list.data(), list.size() * sizeof(uint32_t));
+}
+
+void CrowdDraw::Impl::record_impostors(VkCommandBuffer cmd, VkPipeline pipeline) const {
+  if (pipeline == VK_NULL_HANDLE) return;
+  bool bound = false;
+  for (const TypeResources& t : types) {
+    if (t.impostor_count == 0) continue;
+    if (!bound) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline), bound = true;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout, 1, 1, &t.set, 0,
+                            nullptr);
+    const DrawPush push{0, 0};
+    vkCmdPushConstants(cmd, pipeline_layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    vkCmdDraw(cmd, 6, t.impostor_count, 0, t.impostor_first);
+  }
+}
+
+}  // namespace crowdbake::runtime::gpu
