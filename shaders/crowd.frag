@@ -184,13 +184,14 @@ int impostor_sample_mask(float coverage) {
   return int(((run << r) | (run >> ((kSamples - r) % kSamples))) & all);
 }
 
-// An impostor fragment: the texels its pixel covers (up to 4 x 4 samples of the footprint)
+// An impostor fragment: the texels its pixel covers (up to 2 x 2 samples of the footprint)
 // shaded and averaged, written to the share of the pixel's samples they cover. One texel per
 // pixel would pick one of the texels under a pixel at random: at a few pixels a character,
-// that is most of the image's error.
+// that is most of the image's error. (4 x 4 samples took 3.5x the GPU time on the far stand
+// for 0.5-0.9 dB: docs/performance.md, "Far characters".)
 vec4 impostor_color() {
   const vec2 footprint = clamp(fwidth(in_uv), vec2(1.0), vec2(16.0));
-  const uvec2 n = uvec2(min(ceil(footprint), vec2(4.0)));
+  const uvec2 n = uvec2(min(ceil(footprint), vec2(2.0)));
   const ivec2 last = ivec2(impostor.shape.zw) - 1;
   // note: images are sampled a step coarser per doubling of the footprint (no derivatives).
   const float lod = log2(max(footprint.x, footprint.y));
