@@ -158,7 +158,7 @@ void write_far_csv(const RenderBenchResult& result, const std::string& path) {
   out << "device,seats,view,selection,triangles,impostors,gpu_ms,psnr_db,psnr_4x_db\n";
   char line[256];
   for (const FarRow& r : result.far) {
-    std::snprintf(line, sizeof line, "\"%s\",%u,%s,%s,%llu,%u,%.3f,%.3f,%.3f\n",
+    std::snprintf(line, sizeof line, "\"%s\",%u,%s,\"%s\",%llu,%u,%.3f,%.3f,%.3f\n",
                   result.device.c_str(), result.far_instances, r.view.c_str(), r.selection.c_str(),
                   static_cast<unsigned long long>(r.triangles), r.impostors, r.gpu_ms, r.psnr,
                   r.psnr_4x);
