@@ -506,7 +506,7 @@ std::vector<std::string> PackDiff::differing() const {
 const std::vector<std::string>& diff_section_names() {
   static const std::vector<std::string> names = {
       "header",   "settings",    "skeleton",  "clips",     "materials", "bounds",
-      "geometry", "progressive", "animation", "partition", "sizes"};
+      "geometry", "progressive", "animation", "partition", "impostor",  "sizes"};
   return names;
 }
 
@@ -528,8 +528,7 @@ PackDiff diff_packs(const PackFile& a, const PackFile& b, const DiffOptions& opt
   diff.sections.push_back(diff_progressive(ca, cb));
   diff.sections.push_back(diff_animation(ca, cb, cmp));
   diff.sections.push_back(diff_partition(ca, cb, cmp));
-  // note: only for packs with an impostor, so diffs of packs without one read as before.
-  if (!ca.impostor.empty() || !cb.impostor.empty()) diff.sections.push_back(diff_impostor(ca, cb));
+  diff.sections.push_back(diff_impostor(ca, cb));
   diff.sections.push_back(diff_sizes(a, b));
   for (DiffSection& s : diff.sections)
     s.ignored = s.differs && std::find(options.ignore.begin(), options.ignore.end(), s.name) !=

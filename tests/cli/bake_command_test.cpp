@@ -169,6 +169,29 @@ TEST(BakeCommandErrors, BadConfigValue) {
       << r.err;
 }
 
+TEST(BakeCommandErrors, ImpostorOutOfRangeNamesTheKey) {
+  test::TempDir dir;
+  const test::CommandResult r = bake_with_config(dir, R"({"impostor": {"views": 300}})");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("impostor.views"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.crowdpack"));
+}
+
+// An impostor in the config reaches the pack (IMPS) and `inspect` says so; the settings text
+// records it.
+TEST(BakeCommand, ImpostorConfigGivesAPackWithAnImpostor) {
+  test::TempDir dir;
+  const test::CommandResult r =
+      bake_with_config(dir, R"({"impostor": {"views": 4, "frames_per_clip": 2, "height": 16}})");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::CommandResult inspect =
+      test::run_crowdbake({"inspect", (dir / "x.crowdpack").string()});
+  ASSERT_EQ(inspect.exit_code, 0) << inspect.err;
+  EXPECT_NE(inspect.out.find("impostor   4 views x "), std::string::npos) << inspect.out;
+  EXPECT_NE(inspect.out.find("views=4 frames_per_clip=2 height=16"), std::string::npos)
+      << inspect.out;
+}
+
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
   test::TempDir dir;
   const auto input = write_character(dir);

@@ -87,6 +87,28 @@ TEST(PackDiff, TheSameVerticesInAnotherOrderPairUp) {
   EXPECT_EQ(s.figures["triangle_order"], "same") << "triangles compare through the pairing";
 }
 
+TEST(PackDiff, AnImpostorIsComparedTexelByTexel) {
+  PackContents base = test::make_test_contents(4, 21);
+  PackContents with = base;
+  PackImpostor& m = with.impostor;
+  m.views = 1, m.frames = 1, m.width = 2, m.height = 2;
+  m.half_width = 0.5f, m.bottom = 0.0f, m.top = 2.0f;
+  m.frame_of_row.assign(with.animation.rows, 0);
+  m.texels = {0x3C00u, 0x00007F00u, 0, PackImpostor::kEmptyWord1, 0x3C00u, 0x00017F00u, 7, 0x1u};
+  PackContents changed = with;
+  changed.impostor.texels[6] = 8;
+  const PackFile a = pack_of(base), b = pack_of(with), c = pack_of(changed);
+  EXPECT_EQ(diff_packs(b, c, {}).differing(), std::vector<std::string>{"impostor"});
+  EXPECT_NE(section(diff_packs(b, c, {}), "impostor").differences.front().find("1 texels differ"),
+            std::string::npos);
+  const PackDiff added_diff = diff_packs(a, b, {});
+  const DiffSection& added = section(added_diff, "impostor");
+  ASSERT_TRUE(added.differs);
+  EXPECT_NE(added.differences.front().find("none -> 1 views x 1 frames of 2x2"), std::string::npos)
+      << added.differences.front();
+  EXPECT_FALSE(section(diff_packs(a, a, {}), "impostor").differs);
+}
+
 TEST(PackDiff, AClipChangeIsNamed) {
   const PackContents base = test::make_test_contents(4, 21);
   PackContents renamed = base;

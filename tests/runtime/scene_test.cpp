@@ -143,7 +143,7 @@ TEST(Scene, SettingsAndCameraPath) {
       scene_with(
           R"("version": 1,
          "lod": {"mode": "discrete", "budget": 250000, "alpha": 2.5, "min_t": 0.25, "geomorph": 0.125,
-                 "discrete_levels": [1, 0.4, 0.1]},
+                 "discrete_levels": [1, 0.4, 0.1], "impostor_pixels": 12.5},
          "animation": {"interpolation": "linear", "root_motion": false})",
           R"("camera": {"up": [0, 1, 0], "fov_degrees": 40, "near": 0.5, "far": 300, "resolution": [640, 360],
                     "path": [{"time": 0, "position": [0, 2, 30], "target": [0, 1, 0]},
@@ -155,6 +155,7 @@ TEST(Scene, SettingsAndCameraPath) {
   EXPECT_EQ(scene.lod.alpha, 2.5f);
   EXPECT_EQ(scene.lod.min_t, 0.25f);
   EXPECT_EQ(scene.lod.geomorph, 0.125f);
+  EXPECT_EQ(scene.lod.impostor_pixels, 12.5f);
   EXPECT_EQ(scene.lod.discrete_level_count, 3u);
   EXPECT_EQ(scene.lod.discrete_levels[1], 0.4f);
   EXPECT_EQ(scene.animation.filter, FrameFilter::kLinear);
@@ -716,6 +717,8 @@ TEST(SceneErrors, OutOfRangeValues) {
   expect_error(scene_with(R"("lod": {"geomorph": 1})"),
                {"lod.geomorph: must be a fraction in [0, 1) (0: off), got 1"});
   expect_error(scene_with(R"("lod": {"geomorph": -0.5})"), {"lod.geomorph: must be a fraction"});
+  expect_error(scene_with(R"("lod": {"impostor_pixels": -1})"),
+               {"lod.impostor_pixels: must be a number of pixels >= 0 (0: off), got -1"});
   expect_error(scene_with(R"("lod": {"discrete_levels": [0.5, 1]})"),
                {"lod.discrete_levels[1]: levels must be strictly decreasing"});
   expect_error(scene_with(R"("version": 2)"),

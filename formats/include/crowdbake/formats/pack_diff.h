@@ -1,6 +1,6 @@
 // Semantic comparison of two packs (docs/pack-diff.md; `crowdbake diff` prints it): section by
 // section (header, settings, skeleton, clips, materials, bounds, geometry, progressive,
-// animation, partition, sizes), each with what differs and the measured figures.
+// animation, partition, impostor, sizes), each with what differs and the measured figures.
 //
 // Tolerance: one number T for every floating-point comparison. Lengths (positions, bounds,
 // partition heights, matrix translations, rest translations, root-motion x/z) count as
