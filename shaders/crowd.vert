@@ -44,15 +44,24 @@ void draw_impostor_corner() {
   const uint rows = uint(impostor.rect.w);
   const uint f = inst.row0 < rows ? impostor.impostor_words[inst.row0] : 0u;
   const uint k = uint[6](0u, 1u, 2u, 0u, 2u, 3u)[uint(gl_VertexIndex) % 6u];
-  const vec2 uv = vec2(k == 1u || k == 2u ? 1.0 : 0.0, k >= 2u ? 0.0 : 1.0);  // v: down
+  // note: the quad covers the cell's covered texels only (an empty cell: no area).
+  const uint cell = view * impostor.shape.y + f;
+  const uint box = impostor.impostor_words[impostor.offsets.x + cell];
+  // note: a texel of margin, as a far pixel's footprint reaches past its centre.
+  const vec2 lo = max(vec2(box & 0xFFu, (box >> 16) & 0xFFu) - 1.0, vec2(0.0));
+  const vec2 hi = box == 0xFFFFFFFFu
+                      ? lo
+                      : min(vec2((box >> 8) & 0xFFu, box >> 24) + 2.0, vec2(impostor.shape.zw));
+  const vec2 texel = vec2(k == 1u || k == 2u ? hi.x : lo.x, k >= 2u ? lo.y : hi.y);  // y: down
+  const vec2 uv = texel / vec2(impostor.shape.zw);
   const vec3 right = cos(phi) * a - sin(phi) * b;
   const vec3 base = impostor.centre.xyz - up * dot(impostor.centre.xyz, up);
   const vec3 p = base + right * ((2.0 * uv.x - 1.0) * impostor.rect.x) +
                  up * mix(impostor.rect.z, impostor.rect.y, uv.y);
   out_world = world * vec4(p, 1.0);
   out_normal = vec3(0.0);
-  out_uv = uv * vec2(impostor.shape.zw);
-  out_height = float(view * impostor.shape.y + f);
+  out_uv = texel;
+  out_height = float(cell);
   out_textures = inst.textures;
   out_color = vec4(inst.color.xyz, float(kDrawImpostor));
   out_partition = vec2(inst.neck_height, inst.waist_height);

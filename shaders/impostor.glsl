@@ -10,7 +10,10 @@ layout(std430, set = SKIN_SET, binding = 9) readonly buffer ImpostorBlock {
   vec4 up;       // the character's up axis
   vec4 across;   // view 0's right; view 0 looks along -(across × up)
   vec4 centre;   // the bind-pose box's centre
-  uint impostor_words[];  // the frame of each animation row, then 2 words per texel
+  uvec4 offsets;  // words before each cell's covered box, before the texels
+  // The frame of each animation row; per cell the box of its covered texels, x0 | x1 << 8 |
+  // y0 << 16 | y1 << 24 (inclusive; all ones: empty); then 2 words per texel.
+  uint impostor_words[];
 }
 impostor;
 
@@ -20,7 +23,7 @@ layout(std430, set = 0, binding = 9) readonly buffer ImpostorListBlock { uint im
 // The texel's words at texel (x, y) of cell `cell`: [view][frame] cells, rows from the top.
 uvec2 impostor_texel(uint cell, uvec2 texel) {
   const uint w = impostor.shape.z, h = impostor.shape.w;
-  const uint base = uint(impostor.rect.w) + 2u * ((cell * h + texel.y) * w + texel.x);
+  const uint base = impostor.offsets.y + 2u * ((cell * h + texel.y) * w + texel.x);
   return uvec2(impostor.impostor_words[base], impostor.impostor_words[base + 1u]);
 }
 

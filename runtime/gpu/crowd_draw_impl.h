@@ -72,6 +72,7 @@ struct GpuImpostorHeader {
   uint32_t shape[4];  // views, frames, width, height (views 0: none)
   float rect[4];      // half width, bottom, top, animation rows
   float up[4], across[4], centre[4];
+  uint32_t offsets[4];  // words before the cells' bounds, before the texels
 };
 
 struct CrowdDraw::Impl {

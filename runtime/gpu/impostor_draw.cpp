@@ -1,13 +1,38 @@
 // Far characters as impostors (PackImpostor, docs/gpu-rendering.md "Impostors"): each type's
 // impostor uploaded once, each frame's list of instances update_frame chose to draw that way,
 // and one instanced draw of six vertices per type with any.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "crowd_draw_impl.h"
 #include "vk_helpers.h"
 
 namespace crowdbake::runtime::gpu {
+namespace {
+
+// Per cell, the box of its covered texels: x0 | x1 << 8 | y0 << 16 | y1 << 24 (inclusive), or
+// 0xFFFFFFFF for an empty cell. The quad is drawn over the box only: a cell is as wide as the
+// widest pose of any frame (1.77 m for the spectator), most of it empty in most cells, and the
+// fragment shader would run there for nothing.
+std::vector<uint32_t> cell_bounds(const PackImpostor& m) {
+  std::vector<uint32_t> out;
+  const size_t cells = size_t{m.views} * m.frames, texels = m.cell_texels();
+  for (size_t c = 0; c < cells; ++c) {
+    uint32_t x0 = m.width, x1 = 0, y0 = m.height, y1 = 0;
+    for (uint32_t y = 0; y < m.height; ++y)
+      for (uint32_t x = 0; x < m.width; ++x) {
+        const uint32_t w1 = m.texels[2 * (c * texels + size_t{y} * m.width + x) + 1];
+        if (((w1 >> 16) & 0xFFu) == PackImpostor::kEmptyTexel) continue;
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+    out.push_back(x0 > x1 ? 0xFFFFFFFFu : x0 | x1 << 8 | y0 << 16 | y1 << 24);
+  }
+  return out;
+}
+
+}  // namespace
 
 Status CrowdDraw::Impl::create_impostor(const PackContents& pack, TypeResources& out) {
   const PackImpostor& m = pack.impostor;
@@ -35,8 +60,12 @@ Status CrowdDraw::Impl::create_impostor(const PackContents& pack, TypeResources&
       h.up[k] = up[k], h.across[k] = a[k];
       h.centre[k] = 0.5f * (pack.bounds.min[k] + pack.bounds.max[k]);
     }
-    words.reserve(m.frame_of_row.size() + m.texels.size());
+    const std::vector<uint32_t> bounds = cell_bounds(m);
+    h.offsets[0] = static_cast<uint32_t>(m.frame_of_row.size());
+    h.offsets[1] = h.offsets[0] + static_cast<uint32_t>(bounds.size());
+    words.reserve(m.frame_of_row.size() + bounds.size() + m.texels.size());
     words.insert(words.end(), m.frame_of_row.begin(), m.frame_of_row.end());
+    words.insert(words.end(), bounds.begin(), bounds.end());
     words.insert(words.end(), m.texels.begin(), m.texels.end());
   }
   std::vector<uint8_t> bytes(sizeof h + words.size() * sizeof(uint32_t) + 16, 0);
