@@ -153,14 +153,15 @@ vec3 lit(vec3 albedo, vec3 n, vec3 world) {
   return albedo * (frame.ambient.rgb + frame.light_color.rgb * lambert);
 }
 
-// Impostor texel t of the fragment's cell as a Surface; false where the character is not.
-bool impostor_surface(uvec2 t, out Surface s) {
+// Impostor texel t of the fragment's cell as a Surface (normals turned by `to_world`, the
+// instance's matrix); false where the character is not.
+bool impostor_surface(uvec2 t, mat3 to_world, out Surface s) {
   const uvec2 words = impostor_texel(uint(round(in_height)), t);
   s.material = (words.y >> 16) & 0xFFu;
   if (s.material == 0xFFu) return false;
   s.uv = unpackHalf2x16(words.x);
   s.height = mix(impostor.rect.y, impostor.rect.z, float(words.y >> 24) / 255.0);
-  s.normal = mat3(instance_world(instances[in_material])) * impostor_normal(words.y);
+  s.normal = to_world * impostor_normal(words.y);
   s.vertex_color = vec4(1.0);
   return true;
 }
@@ -195,13 +196,14 @@ vec4 impostor_color() {
   const ivec2 last = ivec2(impostor.shape.zw) - 1;
   // note: images are sampled a step coarser per doubling of the footprint (no derivatives).
   const float lod = log2(max(footprint.x, footprint.y));
+  const mat3 to_world = mat3(instance_world(instances[in_material]));
   vec3 sum = vec3(0.0);
   float hits = 0.0;
   for (uint y = 0u; y < n.y; ++y)
     for (uint x = 0u; x < n.x; ++x) {
       const vec2 at = in_uv + footprint * ((vec2(x, y) + 0.5) / vec2(n) - 0.5);
       Surface s;
-      if (!impostor_surface(uvec2(clamp(ivec2(floor(at)), ivec2(0), last)), s)) continue;
+      if (!impostor_surface(uvec2(clamp(ivec2(floor(at)), ivec2(0), last)), to_world, s)) continue;
       const vec4 albedo = surface_albedo(s, lod);
       if (albedo.a == 0.0) continue;
       sum += lit(albedo.rgb, s.normal, in_world);

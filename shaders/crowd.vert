@@ -41,8 +41,7 @@ void draw_impostor_corner() {
   const uint views = max(impostor.shape.x, 1u);
   const float step = 6.28318530718 / float(views);
   const uint view = uint(int(round(phi / step)) + int(views)) % views;
-  const uint rows = uint(impostor.rect.w);
-  const uint f = inst.row0 < rows ? impostor.impostor_words[inst.row0] : 0u;
+  const uint f = inst.row0 < impostor.offsets.x ? impostor.impostor_words[inst.row0] : 0u;
   const uint k = uint[6](0u, 1u, 2u, 0u, 2u, 3u)[uint(gl_VertexIndex) % 6u];
   // note: the quad covers the cell's covered texels only (an empty cell: no area).
   const uint cell = view * impostor.shape.y + f;

@@ -6,11 +6,11 @@
 
 layout(std430, set = SKIN_SET, binding = 9) readonly buffer ImpostorBlock {
   uvec4 shape;   // views, frames, width, height (views 0: the type has none)
-  vec4 rect;     // half width, bottom, top (model units), animation rows
+  vec4 rect;     // half width, bottom, top (model units), unused
   vec4 up;       // the character's up axis
   vec4 across;   // view 0's right; view 0 looks along -(across × up)
   vec4 centre;   // the bind-pose box's centre
-  uvec4 offsets;  // words before each cell's covered box, before the texels
+  uvec4 offsets;  // words before each cell's covered box (= animation rows), before the texels
   // The frame of each animation row; per cell the box of its covered texels, x0 | x1 << 8 |
   // y0 << 16 | y1 << 24 (inclusive; all ones: empty); then 2 words per texel.
   uint impostor_words[];

@@ -13,23 +13,16 @@
 namespace crowdbake {
 namespace {
 
-// The character's own frame: up (the partition's axis), and two axes across it; for a Y-up
-// character a = +X and b = +Z, so view 0 looks at the side glTF calls the front.
+// The character's own frame (impostor_axes): up, and two axes across it; for a Y-up character
+// a = +X and b = +Z, so view 0 looks at the side glTF calls the front.
 struct Frame {
   glm::dvec3 up, a, b, centre;
 };
 
 Frame character_frame(const PackContents& pack) {
-  Frame f;
-  const auto& u = pack.partition.up_axis;
-  f.up = glm::dvec3(u[0], u[1], u[2]);
-  const double len = glm::length(f.up);
-  f.up = std::isfinite(len) && len > 0.0 ? f.up / len : glm::dvec3(0, 1, 0);
-  const glm::dvec3 ref = std::abs(f.up.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-  f.a = glm::normalize(glm::cross(f.up, ref));
-  f.b = glm::cross(f.a, f.up);
-  for (int k = 0; k < 3; ++k) f.centre[k] = 0.5 * (pack.bounds.min[k] + pack.bounds.max[k]);
-  return f;
+  const ImpostorAxes axes = impostor_axes(pack);
+  const auto vec = [](const std::array<double, 3>& v) { return glm::dvec3(v[0], v[1], v[2]); };
+  return {vec(axes.up), vec(axes.across), vec(axes.toward), vec(axes.centre)};
 }
 
 // The animation rows the impostor shows, and for every row the one of them that stands in

@@ -70,9 +70,10 @@ constexpr uint32_t kModeCrowd = 0, kModeGround = 1, kModeInstanced = 2, kModeIns
 // The head of a type's impostor buffer (shaders/impostor.glsl ImpostorBlock), std430.
 struct GpuImpostorHeader {
   uint32_t shape[4];  // views, frames, width, height (views 0: none)
-  float rect[4];      // half width, bottom, top, animation rows
+  float rect[4];      // half width, bottom, top, unused
   float up[4], across[4], centre[4];
-  uint32_t offsets[4];  // words before the cells' bounds, before the texels
+  // words before the cells' bounds (= animation rows, each row's frame first), before the texels
+  uint32_t offsets[4];
 };
 
 struct CrowdDraw::Impl {

@@ -2,7 +2,6 @@
 // impostor uploaded once, each frame's list of instances update_frame chose to draw that way,
 // and one instanced draw of six vertices per type with any.
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -42,23 +41,10 @@ Status CrowdDraw::Impl::create_impostor(const PackContents& pack, TypeResources&
     any_impostor = true;
     h.shape[0] = m.views, h.shape[1] = m.frames, h.shape[2] = m.width, h.shape[3] = m.height;
     h.rect[0] = m.half_width, h.rect[1] = m.bottom, h.rect[2] = m.top;
-    h.rect[3] = static_cast<float>(m.frame_of_row.size());
-    // note: the bake's frame (impostor_bake.cpp): up, across = up × (Z, or X for a Z-up axis),
-    // centred on the bind-pose box.
-    float up[3] = {pack.partition.up_axis[0], pack.partition.up_axis[1], pack.partition.up_axis[2]};
-    const float len = std::sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-    if (std::isfinite(len) && len > 0.0f)
-      for (float& u : up) u /= len;
-    else
-      up[0] = 0.0f, up[1] = 1.0f, up[2] = 0.0f;
-    const float ref[3] = {std::fabs(up[2]) < 0.9f ? 0.0f : 1.0f, 0.0f,
-                          std::fabs(up[2]) < 0.9f ? 1.0f : 0.0f};
-    float a[3] = {up[1] * ref[2] - up[2] * ref[1], up[2] * ref[0] - up[0] * ref[2],
-                  up[0] * ref[1] - up[1] * ref[0]};
-    normalize3(a);
+    const ImpostorAxes axes = impostor_axes(pack);  // the bake's frame
     for (int k = 0; k < 3; ++k) {
-      h.up[k] = up[k], h.across[k] = a[k];
-      h.centre[k] = 0.5f * (pack.bounds.min[k] + pack.bounds.max[k]);
+      h.up[k] = static_cast<float>(axes.up[k]), h.across[k] = static_cast<float>(axes.across[k]);
+      h.centre[k] = static_cast<float>(axes.centre[k]);
     }
     const std::vector<uint32_t> bounds = cell_bounds(m);
     h.offsets[0] = static_cast<uint32_t>(m.frame_of_row.size());
@@ -78,15 +64,19 @@ Status CrowdDraw::Impl::create_impostor(const PackContents& pack, TypeResources&
 
 Status CrowdDraw::Impl::update_impostors(const Scene& scene, const FrameState& state,
                                          bool& sets_dirty) {
-  std::vector<uint32_t> list;
-  list.reserve(state.impostor_count);
   for (TypeResources& t : types) t.impostor_first = t.impostor_count = 0;
-  // note: grouped by type in instance order, so equal frames draw in equal order.
-  for (uint32_t t = 0; t < types.size(); ++t) {
-    types[t].impostor_first = static_cast<uint32_t>(list.size());
+  std::vector<uint32_t> list(state.impostor_count);
+  if (!list.empty()) {
+    // note: grouped by type in instance order (a counting sort), so equal frames draw in equal
+    // order.
     for (uint32_t i = 0; i < state.impostor.size(); ++i)
-      if (state.impostor[i] && scene.instances.type[i] == t) list.push_back(i);
-    types[t].impostor_count = static_cast<uint32_t>(list.size()) - types[t].impostor_first;
+      if (state.impostor[i]) ++types[scene.instances.type[i]].impostor_count;
+    uint32_t first = 0;
+    for (TypeResources& t : types) t.impostor_first = first, first += t.impostor_count;
+    std::vector<uint32_t> next(types.size());
+    for (size_t t = 0; t < types.size(); ++t) next[t] = types[t].impostor_first;
+    for (uint32_t i = 0; i < state.impostor.size(); ++i)
+      if (state.impostor[i]) list[next[scene.instances.type[i]]++] = i;
   }
   const VkDeviceSize bytes = std::max<VkDeviceSize>(list.size() * sizeof(uint32_t), 16);
   if (!impostor_list.valid() || impostor_list.size() < bytes) {

@@ -194,6 +194,15 @@ struct PackContents {
   PackImpostor impostor;  // IMPS (1.8, optional): empty when not baked
 };
 
+// The frame the impostor's views are defined in (docs/pack-format.md 3.14), the one place the
+// bake and the runtime take it from: `up` the partition's up axis normalised (+Y when it has no
+// length), `across` = normalize(up × Z) (up × X when up is within 26° of Z), `toward` =
+// across × up (where view 0 looks from), `centre` the bind-pose box's centre (BNDS).
+struct ImpostorAxes {
+  std::array<double, 3> up, across, toward, centre;
+};
+ImpostorAxes impostor_axes(const PackContents& contents);
+
 enum class GeometryCodec : uint32_t {
   kDraco = 0,    // Draco sequential encoding (keeps vertex and face order)
   kMeshopt = 1,  // meshoptimizer vertex/index codecs (faster to decode)
