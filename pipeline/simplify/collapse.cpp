@@ -33,11 +33,12 @@ enum class Kind { kInterior, kBorder, kLocked };
 class Collapser {
  public:
   Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
-            bool all_poses, DqemCost& cost, CollapseStats& stats)
+            bool all_poses, uint32_t priced_positions, DqemCost& cost, CollapseStats& stats)
       : mesh_(mesh),
         posed_(posed),
         poses_(poses),
         all_poses_(all_poses),
+        priced_positions_(priced_positions),
         cost_(cost),
         stats_(stats),
         queue_(mesh.position_count()) {
@@ -56,8 +57,11 @@ class Collapser {
   }
 
   std::vector<CollapseRecord> run() {
-    for (uint32_t p = 0; p < mesh_.position_count(); ++p)
-      if (!incident_[p].empty() && kind(p) == Kind::kLocked) ++stats_.locked_positions;
+    for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
+      if (incident_[p].empty()) continue;
+      ++live_;
+      if (kind(p) == Kind::kLocked) ++stats_.locked_positions;
+    }
     std::vector<CollapseRecord> records;
     push_all();
     drain(records);
@@ -237,9 +241,11 @@ class Collapser {
       // is dropped by computing the cost again (its quadrics are unchanged: same versions).
       const double base = candidate.star_from == kUnpriced ? candidate.cost : cost_.cost(from, to);
       const double length = glm::length(at(0, from) - at(0, to));
-      const double penalty = kSeamWeight * crossed_area * length * length +
-                             (closing ? 0.0 : flip_penalty(from, to, moved)) +
-                             left_behind_penalty(from, to, moved);
+      double penalty = kSeamWeight * crossed_area * length * length;
+      if (pose_priced()) {
+        if (!closing) penalty += flip_penalty(from, to, moved);
+        penalty += left_behind_penalty(from, to, moved);
+      }
       // note: a candidate still cheaper than the queue's top would be popped next anyway.
       if (penalty > 0.0 && !queue_.empty() && base + penalty > queue_.top().cost) {
         offer(from, {base + penalty, to, star_[from], star_[to]});
@@ -248,11 +254,15 @@ class Collapser {
     }
     if (crossed_area > 0.0 && stats_.seam_crossings++ == 0)
       stats_.collapses_before_crossing = collapses_;
+    if (!pose_priced()) ++stats_.unpriced_collapses;
     ++collapses_;
+    --live_;
 
     perform(from, to, record);
     return Outcome::kDone;
   }
+
+  bool pose_priced() const { return priced_positions_ == 0 || live_ <= priced_positions_; }
 
   // The collapse keeps the surface a manifold: fills shared_ (faces it removes), moved_ (faces
   // it moves), from_ring_ and to_ring_; closing: a tetrahedron flattening into two faces.
@@ -637,6 +647,7 @@ class Collapser {
   const std::vector<glm::dvec3>& posed_;
   uint32_t poses_;
   bool all_poses_;
+  uint32_t priced_positions_;
   DqemCost& cost_;
   CollapseStats& stats_;
 
@@ -657,14 +668,16 @@ class Collapser {
   std::vector<std::pair<uint32_t, int>> edges_;
   PositionQueue queue_;
   uint32_t collapses_ = 0;
+  uint32_t live_ = 0;  // positions with faces
 };
 
 }  // namespace
 
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, DqemCost& cost, CollapseStats& stats) {
-  return Collapser(mesh, posed, poses, all_poses, cost, stats).run();
+                                         bool all_poses, uint32_t priced_positions, DqemCost& cost,
+                                         CollapseStats& stats) {
+  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats).run();
 }
 
 }  // namespace crowdbake

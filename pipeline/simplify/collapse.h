@@ -16,9 +16,10 @@ struct CollapseStats {
   uint32_t locked_positions = 0;  // on non-manifold edges or complex borders: never moved
   uint32_t rejected_flips = 0;    // collapses refused because a face folded in the bind pose
   uint32_t rejected_topology = 0;
-  uint32_t rejected_limbs = 0;  // collapses refused because they took a limb's last position
-  uint32_t priced_flips = 0;    // (face, pose) flips priced into candidates' costs
-  uint32_t seam_crossings = 0;  // collapses made that cross a UV seam or material border
+  uint32_t rejected_limbs = 0;      // collapses refused because they took a limb's last position
+  uint32_t priced_flips = 0;        // (face, pose) flips priced into candidates' costs
+  uint32_t unpriced_collapses = 0;  // made before the pose prices applied
+  uint32_t seam_crossings = 0;      // collapses made that cross a UV seam or material border
   // Collapses made before the first seam crossing: levels down to there keep every seam.
   uint32_t collapses_before_crossing = 0;
 };
@@ -46,9 +47,11 @@ constexpr double kLimbFraction = 0.15;
 // collapses in cost order, under one set of rules all the way down: topology (link
 // condition, manifold borders, locked positions), the limb floor and the bind-pose fold
 // guard refuse;
-// seam crossings and flips in the other sampled poses (when all_poses) are priced.
+// seam crossings and flips in the other sampled poses (when all_poses) are priced. The flip
+// and left-behind prices apply once at most `priced_positions` positions are left (0: always).
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, DqemCost& cost, CollapseStats& stats);
+                                         bool all_poses, uint32_t priced_positions, DqemCost& cost,
+                                         CollapseStats& stats);
 
 }  // namespace crowdbake

@@ -62,9 +62,9 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
 
   start = std::chrono::steady_clock::now();
   CollapseStats stats;
-  const std::vector<CollapseRecord> records =
-      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                   options.check_flips_in_all_poses, cost, stats);
+  const std::vector<CollapseRecord> records = collapse_all(
+      mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
+      options.max_pose_priced_positions, cost, stats);
   ProgressiveMesh pm =
       build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
   r.seconds_collapse = seconds_since(start);
@@ -74,6 +74,7 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
   r.seamless_min_vertices = mesh.vertex_count - removed;
   r.seam_crossings = stats.seam_crossings;
   r.priced_flips = stats.priced_flips;
+  r.unpriced_collapses = stats.unpriced_collapses;
 
   r.locked_vertices = stats.locked_positions;
   r.rejected_flips = stats.rejected_flips;

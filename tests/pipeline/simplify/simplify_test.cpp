@@ -93,7 +93,8 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
   CollapseStats stats;
   Outcome out;
   out.records = collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                             options.check_flips_in_all_poses, cost, stats);
+                             options.check_flips_in_all_poses, options.max_pose_priced_positions,
+                             cost, stats);
   out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive,
                                   out.records);
   expect_reconstruction_equals_replay(mesh, out.records, out.pm);
@@ -378,6 +379,31 @@ TEST(SimplifyOptionsMemory, ExactFormOverTheQuadricBudgetUsesPullback) {
   SimplifyReport roomy;
   test::simplify_or_throw(a, SimplifyOptions{}, &roomy);
   EXPECT_EQ(roomy.form, DqemForm::kExact);
+}
+
+// Hero meshes: the pose prices start once at most max_pose_priced_positions are left; a mesh
+// under the limit is simplified exactly as with prices from the first collapse.
+TEST(SimplifyOptionsHeroMeshes, PosePricesStartBelowTheLimit) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::sphere(10, 14, p, i);
+  const SkinnedAsset a = from(p, i);
+  SimplifyOptions always, half, roomy;
+  always.max_pose_priced_positions = 0;
+  SimplifyReport r_always, r_half, r_roomy;
+  const ProgressiveMesh all = test::simplify_or_throw(a, always, &r_always);
+  half.max_pose_priced_positions = r_always.positions / 2;
+  roomy.max_pose_priced_positions = r_always.positions;
+  const ProgressiveMesh cheap = test::simplify_or_throw(a, half, &r_half);
+  const ProgressiveMesh same = test::simplify_or_throw(a, roomy, &r_roomy);
+  EXPECT_EQ(r_always.unpriced_collapses, 0u);
+  EXPECT_EQ(r_roomy.unpriced_collapses, 0u);
+  EXPECT_EQ(same.collapse_to, all.collapse_to);
+  EXPECT_EQ(same.triangles, all.triangles);
+  EXPECT_EQ(r_half.unpriced_collapses, r_always.positions - half.max_pose_priced_positions);
+  EXPECT_LE(r_half.priced_flips, r_always.priced_flips);
+  EXPECT_NE(cheap.collapse_to, all.collapse_to) << "the prices changed no collapse";
+  EXPECT_EQ(check_progressive_mesh(cheap).message(), "");
 }
 
 TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {

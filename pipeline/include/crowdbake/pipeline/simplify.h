@@ -41,6 +41,13 @@ struct SimplifyOptions {
   // pull-back form (one per position) is used instead and the report says so. 256 MB is
   // S = 16 on about 200,000 positions (400k triangles); 0 = no limit.
   double max_quadric_megabytes = 256.0;
+  // The flip and left-behind prices read every sampled pose of every moved face and are
+  // most of a collapse's cost; while the mesh has more live positions than this, collapses
+  // are ordered by DQEM and the seam price alone. Its edges are then a few thousandths of
+  // the character: on the 1M-triangle limb chain, levels at or below this keep their
+  // errors, and the simplification takes a third of the time (docs/simplification.md,
+  // "Hero meshes"). 0 = prices from the first collapse.
+  uint32_t max_pose_priced_positions = 100000;
 };
 
 struct SimplifyReport {
@@ -49,9 +56,11 @@ struct SimplifyReport {
   uint32_t positions = 0;        // distinct vertex positions after welding
   uint32_t locked_vertices = 0;  // non-manifold or otherwise unsafe to move
   uint32_t degenerate_triangles_dropped = 0;
-  uint32_t rejected_flips = 0;       // collapses refused because a face folded in the bind pose
-  uint32_t priced_flips = 0;         // (face, pose) flips priced into collapse costs
-  uint32_t seam_crossings = 0;       // collapses that cross a UV seam or material border
+  uint32_t rejected_flips = 0;  // collapses refused because a face folded in the bind pose
+  uint32_t priced_flips = 0;    // (face, pose) flips priced into collapse costs
+  uint32_t seam_crossings = 0;  // collapses that cross a UV seam or material border
+  // Collapses made before the pose prices applied (see max_pose_priced_positions).
+  uint32_t unpriced_collapses = 0;
   DqemForm form = DqemForm::kExact;  // the form used (see max_quadric_megabytes)
   // Levels with at least this many vertices keep every seam and material border (the
   // first seam crossing comes below it); the vertex count itself when none is crossed.
