@@ -9,6 +9,7 @@
 #include <malloc.h>
 #endif
 
+#include "core/parallel.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/animation_bake.h"
@@ -117,51 +118,69 @@ void fill_geometry(const SkinnedAsset& asset, const ProgressiveMesh& pm,
 // radius of the bounding sphere of the in-place frames around the bind-box centre.
 void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
                        const AnimationTexture& texture, double diagonal, const glm::dvec3& centre,
-                       BakeReport& report, float& radius) {
-  std::vector<Transform> local;
-  std::vector<glm::dmat4> global, skinning, in_place(asset.skeleton.joints.size()),
-      moved(in_place.size());
-  std::vector<glm::dvec3> exact, baked, still;
-  double sum = 0.0, worst = 0.0, far = 0.0;
-  size_t count = 0;
+                       int threads, BakeReport& report, float& radius) {
+  struct FrameError {
+    double sum = 0.0, worst = 0.0, far = 0.0;
+    size_t count = 0;
+  };
+  std::vector<std::pair<size_t, uint32_t>> frames;  // (clip, frame)
+  for (size_t c = 0; c < pack.clips.size(); ++c)
+    for (uint32_t f = 0; f < pack.clips[c].frame_count; ++f) frames.push_back({c, f});
+  std::vector<FrameError> errors(frames.size());
   auto to_mat = [](const float rows[12]) {
     glm::dmat4 m(1.0);
     for (int r = 0; r < 3; ++r)
       for (int k = 0; k < 4; ++k) m[k][r] = rows[4 * r + k];
     return m;
   };
-  for (size_t c = 0; c < pack.clips.size(); ++c) {
+  // note: frames are measured in parallel and reduced in frame order, so the report does not
+  // depend on the thread count; each stripe of parallel_for keeps its own scratch.
+  const size_t stripes = thread_count(threads, frames.size());
+  struct Scratch {
+    std::vector<Transform> local;
+    std::vector<glm::dmat4> global, skinning, in_place, moved;
+    std::vector<glm::dvec3> exact, baked, still;
+  };
+  std::vector<Scratch> scratch(stripes);
+  parallel_for(frames.size(), threads, [&](size_t i) {
+    Scratch& s = scratch[i % stripes];
+    const auto [c, f] = frames[i];
     const PackClip& clip = pack.clips[c];
     // note: an asset without clips bakes its rest pose as one clip.
     const Clip* source = c < asset.clips.size() ? &asset.clips[c] : nullptr;
-    for (uint32_t f = 0; f < clip.frame_count; ++f) {
-      if (source)
-        sample_clip(asset.skeleton, *source, frame_time(*source, clip.frame_count, f), local);
-      else
-        rest_pose(asset.skeleton, local);
-      local_to_global(asset.skeleton, local, global);
-      skinning_matrices(asset.skeleton, global, skinning);
-      float motion[12], rows[12], with_motion[12];
-      const float none[3] = {0.0f, 0.0f, 0.0f};
-      root_motion_matrix(clip.root_motion.empty() ? none : &clip.root_motion[3 * f], motion);
-      for (uint32_t j = 0; j < in_place.size(); ++j) {
-        decode_joint(texture, clip.first_row + f, j, rows);
-        compose_affine(motion, rows, with_motion);
-        in_place[j] = to_mat(rows);
-        moved[j] = to_mat(with_motion);
-      }
-      for (const Primitive& p : asset.primitives) {
-        skin_positions(p, skinning, exact);
-        skin_positions(p, moved, baked);
-        skin_positions(p, in_place, still);
-        for (size_t v = 0; v < exact.size(); ++v) {
-          const double e = glm::length(exact[v] - baked[v]);
-          sum += e, worst = std::max(worst, e), ++count;
-          far = std::max(far, glm::length(still[v] - centre));
-        }
+    if (source)
+      sample_clip(asset.skeleton, *source, frame_time(*source, clip.frame_count, f), s.local);
+    else
+      rest_pose(asset.skeleton, s.local);
+    local_to_global(asset.skeleton, s.local, s.global);
+    skinning_matrices(asset.skeleton, s.global, s.skinning);
+    s.in_place.resize(asset.skeleton.joints.size());
+    s.moved.resize(s.in_place.size());
+    float motion[12], rows[12], with_motion[12];
+    const float none[3] = {0.0f, 0.0f, 0.0f};
+    root_motion_matrix(clip.root_motion.empty() ? none : &clip.root_motion[3 * f], motion);
+    for (uint32_t j = 0; j < s.in_place.size(); ++j) {
+      decode_joint(texture, clip.first_row + f, j, rows);
+      compose_affine(motion, rows, with_motion);
+      s.in_place[j] = to_mat(rows);
+      s.moved[j] = to_mat(with_motion);
+    }
+    FrameError& e = errors[i];
+    for (const Primitive& p : asset.primitives) {
+      skin_positions(p, s.skinning, s.exact);
+      skin_positions(p, s.moved, s.baked);
+      skin_positions(p, s.in_place, s.still);
+      for (size_t v = 0; v < s.exact.size(); ++v) {
+        const double d = glm::length(s.exact[v] - s.baked[v]);
+        e.sum += d, e.worst = std::max(e.worst, d), ++e.count;
+        e.far = std::max(e.far, glm::length(s.still[v] - centre));
       }
     }
-  }
+  });
+  double sum = 0.0, worst = 0.0, far = 0.0;
+  size_t count = 0;
+  for (const FrameError& e : errors)
+    sum += e.sum, worst = std::max(worst, e.worst), far = std::max(far, e.far), count += e.count;
   report.animation_mean_error = count ? sum / count / diagonal : 0.0;
   report.animation_max_error = worst / diagonal;
   radius = static_cast<float>(far);
@@ -335,8 +354,8 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
   if (codable && !stored.lossless_reason.empty() && !stored.lossless_smaller)
     report.warnings.push_back("animation: stored losslessly, not within animation.max_error: " +
                               stored.lossless_reason);
-  measure_animation(asset, pack, stored.texture, diagonal, 0.5 * (lo + hi), report,
-                    pack.bounds.radius);
+  measure_animation(asset, pack, stored.texture, diagonal, 0.5 * (lo + hi),
+                    settings.simplify.threads, report, pack.bounds.radius);
   if (stored_out) *stored_out = std::move(stored);
   clock.done("measure");
   return pack;

@@ -64,12 +64,16 @@ std::vector<SurfaceError> measure(const Surface& original, const std::vector<Sur
                                   const PosedSurfaces& posed, int threads) {
   std::vector<OneWayDistance> one_way(2 * lods.size());
   const bool original_empty = original.triangles.empty();
+  // note: the original's weights are the same against every LoD; on a hero mesh summing
+  // them again per LoD cost more than the thinned points' searches.
+  const std::vector<double> original_weights =
+      point_weights(original.plan, posed[0].at, original.triangles);
   parallel_for(one_way.size(), threads, [&](size_t i) {
     const size_t l = i / 2;
     if (lods[l].triangles.empty() || original_empty) return;
     one_way[i] =
         i % 2 == 0
-            ? one_way_distance(original.plan, posed[0].at, original.triangles, posed[l + 1].bvh)
+            ? one_way_distance(original.plan, posed[0].at, original_weights, posed[l + 1].bvh)
             : one_way_distance(lods[l].plan, posed[l + 1].at, lods[l].triangles, posed[0].bvh);
   });
   std::vector<SurfaceError> out(lods.size());

@@ -62,6 +62,17 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<glm::dvec3>& positions,
                                 const std::vector<uint32_t>& triangles, const TriangleBvh& other);
 
+// The same with the points' area weights in this pose given (point_weights): one surface
+// measured against several others computes them once.
+OneWayDistance one_way_distance(const SurfaceSampling& plan,
+                                const std::vector<glm::dvec3>& positions,
+                                const std::vector<double>& weights, const TriangleBvh& other);
+
+// Each point's share of its triangles' areas at these positions.
+std::vector<double> point_weights(const SurfaceSampling& plan,
+                                  const std::vector<glm::dvec3>& positions,
+                                  const std::vector<uint32_t>& triangles);
+
 SurfaceError combine(const OneWayDistance& a, const OneWayDistance& b);
 
 }  // namespace crowdbake

@@ -199,9 +199,9 @@ void limit_points(SurfaceSampling& plan, uint32_t max_points) {
   for (uint32_t& i : plan.triangle_points) i = static_cast<uint32_t>(i / stride);
 }
 
-OneWayDistance one_way_distance(const SurfaceSampling& plan,
-                                const std::vector<glm::dvec3>& positions,
-                                const std::vector<uint32_t>& triangles, const TriangleBvh& other) {
+std::vector<double> point_weights(const SurfaceSampling& plan,
+                                  const std::vector<glm::dvec3>& positions,
+                                  const std::vector<uint32_t>& triangles) {
   std::vector<double> weight(plan.points.size(), 0.0);
   const size_t count = triangles.size() / 3;
   for (size_t t = 0; t < count; ++t) {
@@ -213,6 +213,18 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
       for (uint32_t i = begin; i < end; ++i)
         weight[plan.triangle_points[i]] += area / (end - begin);
   }
+  return weight;
+}
+
+OneWayDistance one_way_distance(const SurfaceSampling& plan,
+                                const std::vector<glm::dvec3>& positions,
+                                const std::vector<uint32_t>& triangles, const TriangleBvh& other) {
+  return one_way_distance(plan, positions, point_weights(plan, positions, triangles), other);
+}
+
+OneWayDistance one_way_distance(const SurfaceSampling& plan,
+                                const std::vector<glm::dvec3>& positions,
+                                const std::vector<double>& weight, const TriangleBvh& other) {
   OneWayDistance out;
   double max_sq = 0.0;
   uint32_t hint = UINT32_MAX;
