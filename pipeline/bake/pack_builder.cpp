@@ -134,16 +134,15 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
     return m;
   };
   // note: frames are measured in parallel and reduced in frame order, so the report does not
-  // depend on the thread count; each stripe of parallel_for keeps its own scratch.
-  const size_t stripes = thread_count(threads, frames.size());
+  // depend on the thread count.
   struct Scratch {
     std::vector<Transform> local;
     std::vector<glm::dmat4> global, skinning, in_place, moved;
     std::vector<glm::dvec3> exact, baked, still;
   };
-  std::vector<Scratch> scratch(stripes);
-  parallel_for(frames.size(), threads, [&](size_t i) {
-    Scratch& s = scratch[i % stripes];
+  std::vector<Scratch> scratch(thread_count(threads, frames.size()));
+  parallel_for_workers(frames.size(), threads, [&](size_t i, size_t worker) {
+    Scratch& s = scratch[worker];
     const auto [c, f] = frames[i];
     const PackClip& clip = pack.clips[c];
     // note: an asset without clips bakes its rest pose as one clip.

@@ -1,9 +1,11 @@
-// A minimal deterministic parallel loop: fn(i) for every i in [0, count), thread k
-// taking k, k + T, k + 2T, ... Callers write results per index and reduce them in index
-// order afterwards, so no result ever depends on the thread count.
+// A minimal deterministic parallel loop: fn(i) for every i in [0, count), the threads
+// taking the next index as they finish the last. Callers write results per index and reduce
+// them in index order afterwards, so no result ever depends on the thread count or on which
+// thread ran what.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <thread>
 #include <vector>
@@ -16,16 +18,27 @@ inline size_t thread_count(int requested, size_t work_items) {
   return std::clamp<size_t>(threads, 1, std::max<size_t>(work_items, 1));
 }
 
+// fn(i, worker): worker < thread_count(threads, count) names the thread, for scratch space
+// it owns while it runs.
+// note: indices are handed out one at a time, not in fixed stripes: the items of one loop
+// often differ in cost by an order of magnitude (a hero mesh's surface against its coarse
+// levels), and fixed stripes left one core idle.
 template <typename Fn>
-void parallel_for(size_t count, int threads, Fn fn) {
+void parallel_for_workers(size_t count, int threads, Fn fn) {
   const size_t n = thread_count(threads, count);
-  auto stripe = [&](size_t first) {
-    for (size_t i = first; i < count; i += n) fn(i);
+  std::atomic<size_t> next{0};
+  auto work = [&](size_t worker) {
+    for (size_t i = next++; i < count; i = next++) fn(i, worker);
   };
   std::vector<std::thread> pool;
-  for (size_t k = 1; k < n; ++k) pool.emplace_back(stripe, k);
-  stripe(0);
+  for (size_t k = 1; k < n; ++k) pool.emplace_back(work, k);
+  work(0);
   for (std::thread& t : pool) t.join();
+}
+
+template <typename Fn>
+void parallel_for(size_t count, int threads, Fn fn) {
+  parallel_for_workers(count, threads, [&](size_t i, size_t) { fn(i); });
 }
 
 }  // namespace crowdbake

@@ -68,7 +68,9 @@ std::vector<SurfaceError> measure(const Surface& original, const std::vector<Sur
   // them again per LoD cost more than the thinned points' searches.
   const std::vector<double> original_weights =
       point_weights(original.plan, posed[0].at, original.triangles);
-  parallel_for(one_way.size(), threads, [&](size_t i) {
+  // note: the finest levels, the slowest to search, are handed out first.
+  parallel_for(one_way.size(), threads, [&](size_t j) {
+    const size_t i = one_way.size() - 1 - j;
     const size_t l = i / 2;
     if (lods[l].triangles.empty() || original_empty) return;
     one_way[i] =
@@ -142,8 +144,6 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   Surface base = make_surface(original);
   const double diagonal = bbox_diagonal(base.bind);
   const double spacing = default_spacing(base.bind, base.triangles);
-  base.plan = plan_samples(base.bind, base.triangles, spacing);
-  limit_points(base.plan, options.max_points);
   // note: identical LoDs (several settings often give the same level) are measured once.
   std::vector<Surface> surfaces;
   std::vector<size_t> surface_of(lods.size());
@@ -164,9 +164,13 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     distinct.push_back(lod);
     hashes.push_back(hash);
     surfaces.push_back(make_surface(*lod));
-    surfaces.back().plan = plan_samples(surfaces.back().bind, surfaces.back().triangles, spacing);
-    limit_points(surfaces.back().plan, options.max_points);
   }
+  // note: the original, the largest surface by far, is planned first.
+  parallel_for(surfaces.size() + 1, options.threads, [&](size_t i) {
+    Surface& s = i == 0 ? base : surfaces[i - 1];
+    s.plan = plan_samples(s.bind, s.triangles, spacing);
+    limit_points(s.plan, options.max_points);
+  });
 
   std::vector<AnimatedError> unique(surfaces.size());
   const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
