@@ -5,13 +5,6 @@
 
 namespace crowdbake {
 
-Quadric& Quadric::operator+=(const Quadric& q) {
-  a00 += q.a00, a01 += q.a01, a02 += q.a02, a11 += q.a11, a12 += q.a12, a22 += q.a22;
-  b0 += q.b0, b1 += q.b1, b2 += q.b2;
-  c += q.c;
-  return *this;
-}
-
 Quadric Quadric::operator*(double s) const {
   Quadric r = *this;
   r.a00 *= s, r.a01 *= s, r.a02 *= s, r.a11 *= s, r.a12 *= s, r.a22 *= s;
@@ -36,13 +29,6 @@ Quadric triangle_quadric(const glm::dvec3& a, const glm::dvec3& b, const glm::dv
   // note: no plane for a zero-area triangle; dividing by its area would give NaN.
   if (!(twice_area > 0.0) || !std::isfinite(twice_area)) return Quadric{};
   return plane_quadric(n / twice_area, a, 0.5 * twice_area);
-}
-
-double evaluate(const Quadric& q, const glm::dvec3& v) {
-  const double e = v.x * (q.a00 * v.x + 2.0 * (q.a01 * v.y + q.a02 * v.z + q.b0)) +
-                   v.y * (q.a11 * v.y + 2.0 * (q.a12 * v.z + q.b1)) +
-                   v.z * (q.a22 * v.z + 2.0 * q.b2) + q.c;
-  return std::max(e, 0.0);
 }
 
 Quadric pull_back(const Quadric& q, const glm::dmat4& m) {

@@ -12,7 +12,13 @@ struct Quadric {
   double b0 = 0, b1 = 0, b2 = 0;
   double c = 0;
 
-  Quadric& operator+=(const Quadric& q);
+  // note: inline, with evaluate(): the collapse loop sums and evaluates millions of them.
+  Quadric& operator+=(const Quadric& q) {
+    a00 += q.a00, a01 += q.a01, a02 += q.a02, a11 += q.a11, a12 += q.a12, a22 += q.a22;
+    b0 += q.b0, b1 += q.b1, b2 += q.b2;
+    c += q.c;
+    return *this;
+  }
   Quadric operator*(double s) const;
 };
 
@@ -24,7 +30,12 @@ Quadric plane_quadric(const glm::dvec3& n, const glm::dvec3& p, double w);
 Quadric triangle_quadric(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 
 // Q(v), clamped at 0: rounding can make a sum of squares slightly negative.
-double evaluate(const Quadric& q, const glm::dvec3& v);
+inline double evaluate(const Quadric& q, const glm::dvec3& v) {
+  const double e = v.x * (q.a00 * v.x + 2.0 * (q.a01 * v.y + q.a02 * v.z + q.b0)) +
+                   v.y * (q.a11 * v.y + 2.0 * (q.a12 * v.z + q.b1)) +
+                   v.z * (q.a22 * v.z + 2.0 * q.b2) + q.c;
+  return e < 0.0 ? 0.0 : e;  // std::max(e, 0.0), NaN kept
+}
 
 // The quadric of Q after the affine change of variables v -> M·v, i.e. Q'(v) = Q(M·v):
 // used to pull a posed quadric back to the bind pose through a skinning transform.
