@@ -5,7 +5,6 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
 
 #include "eval/animated_error.h"
 
@@ -52,6 +51,41 @@ struct PointKeyHash {
     h ^= (uint64_t{k.num} << 32 | k.den) * 0xC2B2AE3D27D4EB4Full;
     return static_cast<size_t>(h ^ (h >> 31));
   }
+};
+
+// Edge point -> point id, open addressing with linear probing in one flat array.
+// note: a node-based std::unordered_map missed the cache two or three times per lookup; on a
+// 1M-triangle character its lookups were half of the sampling plan's time.
+class EdgePointIds {
+ public:
+  // The id slot of `key`, inserted (holding UINT32_MAX) when absent.
+  uint32_t& at(const PointKey& key) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    Slot* slot = find(key);
+    if (slot->id == kEmpty) slot->key = key, slot->id = UINT32_MAX, ++size_;
+    return slot->id;
+  }
+
+ private:
+  // note: ids never reach kEmpty (UINT32_MAX - 1 points would not fit in memory).
+  static constexpr uint32_t kEmpty = UINT32_MAX - 1;
+  struct Slot {
+    PointKey key;
+    uint32_t id = kEmpty;
+  };
+  Slot* find(const PointKey& key) {
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = PointKeyHash{}(key)&mask;; i = (i + 1) & mask)
+      if (slots_[i].id == kEmpty || slots_[i].key == key) return &slots_[i];
+  }
+  void grow() {
+    std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    for (const Slot& slot : old)
+      if (slot.id != kEmpty) *find(slot.key) = slot;
+  }
+  std::vector<Slot> slots_;
+  size_t size_ = 0;
 };
 
 // Interleaves the low 21 bits of x, y, z (Morton / Z-order code).
@@ -122,9 +156,8 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
   // note: vertices are looked up by weld id and interior points are never shared, so only
   // edge points (on triangles longer than the spacing) need the hash map.
   std::vector<uint32_t> vertex_point(positions.size(), UINT32_MAX);
-  std::unordered_map<PointKey, uint32_t, PointKeyHash> known;
+  EdgePointIds known;
   const size_t count = triangles.size() / 3;
-  known.reserve(count);
   plan.offset.reserve(count + 1);
   plan.offset.push_back(0);
   plan.triangle_points.reserve(4 * count);
@@ -141,8 +174,7 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
       return point_id(id, point);
     }
     if (key.den == 0) return point_id(vertex_point[key.a], point);
-    const auto [it, fresh] = known.emplace(key, UINT32_MAX);
-    point_id(it->second, point);
+    point_id(known.at(key), point);
   };
   uint32_t interior = 0;
   for (size_t t = 0; t < count; ++t) {
