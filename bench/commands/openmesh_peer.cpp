@@ -1,13 +1,13 @@
 #include "commands/openmesh_peer.h"
 
-#include <meshoptimizer.h>
-
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <chrono>
 #include <cmath>
 #include <vector>
+
+#include "commands/peers.h"
 
 namespace crowdbake::bench {
 namespace {
@@ -23,21 +23,16 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 OpenMeshRun openmesh_decimate_all(const SkinnedAsset& asset, double ratio) {
   OpenMeshRun run;
   for (const Primitive& p : asset.primitives) {
-    const size_t n = p.indices.size();
-    std::vector<unsigned int> remap(p.vertex_count()), welded(n);
-    const size_t welded_count = meshopt_generateVertexRemap(
-        remap.data(), p.indices.data(), n, p.positions.data(), p.vertex_count(), sizeof(glm::vec3));
-    meshopt_remapIndexBuffer(welded.data(), p.indices.data(), n, remap.data());
-    std::vector<glm::vec3> positions(welded_count);
-    meshopt_remapVertexBuffer(positions.data(), p.positions.data(), p.vertex_count(),
-                              sizeof(glm::vec3), remap.data());
+    const WeldedPrimitive w = weld_positions(p);
+    const std::vector<unsigned int>& welded = w.indices;
 
     const auto start = std::chrono::steady_clock::now();
     Mesh mesh;
-    std::vector<Mesh::VertexHandle> handles(welded_count);
-    for (size_t v = 0; v < welded_count; ++v)
-      handles[v] = mesh.add_vertex(Mesh::Point(positions[v].x, positions[v].y, positions[v].z));
-    for (size_t i = 0; i + 2 < n; i += 3) {
+    std::vector<Mesh::VertexHandle> handles(w.positions.size());
+    for (size_t v = 0; v < handles.size(); ++v)
+      handles[v] =
+          mesh.add_vertex(Mesh::Point(w.positions[v].x, w.positions[v].y, w.positions[v].z));
+    for (size_t i = 0; i + 2 < welded.size(); i += 3) {
       const Mesh::FaceHandle f =
           mesh.add_face(handles[welded[i]], handles[welded[i + 1]], handles[welded[i + 2]]);
       if (!f.is_valid()) ++run.refused_faces;

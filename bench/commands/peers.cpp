@@ -104,28 +104,35 @@ uint32_t distance(uint32_t a, uint32_t b) { return a > b ? a - b : b - a; }
 // vertices as seams and, on corner-split meshes like Fox, collapses nothing. A careful user
 // welds the vertex buffer itself (meshopt_generateVertexRemap over positions only) and maps
 // the result back to the first original vertex at each position for its attributes.
+WeldedPrimitive weld_positions(const Primitive& p) {
+  const size_t n = p.indices.size();
+  WeldedPrimitive w;
+  w.remap.resize(p.vertex_count());
+  w.indices.resize(n);
+  const size_t count = meshopt_generateVertexRemap(
+      w.remap.data(), p.indices.data(), n, p.positions.data(), p.vertex_count(), sizeof(glm::vec3));
+  meshopt_remapIndexBuffer(w.indices.data(), p.indices.data(), n, w.remap.data());
+  w.positions.resize(count);
+  meshopt_remapVertexBuffer(w.positions.data(), p.positions.data(), p.vertex_count(),
+                            sizeof(glm::vec3), w.remap.data());
+  return w;
+}
+
 SkinnedAsset meshopt_simplify_all(const SkinnedAsset& asset, double ratio) {
   SkinnedAsset lod = asset;
   lod.clips.clear();
   lod.primitives.clear();
   for (const Primitive& p : asset.primitives) {
     const size_t n = p.indices.size();
-    std::vector<unsigned int> remap(p.vertex_count());
-    const size_t welded_count = meshopt_generateVertexRemap(
-        remap.data(), p.indices.data(), n, p.positions.data(), p.vertex_count(), sizeof(glm::vec3));
-    std::vector<unsigned int> welded(n), out(n);
-    meshopt_remapIndexBuffer(welded.data(), p.indices.data(), n, remap.data());
-    std::vector<glm::vec3> positions(welded_count);
-    meshopt_remapVertexBuffer(positions.data(), p.positions.data(), p.vertex_count(),
-                              sizeof(glm::vec3), remap.data());
-    std::vector<unsigned int> first(welded_count, UINT32_MAX);
+    const WeldedPrimitive w = weld_positions(p);
+    std::vector<unsigned int> first(w.positions.size(), UINT32_MAX), out(n);
     for (unsigned int v = 0; v < p.vertex_count(); ++v)
-      if (remap[v] != ~0u && first[remap[v]] == UINT32_MAX) first[remap[v]] = v;
+      if (w.remap[v] != ~0u && first[w.remap[v]] == UINT32_MAX) first[w.remap[v]] = v;
     const size_t target = static_cast<size_t>(std::lround(ratio * double(n / 3))) * 3;
     float error = 0.0f;
     // note: no error bound: the target count alone decides where it stops.
-    out.resize(meshopt_simplify(out.data(), welded.data(), n, &positions[0].x, welded_count,
-                                sizeof(glm::vec3), target, FLT_MAX, 0, &error));
+    out.resize(meshopt_simplify(out.data(), w.indices.data(), n, &w.positions[0].x,
+                                w.positions.size(), sizeof(glm::vec3), target, FLT_MAX, 0, &error));
     for (unsigned int& i : out) i = first[i];
     if (!out.empty()) lod.primitives.push_back(compact(p, out));
   }

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "crowdbake/pipeline/skinned_asset.h"
 
@@ -31,6 +32,14 @@ struct PeerLod {
 };
 
 PeerLod meshopt_lod(const SkinnedAsset& asset, uint32_t target_positions);
+
+// A primitive's triangles on its distinct positions (meshopt_generateVertexRemap over positions
+// only): what the peers simplify. remap: original vertex -> welded one.
+struct WeldedPrimitive {
+  std::vector<unsigned int> indices, remap;
+  std::vector<glm::vec3> positions;
+};
+WeldedPrimitive weld_positions(const Primitive& p);
 
 // One meshopt_simplify run per primitive at ratio × its index count, on a position-welded
 // copy (see bench_peers.cpp for why); kept vertices keep the first original's attributes.
