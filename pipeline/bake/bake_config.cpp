@@ -80,7 +80,7 @@ class ConfigReader {
                         "its minimum (docs/simplification.md); remove the key");
     json_reader::check_object(body, "simplify",
                               {"samples", "seed", "stratified", "form", "pose_source",
-                               "check_flips_in_all_poses", "ranges"});
+                               "check_flips_in_all_poses", "max_pose_priced_positions", "ranges"});
     if (const Json* p = find(body, "samples"))
       s.samples = static_cast<int>(json_reader::integer(*p, "simplify.samples", 1, 4096));
     if (const Json* p = find(body, "seed"))
@@ -94,6 +94,9 @@ class ConfigReader {
       s.pose_source = json_reader::choice(*p, "simplify.pose_source", kSources);
     if (const Json* p = find(body, "check_flips_in_all_poses"))
       s.check_flips_in_all_poses = json_reader::boolean(*p, "simplify.check_flips_in_all_poses");
+    if (const Json* p = find(body, "max_pose_priced_positions"))
+      s.max_pose_priced_positions = static_cast<uint32_t>(
+          json_reader::integer(*p, "simplify.max_pose_priced_positions", 0, int64_t{UINT32_MAX}));
     if (const Json* p = find(body, "ranges"))
       s.ranges_file =
           (std::filesystem::path(path_).parent_path() / json_reader::string(*p, "simplify.ranges"))
@@ -229,6 +232,9 @@ std::string bake_settings_json(const BakeSettings& s) {
   j["simplify"]["form"] = name_of(kForms, s.simplify.form);
   j["simplify"]["pose_source"] = name_of(kSources, s.simplify.pose_source);
   j["simplify"]["check_flips_in_all_poses"] = s.simplify.check_flips_in_all_poses;
+  // note: only when not the default, so packs baked before the key existed keep their text.
+  if (s.simplify.max_pose_priced_positions != SimplifyOptions{}.max_pose_priced_positions)
+    j["simplify"]["max_pose_priced_positions"] = s.simplify.max_pose_priced_positions;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();
   j["level_errors"]["samples"] = s.level_errors.samples;
   j["level_errors"]["fps"] = s.level_errors.fps;

@@ -192,6 +192,36 @@ TEST(BakeCommand, ImpostorConfigGivesAPackWithAnImpostor) {
       << inspect.out;
 }
 
+// The hero-mesh limit is a config key; the settings text names it only when it is not the
+// default, so giving the default changes no byte; a bad value names the key.
+TEST(BakeCommand, PosePricedPositionsKeyIsRecordedOnlyWhenNotTheDefault) {
+  test::TempDir dir;
+  const auto input = write_character(dir);
+  const auto bake = [&](const std::string& config, const std::string& name) {
+    std::vector<std::string> args{"bake", input.string(), "-o", (dir / name).string(), "--quiet"};
+    if (!config.empty()) {
+      std::ofstream(dir / (name + ".json")) << config;
+      args.push_back("--config");
+      args.push_back((dir / (name + ".json")).string());
+    }
+    const test::CommandResult r = test::run_crowdbake(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+  };
+  const std::string plain = bake("", "plain.crowdpack");
+  const std::string same =
+      bake(R"({"simplify": {"max_pose_priced_positions": 100000}})", "same.crowdpack");
+  const std::string always =
+      bake(R"({"simplify": {"max_pose_priced_positions": 0}})", "always.crowdpack");
+  EXPECT_EQ(plain.find("max_pose_priced_positions"), std::string::npos) << plain;
+  EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "same.crowdpack"));
+  EXPECT_NE(always.find("max_pose_priced_positions=0"), std::string::npos) << always;
+  const test::CommandResult bad =
+      bake_with_config(dir, R"({"simplify": {"max_pose_priced_positions": -1}})");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("simplify.max_pose_priced_positions"), std::string::npos) << bad.err;
+}
+
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
   test::TempDir dir;
   const auto input = write_character(dir);
