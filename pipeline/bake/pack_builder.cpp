@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <limits>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -31,10 +32,22 @@ class StageClock {
     report_.stages.push_back({name, std::chrono::duration<double>(now - start_).count()});
     start_ = now;
   }
+  void restart() { start_ = std::chrono::steady_clock::now(); }
 
  private:
   BakeReport& report_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The bakes that need only the asset (see build_or_throw).
+struct SideBakes {
+  AnimationBake animation;
+  PartitionBake partition;
+  double animation_seconds = 0.0, partition_seconds = 0.0;
 };
 
 std::array<float, 12> rows_of(const glm::dmat4& m) {
@@ -258,6 +271,22 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
   pack.settings_json = bake_settings_json(settings);
   report.warnings = asset.warnings;
 
+  // note: the animation and the partition read only the asset; where more than one thread
+  // is allowed they are baked beside the simplifier, whose collapse loop is serial. Their
+  // results, warnings and stage times are taken in the same order either way.
+  const auto bake_side = [&asset, &settings] {
+    SideBakes side;
+    auto start = std::chrono::steady_clock::now();
+    throw_if_failed(bake_animation(asset, settings.animation, side.animation));
+    side.animation_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    throw_if_failed(bake_partition(asset, settings.partition, side.partition));
+    side.partition_seconds = seconds_since(start);
+    return side;
+  };
+  std::future<SideBakes> beside;
+  if (settings.simplify.threads != 1) beside = std::async(std::launch::async, bake_side);
+
   ProgressiveMesh pm;
   throw_if_failed(simplify(asset, settings.simplify, pm, &report.simplify));
   report.warnings.insert(report.warnings.end(), report.simplify.warnings.begin(),
@@ -274,21 +303,19 @@ PackContents build_or_throw(const SkinnedAsset& asset, const BakeSettings& setti
       measure_level_errors(asset, pm, settings.level_errors, settings.simplify.threads);
   clock.done("level errors");
 
-  AnimationBake animation;
-  throw_if_failed(bake_animation(asset, settings.animation, animation));
-  pack.animation = std::move(animation.texture);
-  pack.clips = std::move(animation.clips);
-  report.warnings.insert(report.warnings.end(), animation.warnings.begin(),
-                         animation.warnings.end());
-  clock.done("animation");
-
-  PartitionBake partition;
-  throw_if_failed(bake_partition(asset, settings.partition, partition));
+  SideBakes side = beside.valid() ? beside.get() : bake_side();
+  clock.restart();
+  pack.animation = std::move(side.animation.texture);
+  pack.clips = std::move(side.animation.clips);
+  report.warnings.insert(report.warnings.end(), side.animation.warnings.begin(),
+                         side.animation.warnings.end());
+  report.stages.push_back({"animation", side.animation_seconds});
+  PartitionBake& partition = side.partition;
   pack.partition = std::move(partition.mask);
   report.partition_heights = partition.height_source;
   report.warnings.insert(report.warnings.end(), partition.warnings.begin(),
                          partition.warnings.end());
-  clock.done("partition");
+  report.stages.push_back({"partition", side.partition_seconds});
 
   for (const Material& m : asset.materials) {
     PackMaterial out;
