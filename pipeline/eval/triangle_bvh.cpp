@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 
 namespace crowdbake {
 namespace {
@@ -66,32 +65,32 @@ TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& positions,
                          const std::vector<uint32_t>& triangles) {
   const uint32_t count = static_cast<uint32_t>(triangles.size() / 3);
   if (count == 0) return;
-  std::vector<glm::dvec3> centroids(count);
+  std::vector<Item> items(count);
   for (uint32_t t = 0; t < count; ++t)
-    centroids[t] = (positions[triangles[3 * t]] + positions[triangles[3 * t + 1]] +
-                    positions[triangles[3 * t + 2]]) /
-                   3.0;
-  std::vector<uint32_t> order(count);
-  std::iota(order.begin(), order.end(), 0u);
-  corners_.reserve(3 * size_t{count});
-  for (uint32_t t = 0; t < count; ++t)
-    for (int c = 0; c < 3; ++c) corners_.push_back(positions[triangles[3 * t + c]]);
+    items[t] = {(positions[triangles[3 * t]] + positions[triangles[3 * t + 1]] +
+                 positions[triangles[3 * t + 2]]) /
+                    3.0,
+                t};
   nodes_.reserve(2 * size_t{count} / kLeafSize + 2);
   nodes_.push_back({});
-  build(0, 0, count, order, centroids);
+  build(0, 0, count, items);
   // Lay the corners out in leaf order so a leaf reads one contiguous run.
-  std::vector<glm::dvec3> sorted(corners_.size());
+  corners_.resize(3 * size_t{count});
   indices_.resize(corners_.size());
   for (uint32_t i = 0; i < count; ++i)
     for (int c = 0; c < 3; ++c) {
-      sorted[3 * size_t{i} + c] = corners_[3 * size_t{order[i]} + c];
-      indices_[3 * size_t{i} + c] = triangles[3 * size_t{order[i]} + c];
+      indices_[3 * size_t{i} + c] = triangles[3 * size_t{items[i].triangle} + c];
+      corners_[3 * size_t{i} + c] = positions[indices_[3 * size_t{i} + c]];
     }
-  corners_.swap(sorted);
+  fit_boxes();
 }
 
 void TriangleBvh::refit(const std::vector<glm::dvec3>& positions) {
   for (size_t i = 0; i < indices_.size(); ++i) corners_[i] = positions[indices_[i]];
+  fit_boxes();
+}
+
+void TriangleBvh::fit_boxes() {
   // note: children always come after their parent in nodes_, so a reverse sweep sees both
   // children of a node before the node itself.
   for (size_t n = nodes_.size(); n-- > 0;) {
@@ -109,37 +108,31 @@ void TriangleBvh::refit(const std::vector<glm::dvec3>& positions) {
   }
 }
 
-void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
-                        const std::vector<glm::dvec3>& centroids) {
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-  glm::dvec3 clo = lo, chi = hi;
-  for (uint32_t i = begin; i < end; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      lo = glm::min(lo, corners_[3 * size_t{order[i]} + c]);
-      hi = glm::max(hi, corners_[3 * size_t{order[i]} + c]);
-    }
-    clo = glm::min(clo, centroids[order[i]]);
-    chi = glm::max(chi, centroids[order[i]]);
-  }
+// note: the boxes are left to fit_boxes: a bottom-up pass over the corners in leaf order,
+// instead of a pass over every node's scattered corners at every depth.
+void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end, std::vector<Item>& items) {
+  glm::dvec3 clo(std::numeric_limits<double>::infinity()), chi(-clo);
+  for (uint32_t i = begin; i < end; ++i)
+    clo = glm::min(clo, items[i].centroid), chi = glm::max(chi, items[i].centroid);
   const glm::dvec3 extent = chi - clo;
   const int axis =
       extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   if (end - begin <= kLeafSize || !(extent[axis] > 0.0)) {
-    nodes_[node] = {lo, hi, begin, end - begin};
+    nodes_[node] = {{}, {}, begin, end - begin};
     return;
   }
   const uint32_t mid = begin + (end - begin) / 2;
   // note: ties broken by triangle index so the tree (and every answer) is deterministic.
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](uint32_t x, uint32_t y) {
-                     return centroids[x][axis] < centroids[y][axis] ||
-                            (centroids[x][axis] == centroids[y][axis] && x < y);
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [&](const Item& x, const Item& y) {
+                     return x.centroid[axis] < y.centroid[axis] ||
+                            (x.centroid[axis] == y.centroid[axis] && x.triangle < y.triangle);
                    });
   const uint32_t left = static_cast<uint32_t>(nodes_.size());
   nodes_.resize(nodes_.size() + 2);
-  nodes_[node] = {lo, hi, left, 0};
-  build(left, begin, mid, order, centroids);
-  build(left + 1, mid, end, order, centroids);
+  nodes_[node] = {{}, {}, left, 0};
+  build(left, begin, mid, items);
+  build(left + 1, mid, end, items);
 }
 
 double TriangleBvh::distance_sq(const glm::dvec3& p) const {

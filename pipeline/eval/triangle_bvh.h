@@ -44,8 +44,13 @@ class TriangleBvh {
     uint32_t first;  // leaf: first triangle in order_; inner: index of the left child
     uint32_t count;  // triangles in a leaf; 0 for an inner node (right child = first + 1)
   };
-  void build(uint32_t node, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
-             const std::vector<glm::dvec3>& centroids);
+  // A triangle's centroid and index, sorted together so splits read memory in order.
+  struct Item {
+    glm::dvec3 centroid;
+    uint32_t triangle;
+  };
+  void build(uint32_t node, uint32_t begin, uint32_t end, std::vector<Item>& items);
+  void fit_boxes();  // every node's box from its triangles' corners, bottom-up
 
   std::vector<Node> nodes_;
   std::vector<glm::dvec3> corners_;  // 3 per triangle, in leaf order
