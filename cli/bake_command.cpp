@@ -58,6 +58,7 @@ int run_bake(const BakeCommandSettings& s) {
   BakeSettings settings;
   if (!s.config.empty()) throw_if_failed(read_bake_config(s.config, settings));
   settings.simplify.threads = s.jobs;
+  settings.pack.threads = s.jobs;
   const Progress progress(!s.quiet && ::isatty(STDERR_FILENO));
   const auto start = std::chrono::steady_clock::now();
 

@@ -34,6 +34,7 @@ struct GeometryLayout {
   uint32_t attributes = 0;                                  // GeometryAttribute bits
   uint8_t position_bits = 0, normal_bits = 0, uv_bits = 0;  // 0 = float
   uint8_t weight_bits = 0;  // 0 = float; GEOM v2 only, never for the raw codec
+  int threads = 0;          // PackWriteOptions::threads (not stored)
 
   bool has(uint32_t attribute) const { return (attributes & attribute) != 0; }
   // Bytes of the decoded arrays (what a decoder allocates).

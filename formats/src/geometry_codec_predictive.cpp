@@ -12,9 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <stdexcept>
 
+#include "crowdbake/base/parallel.h"
 #include "geometry_codec.h"
 #include "predictive_triangles.h"
 #include "symbol_stream.h"
@@ -336,13 +338,21 @@ void encode_geometry_predictive(const PackGeometry& g, const PackProgressive& pr
   Prediction p;
   p.prog = usable(progressive, n);
   uint8_t rules[kSlots] = {};
-  ByteWriter body;
-  const std::vector<uint32_t> keys = grid_values(body, g.positions, 3, layout.position_bits);
-  put_attribute(body, keys, float_layout(3, layout.position_bits), p, rules[kSlotPosition]);
-  put_predictive_triangles(body, g.triangles, n, keys, p.prog);
-  if (layout.has(kAttrNormals)) {
-    const int bits = layout.normal_bits;
-    if (bits) {
+  ByteWriter grid;
+  const std::vector<uint32_t> keys = grid_values(grid, g.positions, 3, layout.position_bits);
+  // note: the parts of the body are coded on their own, on as many threads as allowed (each
+  // attribute tries every rule with Draco's coder: most of a hero mesh's write), and appended
+  // in this order, so the bytes never depend on the threads.
+  std::vector<std::function<void(ByteWriter&)>> parts;
+  parts.push_back([&](ByteWriter& w) {
+    put_attribute(w, keys, float_layout(3, layout.position_bits), p, rules[kSlotPosition]);
+  });
+  parts.push_back(
+      [&](ByteWriter& w) { put_predictive_triangles(w, g.triangles, n, keys, p.prog); });
+  if (layout.has(kAttrNormals))
+    parts.push_back([&](ByteWriter& w) {
+      const int bits = layout.normal_bits;
+      if (!bits) return put_attribute(w, float_bits(g.normals), {3, 32}, p, rules[kSlotNormal]);
       std::vector<uint32_t> q(2 * size_t{n});
       for (size_t v = 0; v < n; ++v) octahedral_encode(&g.normals[3 * v], bits, &q[2 * v]);
       std::vector<uint32_t> guesses;
@@ -351,31 +361,39 @@ void encode_geometry_predictive(const PackGeometry& g, const PackProgressive& pr
         guesses = to_lanes(normal_guesses(keys, g.triangles, n, bits), {2, bits});
         normals.guess = &guesses;
       }
-      put_attribute(body, q, {2, bits}, normals, rules[kSlotNormal]);
-    } else {
-      put_attribute(body, float_bits(g.normals), {3, 32}, p, rules[kSlotNormal]);
-    }
-  }
+      put_attribute(w, q, {2, bits}, normals, rules[kSlotNormal]);
+    });
   if (layout.has(kAttrUvs))
-    put_attribute(body, grid_values(body, g.uvs, 2, layout.uv_bits),
-                  float_layout(2, layout.uv_bits), p, rules[kSlotUv]);
+    parts.push_back([&](ByteWriter& w) {
+      const std::vector<uint32_t> uvs = grid_values(w, g.uvs, 2, layout.uv_bits);
+      put_attribute(w, uvs, float_layout(2, layout.uv_bits), p, rules[kSlotUv]);
+    });
   if (layout.has(kAttrSkin)) {
-    put_attribute(body, widen(g.joints), {4, 16}, p, rules[kSlotJoints]);
-    if (const int bits = layout.weight_bits) {
+    parts.push_back([&](ByteWriter& w) {
+      put_attribute(w, widen(g.joints), {4, 16}, p, rules[kSlotJoints]);
+    });
+    parts.push_back([&](ByteWriter& w) {
+      const int bits = layout.weight_bits;
+      if (!bits) return put_attribute(w, float_bits(g.weights), {4, 32}, p, rules[kSlotWeights]);
       Prediction weights = p;
       weights.sum_to = (1u << bits) - 1;
-      put_attribute(body, widen(quantize_weights(g.weights, bits)), {4, bits}, weights,
+      put_attribute(w, widen(quantize_weights(g.weights, bits)), {4, bits}, weights,
                     rules[kSlotWeights]);
-    } else {
-      put_attribute(body, float_bits(g.weights), {4, 32}, p, rules[kSlotWeights]);
-    }
+    });
   }
   if (layout.has(kAttrRegions))
-    put_attribute(body, widen(g.regions), {1, 8}, p, rules[kSlotRegions]);
-  if (layout.has(kAttrTriangleMaterial)) {
-    uint8_t previous = 0;
-    put_attribute(body, widen(g.triangle_material), {1, 16}, Prediction{}, previous);
-  }
+    parts.push_back([&](ByteWriter& w) {
+      put_attribute(w, widen(g.regions), {1, 8}, p, rules[kSlotRegions]);
+    });
+  if (layout.has(kAttrTriangleMaterial))
+    parts.push_back([&](ByteWriter& w) {
+      uint8_t previous = 0;
+      put_attribute(w, widen(g.triangle_material), {1, 16}, Prediction{}, previous);
+    });
+  std::vector<ByteWriter> written(parts.size());
+  parallel_for(parts.size(), layout.threads, [&](size_t i) { parts[i](written[i]); });
+  ByteWriter body = std::move(grid);
+  for (const ByteWriter& w : written) body.raw(w.bytes().data(), w.bytes().size());
   out.u8(p.prog ? 1 : 0);
   for (uint8_t r : rules) out.u8(r);
   out.u8(0);

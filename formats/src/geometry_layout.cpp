@@ -25,6 +25,7 @@ GeometryLayout make_geometry_layout(const PackGeometry& g, const PackWriteOption
   layout.codec = options.codec;
   layout.vertex_count = g.vertex_count();
   layout.triangle_count = g.triangle_count();
+  layout.threads = options.threads;
   if (!g.normals.empty()) layout.attributes |= kAttrNormals;
   if (!g.uvs.empty()) layout.attributes |= kAttrUvs;
   if (!g.joints.empty()) layout.attributes |= kAttrSkin;

@@ -10,7 +10,7 @@
 #include <malloc.h>
 #endif
 
-#include "core/parallel.h"
+#include "crowdbake/base/parallel.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/animation_bake.h"

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/parallel.h"
+#include "crowdbake/base/parallel.h"
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "eval/animated_error.h"
 

@@ -4,7 +4,7 @@
 #include <map>
 #include <utility>
 
-#include "core/parallel.h"
+#include "crowdbake/base/parallel.h"
 
 namespace crowdbake {
 namespace {

@@ -238,6 +238,8 @@ struct PackWriteOptions {
   // vertex at a baked frame from where contents.animation puts it (ANIM v3, error-bounded).
   // 0 stores the texels losslessly (ANIM v2).
   double animation_error = 0.0;
+  // Threads the geometry coder may use (0 = every core); the bytes never depend on it.
+  int threads = 0;
 };
 
 // The rules every pack obeys (counts consistent between parts, indices in range, no NaN,

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -23,17 +25,31 @@ inline size_t thread_count(int requested, size_t work_items) {
 // note: indices are handed out one at a time, not in fixed stripes: the items of one loop
 // often differ in cost by an order of magnitude (a hero mesh's surface against its coarse
 // levels), and fixed stripes left one core idle.
+// An exception thrown by fn stops the loop (items not yet started are skipped) and is
+// rethrown here once every thread has finished; with several, the lowest index's.
 template <typename Fn>
 void parallel_for_workers(size_t count, int threads, Fn fn) {
   const size_t n = thread_count(threads, count);
   std::atomic<size_t> next{0};
+  std::mutex failure_lock;
+  std::exception_ptr failure;
+  size_t failed_at = count;
   auto work = [&](size_t worker) {
-    for (size_t i = next++; i < count; i = next++) fn(i, worker);
+    for (size_t i = next++; i < count; i = next++) {
+      try {
+        fn(i, worker);
+      } catch (...) {
+        const std::lock_guard<std::mutex> hold(failure_lock);
+        if (i < failed_at) failed_at = i, failure = std::current_exception();
+        next = count;
+      }
+    }
   };
   std::vector<std::thread> pool;
   for (size_t k = 1; k < n; ++k) pool.emplace_back(work, k);
   work(0);
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 template <typename Fn>
