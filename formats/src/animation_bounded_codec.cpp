@@ -8,6 +8,7 @@
 
 #include "byte_reader.h"
 #include "byte_writer.h"
+#include "crowdbake/base/parallel.h"
 #include "pack_compression.h"
 #include "similarity.h"
 
@@ -314,14 +315,20 @@ std::vector<std::array<double, 12>> texture_matrices(const AnimationTexture& t) 
 }
 
 // How far the coded texture moves each skinned vertex from the reference's, at every row.
+// note: rows are measured in parallel and reduced in row order, so the result does not
+// depend on the thread count; on a hero mesh each trial skins every vertex at every row.
 Measured measure(const std::vector<std::array<double, 12>>& reference,
-                 const AnimationTexture& coded, const PackGeometry& g, double bound) {
-  Measured m;
+                 const AnimationTexture& coded, const PackGeometry& g, double bound, int threads) {
   const size_t n = g.vertex_count(), joints = coded.joints;
-  m.over.assign(joints, 0);
-  std::vector<std::array<double, 12>> difference(joints);
-  double sum = 0.0;
-  for (size_t r = 0; r < coded.rows; ++r) {
+  struct Row {
+    double sum = 0.0, max = 0.0;
+    std::vector<uint8_t> over;
+  };
+  std::vector<Row> rows(coded.rows);
+  parallel_for(coded.rows, threads, [&](size_t r) {
+    Row& row = rows[r];
+    row.over.assign(joints, 0);
+    std::vector<std::array<double, 12>> difference(joints);
     for (size_t j = 0; j < joints; ++j) {
       difference[j] = matrix_of(texel_similarity(coded, r, j));
       for (int k = 0; k < 12; ++k) difference[j][k] -= reference[r * joints + j][k];
@@ -338,13 +345,21 @@ Measured measure(const std::vector<std::array<double, 12>>& reference,
           e[k] += w * (d[4 * k] * x + d[4 * k + 1] * y + d[4 * k + 2] * z + d[4 * k + 3]);
       }
       const double d = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-      sum += d;
-      m.max_error = std::max(m.max_error, d);
+      row.sum += d;
+      row.max = std::max(row.max, d);
       if (d > bound)
         for (int i = 0; i < 4; ++i)
           if (g.weights[4 * v + i] > 0.0f && g.joints[4 * v + i] < joints)
-            m.over[g.joints[4 * v + i]] = 1;
+            row.over[g.joints[4 * v + i]] = 1;
     }
+  });
+  Measured m;
+  m.over.assign(joints, 0);
+  double sum = 0.0;
+  for (const Row& row : rows) {
+    sum += row.sum;
+    m.max_error = std::max(m.max_error, row.max);
+    for (size_t j = 0; j < joints; ++j) m.over[j] |= row.over[j];
   }
   const double count = static_cast<double>(n) * coded.rows;
   m.mean_error = count > 0 ? sum / count : 0.0;
@@ -504,7 +519,7 @@ uint64_t bounded_stream_limit(uint32_t joints, uint32_t rows) {
 bool encode_bounded_animation(const AnimationTexture& texture, const std::vector<PackJoint>& joints,
                               const std::vector<uint32_t>& clip_starts,
                               const PackGeometry& geometry, double bound, BoundedAnimationCode& out,
-                              std::string* why) {
+                              std::string* why, int threads) {
   const auto fail = [&](const std::string& reason) {
     if (why) *why = reason;
     return false;
@@ -549,7 +564,7 @@ bool encode_bounded_animation(const AnimationTexture& texture, const std::vector
       for (int i = 0; i < kValues; ++i)
         codes[j].step[i] = static_cast<uint16_t>(2 * tolerance[j][i] + 1);
     run_rows(codes, segments, &targets.rows, residuals, out.texture);
-    return measure(reference, out.texture, geometry, bound);
+    return measure(reference, out.texture, geometry, bound, threads);
   };
   // The estimate is conservative where errors do not line up: loosen every tolerance together
   // while the bound still holds. Otherwise tighten the joints whose vertices are out of bound.

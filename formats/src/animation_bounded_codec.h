@@ -43,11 +43,11 @@ struct BoundedAnimationCode {
 // row, moves more than `bound` (model units, > 0) from where `texture` puts it. False with a
 // reason when it cannot (another encoding, no rows, a bound below the texture's own rounding).
 // `clip_starts`: the rows where clips start (PackClip::first_row), where the prediction
-// starts afresh.
+// starts afresh. `threads` measure the trials (0 = every core); the code never depends on it.
 bool encode_bounded_animation(const AnimationTexture& texture, const std::vector<PackJoint>& joints,
                               const std::vector<uint32_t>& clip_starts,
                               const PackGeometry& geometry, double bound, BoundedAnimationCode& out,
-                              std::string* why);
+                              std::string* why, int threads = 0);
 
 // The most bytes a stream for a texture of `joints` × `rows` can take (what a reader checks
 // before it expands the zstd frame).

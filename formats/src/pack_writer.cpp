@@ -85,9 +85,10 @@ AnimationChoice choose_animation(const PackContents& contents, const PackWriteOp
   }
   std::vector<uint32_t> clip_starts;
   for (const PackClip& clip : contents.clips) clip_starts.push_back(clip.first_row);
-  if (!pack_io::encode_bounded_animation(
-          contents.animation, contents.joints, clip_starts, contents.geometry,
-          options.animation_error * bind_diagonal(contents.bounds), choice.code, &choice.reason))
+  if (!pack_io::encode_bounded_animation(contents.animation, contents.joints, clip_starts,
+                                         contents.geometry,
+                                         options.animation_error * bind_diagonal(contents.bounds),
+                                         choice.code, &choice.reason, options.threads))
     return choice;
   choice.frame = pack_io::zstd_frame(choice.code.stream);
   const size_t lossless = pack_io::compress_animation_texels(contents.animation).size();
