@@ -14,17 +14,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "crowdbake/base/clock.h"
 #include "crowdbake/pipeline/child_process.h"
 
 namespace crowdbake::bench {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 ChildResult run_in_child(const std::function<std::string()>& job) {
   ChildLimits limits;
   limits.stdout_to_stderr = false;

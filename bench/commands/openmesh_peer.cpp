@@ -8,15 +8,12 @@
 #include <vector>
 
 #include "commands/peers.h"
+#include "crowdbake/base/clock.h"
 
 namespace crowdbake::bench {
 namespace {
 
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

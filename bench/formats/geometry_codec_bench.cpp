@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "crowdbake/base/clock.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/error.h"
@@ -33,10 +34,6 @@ struct Input {
   uintmax_t source_bytes = 0;
   PackContents contents;
 };
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Median of repeated runs of f, running for at least min_seconds in total.
 template <typename F>

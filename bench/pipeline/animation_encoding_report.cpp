@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "animation_bounded_codec.h"
+#include "crowdbake/base/clock.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/animation_bake.h"
 #include "crowdbake/pipeline/import.h"
@@ -240,9 +241,6 @@ void report(const std::string& label, const SkinnedAsset& a, const AnimationBake
   }
   // As stored: 'bake ms' is the coding's time, 'decode ns' the load-time expansion per joint
   // matrix (both columns hold it).
-  const auto seconds_since = [](auto start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
   {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<uint8_t> frame = pack_io::compress_animation_texels(quantized.texture);

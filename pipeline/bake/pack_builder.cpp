@@ -10,6 +10,7 @@
 #include <malloc.h>
 #endif
 
+#include "crowdbake/base/clock.h"
 #include "crowdbake/base/parallel.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/pipeline/animated_error.h"
@@ -38,10 +39,6 @@ class StageClock {
   BakeReport& report_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The bakes that need only the asset (see build_or_throw).
 struct SideBakes {

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <new>
 
+#include "crowdbake/base/clock.h"
 #include "crowdbake/pipeline/error.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -32,10 +33,6 @@ namespace crowdbake {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // A field of /proc/self/status in kB ("VmRSS", "VmHWM"); -1 when unreadable.
 long status_kb(const char* field) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "crowdbake/base/clock.h"
 #include "crowdbake/pipeline/error.h"
 #include "simplify/collapse.h"
 #include "simplify/dqem.h"
@@ -13,14 +14,6 @@
 #include "simplify/simplify_mesh.h"
 
 namespace crowdbake {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const SimplifyOptions& options,
                                          SimplifyReport* report) {
   if (options.samples < 1)
