@@ -1,7 +1,10 @@
 #include "cli/image_png.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <fstream>
+#include <iterator>
 
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/output_file.h"
@@ -15,20 +18,18 @@ std::vector<uint8_t> encode_png(const RgbaImage& image) {
                     std::to_string(image.height) + " pixels with " +
                     std::to_string(image.rgba.size()) + " bytes");
   // note: encoding into memory lets write_file_atomically do the writing, so a full disk or
-  // an interrupt never leaves a truncated PNG under the output's name.
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  auto out = OIIO::ImageOutput::create("image.png", &proxy);
-  if (!out) throw Error(Error::Kind::kOutput, "png", "OpenImageIO has no PNG writer");
-  OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4,
-                       OIIO::TypeDesc::UINT8);
-  // note: OIIO takes pixels as premultiplied and divides by alpha when writing a PNG; ours
-  // are straight RGBA, so the bytes must go to the file untouched.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!out->open("image.png", spec) ||
-      !out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data()) || !out->close())
-    throw Error(Error::Kind::kOutput, "png", "OpenImageIO: " + out->geterror());
-  return std::vector<uint8_t>(bytes.begin(), bytes.end());
+  // an interrupt never leaves a truncated PNG under the output's name. stb writes the
+  // straight RGBA bytes as they are (no premultiplication, no colour-space tags).
+  std::vector<uint8_t> bytes;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(context);
+    const uint8_t* p = static_cast<const uint8_t*>(data);
+    out->insert(out->end(), p, p + size);
+  };
+  const int width = static_cast<int>(image.width), height = static_cast<int>(image.height);
+  if (!stbi_write_png_to_func(append, &bytes, width, height, 4, image.rgba.data(), width * 4))
+    throw Error(Error::Kind::kOutput, "png", "the PNG encoder failed");
+  return bytes;
 }
 
 void write_png(const std::string& path, const RgbaImage& image) {
@@ -42,28 +43,23 @@ void write_png(const std::string& path, const RgbaImage& image) {
 }
 
 RgbaImage read_png(const std::string& path) {
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // keep the file's straight alpha as is
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw input_error(path, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw input_error(path, "image has no pixels");
-  const int channels = spec.nchannels;
-  std::vector<uint8_t> raw(size_t(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data()))
-    throw input_error(path, "cannot read the pixels: " + in->geterror());
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw input_error(path, "cannot read the image: the file cannot be opened");
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                   std::istreambuf_iterator<char>());
+  if (bytes.empty()) throw input_error(path, "image has no pixels (the file is empty)");
+  // note: asking for 4 channels makes grey RGB and a missing alpha 255; 16-bit files come
+  // back as 8-bit.
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
+                                          &height, &channels, 4);
+  if (!pixels)
+    throw input_error(path, std::string("cannot read the image: ") + stbi_failure_reason());
   RgbaImage image;
-  image.width = static_cast<uint32_t>(spec.width);
-  image.height = static_cast<uint32_t>(spec.height);
-  image.rgba.resize(size_t(image.width) * image.height * 4);
-  for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
-    const uint8_t* src = &raw[p * channels];
-    uint8_t* dst = &image.rgba[p * 4];
-    // note: 1 or 2 channels are grey (+ alpha); 3 or more are RGB(A) and extra channels go.
-    for (int c = 0; c < 3; ++c) dst[c] = channels >= 3 ? src[c] : src[0];
-    dst[3] = channels == 2 ? src[1] : channels >= 4 ? src[3] : 255;
-  }
+  image.width = static_cast<uint32_t>(width);
+  image.height = static_cast<uint32_t>(height);
+  image.rgba.assign(pixels, pixels + size_t(width) * height * 4);
+  stbi_image_free(pixels);
   return image;
 }
 

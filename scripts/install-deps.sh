@@ -5,7 +5,7 @@ set -eu
 
 PACKAGES="cmake g++ ninja-build pkg-config ccache clang-format
   libassimp-dev assimp-utils libopenmesh-dev libdraco-dev draco libtinygltf-dev libcli11-dev nlohmann-json3-dev
-  libopenimageio-dev openimageio-tools libopencv-core-dev libcgal-dev
+  libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libglm-dev libmeshoptimizer-dev libtbb-dev libstb-dev libjpeg-dev libzstd-dev gnuplot-nox
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers glslc glslang-tools spirv-tools
   clang libclang-rt-14-dev"
