@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/huge_pages.h"
 #include "cli/render_plan.h"
 #include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
@@ -356,6 +357,7 @@ int run_command(Commands& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  crowdbake::cli::prefer_huge_pages();
   CLI::App app{"crowdbake: bake skinned characters into crowd packs and render crowds",
                "crowdbake"};
   app.require_subcommand(1);
