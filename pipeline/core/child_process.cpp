@@ -57,20 +57,36 @@ bool write_all(int fd, const void* data, size_t size) {
 
 // The result as the child sends it: end, error kind, seconds, peak, then the error file
 // and the payload, each as a 64-bit length and bytes.
-std::string encode(const ChildOutcome& r) {
+// Everything of a result but its payload's bytes, which follow it on the pipe: a hero
+// character's payload is tens of megabytes, not worth copying into one string to send.
+std::string encode_head(const ChildOutcome& r) {
   std::string out;
   const auto put = [&out](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
   const uint8_t end = static_cast<uint8_t>(r.end);
   const int32_t kind = r.error_kind;
   put(&end, 1), put(&kind, 4), put(&r.seconds, 8), put(&r.peak_rss_mb, 8);
-  for (const std::string* s : {&r.error_file, &r.payload}) {
-    const uint64_t n = s->size();
-    put(&n, 8), put(s->data(), s->size());
-  }
+  const uint64_t file_size = r.error_file.size(), payload_size = r.payload.size();
+  put(&file_size, 8), put(r.error_file.data(), r.error_file.size());
+  put(&payload_size, 8);
   return out;
 }
 
-bool decode(const std::string& bytes, ChildOutcome& r) {
+constexpr size_t kFixedHead = 1 + 4 + 8 + 8;
+
+// The whole result's size once its head has arrived (0 before), so the reader can reserve
+// it once instead of growing a string by doubling.
+size_t expected_size(const std::string& bytes) {
+  uint64_t file_size = 0, payload_size = 0;
+  if (bytes.size() < kFixedHead + 8) return 0;
+  std::memcpy(&file_size, bytes.data() + kFixedHead, 8);
+  if (file_size > bytes.size() || bytes.size() - kFixedHead - 8 - file_size < 8) return 0;
+  std::memcpy(&payload_size, bytes.data() + kFixedHead + 8 + file_size, 8);
+  const uint64_t total = kFixedHead + 8 + file_size + 8 + payload_size;
+  return total < (uint64_t{1} << 34) ? static_cast<size_t>(total) : 0;  // a hint only
+}
+
+// Takes the result apart; `bytes` is consumed (the payload keeps its buffer).
+bool decode(std::string& bytes, ChildOutcome& r) {
   size_t at = 0;
   const auto get = [&](void* p, size_t n) {
     if (bytes.size() - at < n) return false;
@@ -83,15 +99,16 @@ bool decode(const std::string& bytes, ChildOutcome& r) {
   if (!get(&end, 1) || !get(&kind, 4) || !get(&r.seconds, 8) || !get(&r.peak_rss_mb, 8))
     return false;
   if (end > static_cast<uint8_t>(ChildOutcome::End::kOutOfMemory)) return false;
-  for (std::string* s : {&r.error_file, &r.payload}) {
-    uint64_t n = 0;
-    if (!get(&n, 8) || bytes.size() - at < n) return false;
-    s->assign(bytes, at, n);
-    at += n;
-  }
+  uint64_t n = 0;
+  if (!get(&n, 8) || bytes.size() - at < n) return false;
+  r.error_file.assign(bytes, at, n);
+  at += n;
+  if (!get(&n, 8) || bytes.size() - at != n) return false;
+  bytes.erase(0, at);
+  r.payload = std::move(bytes);
   r.end = static_cast<ChildOutcome::End>(end);
   r.error_kind = kind;
-  return at == bytes.size();
+  return true;
 }
 
 ChildOutcome run_job(const std::function<std::string()>& job) {
@@ -137,8 +154,9 @@ ChildOutcome run_job(const std::function<std::string()>& job) {
   r.peak_rss_mb = base_kb >= 0 && peak_kb >= base_kb ? (peak_kb - base_kb) / 1024.0 : -1.0;
   std::cout.flush();
   std::fflush(nullptr);
-  const std::string bytes = encode(r);
-  const bool sent = write_all(fd, bytes.data(), bytes.size());
+  const std::string head = encode_head(r);
+  const bool sent =
+      write_all(fd, head.data(), head.size()) && write_all(fd, r.payload.data(), r.payload.size());
   close(fd);
   _exit(sent ? 0 : 1);
 }
@@ -163,6 +181,8 @@ bool read_until(int fd, Clock::time_point deadline, bool has_deadline, std::stri
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
     if (n <= 0) return true;
     out.append(buffer, static_cast<size_t>(n));
+    if (out.capacity() < (size_t{1} << 20))
+      if (const size_t total = expected_size(out); total > out.capacity()) out.reserve(total);
   }
 }
 
