@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "asset_paths.h"
 #include "crowdbake/pipeline/import.h"
@@ -89,6 +92,74 @@ TEST(VertexWeld, SignedZerosWeldAndPrimitivesStaySeparate) {
   EXPECT_EQ(a.primitives[0].vertex_count(), 4u);
   EXPECT_EQ(a.primitives[1].vertex_count(), 4u) << "no normals or UVs: positions and skin decide";
   EXPECT_TRUE(a.primitives[1].normals.empty());
+}
+
+// The welder against the rule written out plainly: a vertex joins the first vertex kept
+// before it whose position, UV and skin agree bit for bit (-0 as +0) and whose normal is
+// within 1e-5; many vertices with few keys make the probing table's runs long.
+Primitive weld_by_the_rule(const Primitive& in) {
+  const auto word = [](float f) {
+    const float v = f + 0.0f;
+    uint32_t b;
+    std::memcpy(&b, &v, 4);
+    return b;
+  };
+  std::map<std::vector<uint32_t>, std::vector<uint32_t>> kept_with;
+  Primitive out;
+  std::vector<uint32_t> remap;
+  for (size_t v = 0; v < in.vertex_count(); ++v) {
+    std::vector<uint32_t> key;
+    for (int k = 0; k < 3; ++k) key.push_back(word(in.positions[v][k]));
+    for (int k = 0; k < 2; ++k) key.push_back(word(in.uvs[v][k]));
+    for (int k = 0; k < 4; ++k)
+      key.push_back(in.joints[v][k]), key.push_back(word(in.weights[v][k]));
+    std::vector<uint32_t>& kept = kept_with[key];
+    uint32_t match = ~0u;
+    for (uint32_t k : kept)
+      if (glm::length(out.normals[k] - in.normals[v]) <= 1e-5f) {
+        match = k;
+        break;
+      }
+    if (match == ~0u) {
+      match = static_cast<uint32_t>(out.positions.size());
+      kept.push_back(match);
+      out.positions.push_back(in.positions[v]), out.normals.push_back(in.normals[v]);
+      out.uvs.push_back(in.uvs[v]), out.joints.push_back(in.joints[v]);
+      out.weights.push_back(in.weights[v]);
+    }
+    remap.push_back(match);
+  }
+  for (uint32_t i : in.indices) out.indices.push_back(remap[i]);
+  return out;
+}
+
+TEST(VertexWeld, ManyVerticesFollowTheRule) {
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> pick(0, 499), coin(0, 3);
+  Primitive p;
+  for (int v = 0; v < 20000; ++v) {
+    const int k = pick(random);
+    p.positions.push_back({static_cast<float>(k % 10), static_cast<float>(k / 10 % 10),
+                           coin(random) == 0 ? -0.0f : 0.0f});
+    p.uvs.push_back({static_cast<float>(k / 100) * 0.25f, 0.5f});
+    p.joints.push_back({static_cast<uint16_t>(k % 3), 1, 0, 0});
+    p.weights.push_back({1.0f, 0.0f, 0.0f, 0.0f});
+    // note: a normal off by 0 (welds), 4e-6 (welds with the first) or 1e-3 (a new wedge).
+    const float off[] = {0.0f, 0.0f, 4e-6f, 1e-3f};
+    p.normals.push_back(glm::vec3(0, 0, 1) + glm::vec3(off[coin(random)], 0, 0));
+    p.indices.push_back(static_cast<uint32_t>(v));
+  }
+  const Primitive expected = weld_by_the_rule(p);
+  SkinnedAsset a;
+  a.primitives.push_back(p);
+  EXPECT_EQ(weld_identical_vertices(a), p.vertex_count() - expected.vertex_count());
+  const Primitive& got = a.primitives[0];
+  ASSERT_LT(expected.vertex_count(), 3000u) << "the test must weld most vertices";
+  EXPECT_EQ(got.positions, expected.positions);
+  EXPECT_EQ(got.normals, expected.normals);
+  EXPECT_EQ(got.uvs, expected.uvs);
+  EXPECT_EQ(got.joints, expected.joints);
+  EXPECT_EQ(got.indices, expected.indices);
 }
 
 // The independent count: MANIFEST.json records how many vertices Assimp's
