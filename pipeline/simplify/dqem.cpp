@@ -85,9 +85,11 @@ DqemCost::DqemCost(DqemForm form, const SkinnedAsset& asset, const SimplifyMesh&
   const size_t max_chunks =
       size_t{positions_} * 16 * sizeof(Quadric) <= (size_t{128} << 20) ? 16 : 4;
   const size_t chunks = std::min<size_t>(poses_, max_chunks);
-  std::vector<std::vector<Quadric>> partial(chunks, std::vector<Quadric>(positions_));
+  std::vector<std::vector<Quadric>> partial(chunks);
   const double weight = 1.0 / poses_;
   parallel_for(chunks, threads, [&](size_t c) {
+    // note: each chunk zeroes its own sums, on its own thread (hundreds of MB on a hero mesh).
+    partial[c].assign(positions_, Quadric{});
     std::vector<Quadric> acc;
     for (size_t s = c * poses_ / chunks; s < (c + 1) * poses_ / chunks; ++s) {
       accumulate_pose(mesh, borders, pose_of(posed, s).data(), acc);

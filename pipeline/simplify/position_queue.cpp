@@ -1,5 +1,7 @@
 #include "simplify/position_queue.h"
 
+#include <algorithm>
+
 namespace crowdbake {
 
 void PositionQueue::set(const QueueKey& key) {
@@ -36,7 +38,7 @@ void PositionQueue::replace(uint32_t i, const QueueKey& key) {
 void PositionQueue::sift_up(uint32_t i) {
   const QueueKey key = heap_[i];
   while (i > 0) {
-    const uint32_t parent = (i - 1) / 2;
+    const uint32_t parent = (i - 1) / kArity;
     if (!(key < heap_[parent])) break;
     place(i, heap_[parent]);
     i = parent;
@@ -48,9 +50,12 @@ void PositionQueue::sift_down(uint32_t i) {
   const QueueKey key = heap_[i];
   const uint32_t n = static_cast<uint32_t>(heap_.size());
   for (;;) {
-    uint32_t child = 2 * i + 1;
-    if (child >= n) break;
-    if (child + 1 < n && heap_[child + 1] < heap_[child]) ++child;
+    const uint32_t first = kArity * i + 1;
+    if (first >= n) break;
+    uint32_t child = first;
+    const uint32_t last = std::min(first + kArity, n);
+    for (uint32_t c = first + 1; c < last; ++c)
+      if (heap_[c] < heap_[child]) child = c;
     if (!(heap_[child] < key)) break;
     place(i, heap_[child]);
     i = child;
