@@ -1,8 +1,11 @@
 #include "simplify/collapse.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 
+#include "crowdbake/base/parallel.h"
 #include "eval/triangle_bvh.h"
 #include "simplify/position_queue.h"
 
@@ -16,6 +19,10 @@ constexpr double kMinBindNormalDot = 0.0;
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
 
+// From this many positions on, and when more than one thread is allowed, a second thread
+// evaluates the queue's runner-up while the loop evaluates its top (see Lookahead below).
+constexpr uint32_t kLookaheadPositions = 20000;
+
 // A collapse of the position whose list holds it onto `to`. Every live directed edge has
 // at most one; its DQEM cost is always computed on the current quadrics (candidates of a
 // position whose quadric changes are replaced).
@@ -28,12 +35,31 @@ struct Candidate {
 
 enum class Outcome { kDone, kRefused, kRequeued };
 
+// What one attempt learns about a candidate: a pure function of the mesh, which changes only
+// when a collapse is made (so attempts between two collapses can be evaluated ahead).
+struct Evaluation {
+  enum class Verdict { kTopology, kLimb, kFold, kLegal } verdict = Verdict::kTopology;
+  bool priced = false;  // the candidate's penalties were priced on the current stars
+  double base = 0.0;    // its DQEM cost (when not priced)
+  double penalty = 0.0;
+  double crossed_area = 0.0;  // bind-pose area of faces whose corner crosses a seam
+  uint32_t priced_flips = 0;
+};
+
+// The lists one attempt fills (perform() reads those of the attempt it performs).
+struct Scratch {
+  std::vector<uint32_t> shared, moved, third, common, from_ring, to_ring;
+  std::vector<std::pair<uint32_t, uint32_t>> map;
+  std::vector<std::pair<uint32_t, int>> edges;
+};
+
 enum class Kind { kInterior, kBorder, kLocked };
 
 class Collapser {
  public:
   Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
-            bool all_poses, uint32_t priced_positions, DqemCost& cost, CollapseStats& stats)
+            bool all_poses, uint32_t priced_positions, DqemCost& cost, CollapseStats& stats,
+            int threads)
       : mesh_(mesh),
         posed_(posed),
         poses_(poses),
@@ -41,7 +67,8 @@ class Collapser {
         priced_positions_(priced_positions),
         cost_(cost),
         stats_(stats),
-        queue_(mesh.position_count()) {
+        queue_(mesh.position_count()),
+        lookahead_(thread_count(threads, 2) > 1 && mesh.position_count() >= kLookaheadPositions) {
     const uint32_t positions = mesh.position_count();
     corner_ = mesh.triangles;
     triangle_alive_.assign(mesh.triangle_count(), 1);
@@ -56,11 +83,13 @@ class Collapser {
     mark_limbs();
   }
 
+  ~Collapser() { stop_worker(); }
+
   std::vector<CollapseRecord> run() {
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
       if (incident_[p].empty()) continue;
       ++live_;
-      if (kind(p) == Kind::kLocked) ++stats_.locked_positions;
+      if (kind(p, scratch_.edges) == Kind::kLocked) ++stats_.locked_positions;
     }
     std::vector<CollapseRecord> records;
     push_all();
@@ -84,7 +113,8 @@ class Collapser {
       // note: a retried refusal may name a position that has since collapsed elsewhere.
       if (!position_alive_[c.to]) continue;
       CollapseRecord record;
-      const Outcome outcome = try_collapse(from, c, record);
+      const Outcome outcome = lookahead_ && pose_priced() ? attempt_with_lookahead(from, c, record)
+                                                          : try_collapse(from, c, record);
       if (outcome == Outcome::kDone) {
         records.push_back(std::move(record));
       } else if (outcome == Outcome::kRefused) {
@@ -94,6 +124,73 @@ class Collapser {
         refused_[c.to].push_back({from, c.to});
       }
     }
+    stop_worker();
+  }
+
+  // Lookahead. Between two collapses the loop only prices candidates and puts them back
+  // (about 6 attempts per collapse below the pose-price limit, most of the loop's time), and
+  // an attempt reads the mesh without changing it. So while this thread evaluates the top,
+  // a second one evaluates the runner-up (the queue's top once the top is out); when the
+  // runner-up is the next attempt and no collapse came between, its evaluation is used as
+  // it is. The results are the ones one thread gives, byte for byte.
+  Outcome attempt_with_lookahead(uint32_t from, const Candidate& c, CollapseRecord& record) {
+    if (ahead_ready_ && ahead_collapses_ == collapses_ && ahead_from_ == from &&
+        same(ahead_candidate_, c)) {
+      ahead_ready_ = false;
+      return decide(from, c, ahead_evaluation_, ahead_scratch_, record);
+    }
+    ahead_ready_ = false;
+    bool posted = false;
+    if (!queue_.empty()) {
+      const QueueKey& next = queue_.top();
+      const std::vector<Candidate>& list = leaving_[next.from];
+      const auto it = std::find_if(list.begin(), list.end(),
+                                   [&](const Candidate& x) { return x.to == next.to; });
+      if (it != list.end() && position_alive_[next.to]) {
+        start_worker();
+        ahead_from_ = next.from;
+        ahead_candidate_ = *it;
+        job_.store(job_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+        posted = true;
+      }
+    }
+    Evaluation e;
+    evaluate(from, c, scratch_, e);
+    if (posted) {
+      const uint32_t job = job_.load(std::memory_order_relaxed);
+      for (int spins = 0; done_.load(std::memory_order_acquire) != job;)
+        if (++spins % 4096 == 0) std::this_thread::yield();
+      ahead_ready_ = true;
+      ahead_collapses_ = collapses_;
+    }
+    return decide(from, c, e, scratch_, record);
+  }
+
+  static bool same(const Candidate& a, const Candidate& b) {
+    return a.to == b.to && a.cost == b.cost && a.star_from == b.star_from && a.star_to == b.star_to;
+  }
+
+  void start_worker() {
+    if (worker_.joinable()) return;
+    worker_ = std::thread([this] {
+      uint32_t seen = 0;
+      for (;;) {
+        uint32_t job = 0;
+        for (int spins = 0; (job = job_.load(std::memory_order_acquire)) == seen;) {
+          if (stop_.load(std::memory_order_relaxed)) return;
+          if (++spins % 4096 == 0) std::this_thread::yield();
+        }
+        seen = job;
+        evaluate(ahead_from_, ahead_candidate_, ahead_scratch_, ahead_evaluation_);
+        done_.store(job, std::memory_order_release);
+      }
+    });
+  }
+
+  void stop_worker() {
+    if (!worker_.joinable()) return;
+    stop_.store(true, std::memory_order_relaxed);
+    worker_.join();
   }
 
   Candidate fresh(uint32_t from, uint32_t to) const { return {cost_.cost(from, to), to}; }
@@ -147,16 +244,8 @@ class Collapser {
     return posed_[size_t{p} * poses_ + pose];
   }
 
-  void compact(uint32_t p) {
-    std::vector<uint32_t>& list = incident_[p];
-    list.erase(
-        std::remove_if(list.begin(), list.end(), [&](uint32_t t) { return !triangle_alive_[t]; }),
-        list.end());
-  }
-
   // p's neighbours, sorted, written to `out` (scratch reused across collapses).
-  const std::vector<uint32_t>& neighbours(uint32_t p, std::vector<uint32_t>& out) {
-    compact(p);
+  const std::vector<uint32_t>& neighbours(uint32_t p, std::vector<uint32_t>& out) const {
     out.clear();
     for (uint32_t t : incident_[p])
       for (int k = 0; k < 3; ++k)
@@ -168,9 +257,7 @@ class Collapser {
 
   // Interior: every edge has two faces; border: exactly two edges have one face (a simple
   // border); anything else (non-manifold edges, several borders meeting) stays put.
-  Kind kind(uint32_t p) {
-    compact(p);
-    std::vector<std::pair<uint32_t, int>>& edges = edges_;
+  Kind kind(uint32_t p, std::vector<std::pair<uint32_t, int>>& edges) const {
     edges.clear();
     for (uint32_t t : incident_[p])
       for (int k = 0; k < 3; ++k) {
@@ -191,8 +278,7 @@ class Collapser {
     return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
   }
 
-  bool adjacent(uint32_t a, uint32_t b) {
-    compact(a);
+  bool adjacent(uint32_t a, uint32_t b) const {
     return std::any_of(incident_[a].begin(), incident_[a].end(),
                        [&](uint32_t t) { return contains(t, b); });
   }
@@ -217,62 +303,87 @@ class Collapser {
     return Outcome::kRefused;
   }
 
+  // Legality and, for a candidate not priced on the current stars, its penalties: reads the
+  // mesh only (the lists go to `scratch`).
+  void evaluate(uint32_t from, const Candidate& candidate, Scratch& scratch, Evaluation& e) const {
+    const uint32_t to = candidate.to;
+    e = Evaluation{};
+    bool closing = false;
+    if (!topology_allows(from, to, closing, scratch) ||
+        !map_wedges(from, to, e.crossed_area, scratch))
+      return;
+    const uint16_t limb = limb_[from];
+    if (limb != kNoLimb && limb_[to] != limb && limb_positions_[limb] == 1) {
+      e.verdict = Evaluation::Verdict::kLimb;
+      return;
+    }
+    if (!closing && folds_in_bind_pose(from, to, scratch.moved)) {
+      e.verdict = Evaluation::Verdict::kFold;
+      return;
+    }
+    e.verdict = Evaluation::Verdict::kLegal;
+    e.priced = candidate.star_from == star_[from] && candidate.star_to == star_[to];
+    if (e.priced) return;
+    // note: the DQEM cost is the key of an unpriced candidate; a priced one's stale penalty
+    // is dropped by computing the cost again (its quadrics are unchanged: same versions).
+    e.base = candidate.star_from == kUnpriced ? candidate.cost : cost_.cost(from, to);
+    const double length = glm::length(at(0, from) - at(0, to));
+    e.penalty = kSeamWeight * e.crossed_area * length * length;
+    if (pose_priced()) {
+      if (!closing) e.penalty += flip_penalty(from, to, scratch.moved, e.priced_flips);
+      e.penalty += left_behind_penalty(from, to, scratch.moved);
+    }
+  }
+
   // Performs the collapse when it is legal and its penalties are priced in; a legal
   // candidate with a penalty still to pay goes back into the queue at its full cost.
   Outcome try_collapse(uint32_t from, const Candidate& candidate, CollapseRecord& record) {
+    Evaluation e;
+    evaluate(from, candidate, scratch_, e);
+    return decide(from, candidate, e, scratch_, record);
+  }
+
+  Outcome decide(uint32_t from, const Candidate& candidate, const Evaluation& e,
+                 const Scratch& scratch, CollapseRecord& record) {
     const uint32_t to = candidate.to;
-    bool closing = false;
-    if (!topology_allows(from, to, closing)) return reject_topology();
-    double crossed_area = 0.0;  // bind-pose area of faces whose corner crosses a seam
-    if (!map_wedges(from, to, crossed_area)) return reject_topology();
-    const std::vector<uint32_t>& moved = moved_;
-    const uint16_t limb = limb_[from];
-    if (limb != kNoLimb && limb_[to] != limb && limb_positions_[limb] == 1) {
-      ++stats_.rejected_limbs;
-      return Outcome::kRefused;
+    switch (e.verdict) {
+      case Evaluation::Verdict::kTopology:
+        return reject_topology();
+      case Evaluation::Verdict::kLimb:
+        ++stats_.rejected_limbs;
+        return Outcome::kRefused;
+      case Evaluation::Verdict::kFold:
+        ++stats_.rejected_flips;
+        return Outcome::kRefused;
+      case Evaluation::Verdict::kLegal:
+        break;
     }
-    if (!closing && folds_in_bind_pose(from, to, moved)) {
-      ++stats_.rejected_flips;
-      return Outcome::kRefused;
+    stats_.priced_flips += e.priced_flips;
+    // note: a candidate still cheaper than the queue's top would be popped next anyway.
+    if (!e.priced && e.penalty > 0.0 && !queue_.empty() && e.base + e.penalty > queue_.top().cost) {
+      offer(from, {e.base + e.penalty, to, star_[from], star_[to]});
+      return Outcome::kRequeued;
     }
-    const bool priced = candidate.star_from == star_[from] && candidate.star_to == star_[to];
-    if (!priced) {
-      // note: the DQEM cost is the key of an unpriced candidate; a priced one's stale penalty
-      // is dropped by computing the cost again (its quadrics are unchanged: same versions).
-      const double base = candidate.star_from == kUnpriced ? candidate.cost : cost_.cost(from, to);
-      const double length = glm::length(at(0, from) - at(0, to));
-      double penalty = kSeamWeight * crossed_area * length * length;
-      if (pose_priced()) {
-        if (!closing) penalty += flip_penalty(from, to, moved);
-        penalty += left_behind_penalty(from, to, moved);
-      }
-      // note: a candidate still cheaper than the queue's top would be popped next anyway.
-      if (penalty > 0.0 && !queue_.empty() && base + penalty > queue_.top().cost) {
-        offer(from, {base + penalty, to, star_[from], star_[to]});
-        return Outcome::kRequeued;
-      }
-    }
-    if (crossed_area > 0.0 && stats_.seam_crossings++ == 0)
+    if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
       stats_.collapses_before_crossing = collapses_;
     if (!pose_priced()) ++stats_.unpriced_collapses;
     ++collapses_;
     --live_;
 
-    perform(from, to, record);
+    perform(from, to, scratch, record);
     return Outcome::kDone;
   }
 
   bool pose_priced() const { return priced_positions_ == 0 || live_ <= priced_positions_; }
 
-  // The collapse keeps the surface a manifold: fills shared_ (faces it removes), moved_ (faces
-  // it moves), from_ring_ and to_ring_; closing: a tetrahedron flattening into two faces.
-  bool topology_allows(uint32_t from, uint32_t to, bool& closing) {
-    compact(from);
-    compact(to);
-    std::vector<uint32_t>&shared = shared_, &moved = moved_;
+  // The collapse keeps the surface a manifold: fills scratch.shared (faces it removes),
+  // .moved (faces it moves), .from_ring and .to_ring; closing: a tetrahedron flattening into
+  // two faces.
+  bool topology_allows(uint32_t from, uint32_t to, bool& closing, Scratch& scratch) const {
+    std::vector<uint32_t>&shared = scratch.shared, &moved = scratch.moved;
     shared.clear(), moved.clear();
     for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
-    const Kind k = kind(from);
+    const Kind k = kind(from, scratch.edges);
     if (k == Kind::kLocked) return false;
     if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return false;
 
@@ -280,16 +391,17 @@ class Collapser {
     // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
     // faces with one third corner are the two sides of a flattened closed part: the
     // collapse removes both.)
-    std::vector<uint32_t>& third = third_;
+    std::vector<uint32_t>& third = scratch.third;
     third.clear();
     for (uint32_t t : shared)
       for (int c = 0; c < 3; ++c)
         if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
     std::sort(third.begin(), third.end());
     third.erase(std::unique(third.begin(), third.end()), third.end());
-    std::vector<uint32_t>& common = common_;
+    std::vector<uint32_t>& common = scratch.common;
     common.clear();
-    const std::vector<uint32_t>&nf = neighbours(from, from_ring_), &nt = neighbours(to, to_ring_);
+    const std::vector<uint32_t>&nf = neighbours(from, scratch.from_ring),
+          &nt = neighbours(to, scratch.to_ring);
     std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
     if (common != third) return false;
 
@@ -313,16 +425,16 @@ class Collapser {
     return true;
   }
 
-  // Wedge map, on attribute classes (map_), and the area of faces whose corners cross a seam.
-  // False when a class cannot move.
-  bool map_wedges(uint32_t from, uint32_t to, double& crossed_area) {
-    const std::vector<uint32_t>&shared = shared_, &moved = moved_;
+  // Wedge map, on attribute classes (scratch.map), and the area of faces whose corners cross a
+  // seam. False when a class cannot move.
+  bool map_wedges(uint32_t from, uint32_t to, double& crossed_area, Scratch& scratch) const {
+    const std::vector<uint32_t>&shared = scratch.shared, &moved = scratch.moved;
     // each class of `from` goes to the class of `to` it
     // shares a removed face with. A class with two such partners, or a used class with none
     // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
     // or material border: allowed, at a price. A class with no class at `to` in its own
     // primitive cannot move (its faces would leave their primitive).
-    std::vector<std::pair<uint32_t, uint32_t>>& map = map_;
+    std::vector<std::pair<uint32_t, uint32_t>>& map = scratch.map;
     map.clear();
     crossed_area = 0.0;
     for (uint32_t t : shared) {
@@ -346,32 +458,41 @@ class Collapser {
       // note: a substituted class is one no removed face pairs v with.
       bool paired = false;
       for (uint32_t u : shared)
-        paired = paired || (klass(u, from) == v && klass(u, to) == target_class(v));
+        paired = paired || (klass(u, from) == v && klass(u, to) == target_class(v, map));
       if (!paired) crossed_area += bind_area(t);
     }
 
     return true;
   }
 
-  // The class a wedge of `from` moves to (map_), or -1 when its class is not mapped.
-  int64_t target_class(uint32_t v) const {
-    for (const auto& m : map_)
+  // The class a wedge of `from` moves to (in the wedge map), or -1 when its class is not mapped.
+  int64_t target_class(uint32_t v, const std::vector<std::pair<uint32_t, uint32_t>>& map) const {
+    for (const auto& m : map)
       if (m.first == mesh_.class_of[v]) return m.second;
     return -1;
   }
 
-  void perform(uint32_t from, uint32_t to, CollapseRecord& record) {
+  void perform(uint32_t from, uint32_t to, const Scratch& scratch, CollapseRecord& record) {
     // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
     for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
       const uint32_t v = mesh_.wedges[i];
-      const int64_t w = target_class(v);
-      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : map_.front().second});
+      const int64_t w = target_class(v, scratch.map);
+      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : scratch.map.front().second});
     }
-    record.removed_triangles = shared_;
-    for (uint32_t t : shared_) triangle_alive_[t] = 0;
-    for (uint32_t t : moved_) {
+    record.removed_triangles = scratch.shared;
+    // note: the removed faces leave their corners' lists at once, so every list holds live
+    // faces only and attempts read the mesh without changing it.
+    for (uint32_t t : scratch.shared) {
+      triangle_alive_[t] = 0;
+      for (int k = 0; k < 3; ++k) {
+        std::vector<uint32_t>& list = incident_[position(t, k)];
+        const auto it = std::find(list.begin(), list.end(), t);
+        if (it != list.end()) list.erase(it);
+      }
+    }
+    for (uint32_t t : scratch.moved) {
       uint32_t& corner = corner_[3 * t + corner_of(t, from)];
-      corner = static_cast<uint32_t>(target_class(corner));
+      corner = static_cast<uint32_t>(target_class(corner, scratch.map));
       incident_[to].push_back(t);
     }
     position_alive_[from] = 0;
@@ -396,7 +517,7 @@ class Collapser {
       update(x);
     }
     // Former neighbours no longer next to `to` (a border face's corner) lose their edges.
-    for (const std::vector<uint32_t>* before : {&from_ring_, &to_ring_})
+    for (const std::vector<uint32_t>* before : {&scratch.from_ring, &scratch.to_ring})
       for (uint32_t x : *before)
         if (x != from && x != to && !std::binary_search(ring.begin(), ring.end(), x)) {
           forget(x, from, to);
@@ -596,7 +717,7 @@ class Collapser {
   // around `from`, averaged over the poses. QEM measures the new vertex against the old
   // planes only; a thin feature (a tail, a finger) that slides along its own side planes
   // costs nothing there while its tip is left far from the new surface.
-  double left_behind_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) {
+  double left_behind_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
     double around = 0.0;
     for (uint32_t t : incident_[from]) around += bind_area(t);
     double sum = 0.0;
@@ -619,7 +740,8 @@ class Collapser {
   // flipped face's area times the squared length of the move, averaged over all poses
   // (a flip in one pose of S costs 1/S of it), so more poses refine the estimate instead
   // of adding refusals.
-  double flip_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) {
+  double flip_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved,
+                      uint32_t& flips) const {
     if (!all_poses_ || poses_ < 2) return 0.0;
     double sum = 0.0;
     for (uint32_t s = 1; s < poses_; ++s) {
@@ -636,7 +758,7 @@ class Collapser {
         const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
         if (glm::dot(before, after) <= 0.0 && glm::length(before) > 0.0) {
           sum += 0.5 * glm::length(before) * length2;
-          ++stats_.priced_flips;
+          ++flips;
         }
       }
     }
@@ -653,7 +775,7 @@ class Collapser {
 
   std::vector<uint32_t> corner_;  // current vertex of every triangle corner
   std::vector<char> triangle_alive_;
-  std::vector<std::vector<uint32_t>> incident_;  // position -> triangles (dead ones pruned lazily)
+  std::vector<std::vector<uint32_t>> incident_;  // position -> its live triangles
   std::vector<char> position_alive_;
   std::vector<char> small_part_;  // position lies on a part that may vanish
   static constexpr uint16_t kNoLimb = 0xffff;
@@ -662,11 +784,22 @@ class Collapser {
   std::vector<uint32_t> star_;            // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving_;  // per position: its live candidates
-  // Scratch of try_collapse and its helpers, kept so the loop does not allocate.
-  std::vector<uint32_t> shared_, moved_, third_, common_, from_ring_, to_ring_, ring_;
-  std::vector<std::pair<uint32_t, uint32_t>> map_, pairs_;
-  std::vector<std::pair<uint32_t, int>> edges_;
+  // Scratch of the attempts and their helpers, kept so the loop does not allocate.
+  Scratch scratch_;
+  std::vector<uint32_t> ring_;
+  std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   PositionQueue queue_;
+  // Lookahead (attempt_with_lookahead): the runner-up's evaluation, made by worker_.
+  bool lookahead_;
+  std::thread worker_;
+  std::atomic<uint32_t> job_{0}, done_{0};
+  std::atomic<bool> stop_{false};
+  uint32_t ahead_from_ = 0;
+  Candidate ahead_candidate_{};
+  Evaluation ahead_evaluation_;
+  Scratch ahead_scratch_;
+  bool ahead_ready_ = false;
+  uint32_t ahead_collapses_ = 0;
   uint32_t collapses_ = 0;
   uint32_t live_ = 0;  // positions with faces
 };
@@ -676,8 +809,8 @@ class Collapser {
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          bool all_poses, uint32_t priced_positions, DqemCost& cost,
-                                         CollapseStats& stats) {
-  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats).run();
+                                         CollapseStats& stats, int threads) {
+  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats, threads).run();
 }
 
 }  // namespace crowdbake

@@ -420,6 +420,29 @@ TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
   EXPECT_EQ(x.collapse_to, y.collapse_to);
 }
 
+// From 20,000 positions on, a second thread evaluates the queue's runner-up ahead of the
+// loop (collapse.cpp, "Lookahead"); the arrays and the counts must be those of one thread.
+TEST(SimplifyDeterminism, TheLookaheadChangesNothing) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::sphere(150, 150, p, i);
+  const SkinnedAsset a = from(p, i);
+  SimplifyOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  SimplifyReport r1, r2;
+  const ProgressiveMesh x = test::simplify_or_throw(a, one, &r1);
+  const ProgressiveMesh y = test::simplify_or_throw(a, two, &r2);
+  ASSERT_GE(r1.positions, 20000u) << "the mesh is under the lookahead's size";
+  EXPECT_GT(r1.priced_flips, 0u) << "nothing was priced: the lookahead had nothing to do";
+  EXPECT_EQ(x.vertex_source, y.vertex_source);
+  EXPECT_EQ(x.triangles, y.triangles);
+  EXPECT_EQ(x.collapse_to, y.collapse_to);
+  EXPECT_EQ(r1.priced_flips, r2.priced_flips);
+  EXPECT_EQ(r1.rejected_flips, r2.rejected_flips);
+  EXPECT_EQ(r1.seam_crossings, r2.seam_crossings);
+}
+
 // Random meshes (jittered grids with random holes) on random skeleton bends.
 TEST(SimplifyProperty, RandomMeshesKeepEveryInvariant) {
   for (uint32_t seed = 1; seed <= 12; ++seed) {
