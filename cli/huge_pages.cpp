@@ -19,6 +19,7 @@ namespace {
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
 constexpr std::size_t kLargeBlock = std::size_t(1) << 20;
 
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
 void advise(std::uintptr_t begin, std::uintptr_t end) {
   const std::uintptr_t first = begin & ~(kHugePage - 1);
   const std::uintptr_t last = (end + kHugePage - 1) & ~(kHugePage - 1);
@@ -26,6 +27,7 @@ void advise(std::uintptr_t begin, std::uintptr_t end) {
 }
 
 std::atomic<std::uintptr_t> advised_heap_top{0};
+#endif
 
 void* allocate(std::size_t size) {
   void* p = std::malloc(size ? size : 1);

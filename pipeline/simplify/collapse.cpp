@@ -158,9 +158,9 @@ class Collapser {
     evaluate(from, c, scratch_, e);
     if (posted) {
       const uint32_t job = job_.load(std::memory_order_relaxed);
-      for (int spins = 0; done_.load(std::memory_order_acquire) != job;)
+      for (unsigned spins = 0; done_.load(std::memory_order_acquire) != job;)
         if (++spins % 4096 == 0) std::this_thread::yield();
-      ahead_ready_ = true;
+      ahead_ready_ = !ahead_failed_;
       ahead_collapses_ = collapses_;
     }
     return decide(from, c, e, scratch_, record);
@@ -176,12 +176,19 @@ class Collapser {
       uint32_t seen = 0;
       for (;;) {
         uint32_t job = 0;
-        for (int spins = 0; (job = job_.load(std::memory_order_acquire)) == seen;) {
+        for (unsigned spins = 0; (job = job_.load(std::memory_order_acquire)) == seen;) {
           if (stop_.load(std::memory_order_relaxed)) return;
           if (++spins % 4096 == 0) std::this_thread::yield();
         }
         seen = job;
-        evaluate(ahead_from_, ahead_candidate_, ahead_scratch_, ahead_evaluation_);
+        // note: an evaluation that fails here (out of memory) is made again on the loop's
+        // thread, which reports it.
+        try {
+          evaluate(ahead_from_, ahead_candidate_, ahead_scratch_, ahead_evaluation_);
+          ahead_failed_ = false;
+        } catch (...) {
+          ahead_failed_ = true;
+        }
         done_.store(job, std::memory_order_release);
       }
     });
@@ -798,7 +805,7 @@ class Collapser {
   Candidate ahead_candidate_{};
   Evaluation ahead_evaluation_;
   Scratch ahead_scratch_;
-  bool ahead_ready_ = false;
+  bool ahead_ready_ = false, ahead_failed_ = false;
   uint32_t ahead_collapses_ = 0;
   uint32_t collapses_ = 0;
   uint32_t live_ = 0;  // positions with faces

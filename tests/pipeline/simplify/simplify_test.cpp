@@ -406,41 +406,38 @@ TEST(SimplifyOptionsHeroMeshes, PosePricesStartBelowTheLimit) {
   EXPECT_EQ(check_progressive_mesh(cheap).message(), "");
 }
 
-TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
+// A rings x segments sphere simplified on one thread and on `threads`: the same arrays and
+// counts. Returns the one-thread report.
+SimplifyReport expect_same_whatever_the_threads(int rings, int segments, int threads) {
   std::vector<glm::vec3> p;
   std::vector<uint32_t> i;
-  test::sphere(10, 14, p, i);
+  test::sphere(rings, segments, p, i);
   const SkinnedAsset a = from(p, i);
   SimplifyOptions one, many;
   one.threads = 1;
-  many.threads = 4;
-  const ProgressiveMesh x = test::simplify_or_throw(a, one), y = test::simplify_or_throw(a, many);
-  EXPECT_EQ(x.vertex_source, y.vertex_source);
-  EXPECT_EQ(x.triangles, y.triangles);
-  EXPECT_EQ(x.collapse_to, y.collapse_to);
-}
-
-// From 20,000 positions on, a second thread evaluates the queue's runner-up ahead of the
-// loop (collapse.cpp, "Lookahead"); the arrays and the counts must be those of one thread.
-TEST(SimplifyDeterminism, TheLookaheadChangesNothing) {
-  std::vector<glm::vec3> p;
-  std::vector<uint32_t> i;
-  test::sphere(150, 150, p, i);
-  const SkinnedAsset a = from(p, i);
-  SimplifyOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
+  many.threads = threads;
   SimplifyReport r1, r2;
   const ProgressiveMesh x = test::simplify_or_throw(a, one, &r1);
-  const ProgressiveMesh y = test::simplify_or_throw(a, two, &r2);
-  ASSERT_GE(r1.positions, 20000u) << "the mesh is under the lookahead's size";
-  EXPECT_GT(r1.priced_flips, 0u) << "nothing was priced: the lookahead had nothing to do";
+  const ProgressiveMesh y = test::simplify_or_throw(a, many, &r2);
   EXPECT_EQ(x.vertex_source, y.vertex_source);
   EXPECT_EQ(x.triangles, y.triangles);
   EXPECT_EQ(x.collapse_to, y.collapse_to);
   EXPECT_EQ(r1.priced_flips, r2.priced_flips);
   EXPECT_EQ(r1.rejected_flips, r2.rejected_flips);
   EXPECT_EQ(r1.seam_crossings, r2.seam_crossings);
+  return r1;
+}
+
+TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
+  expect_same_whatever_the_threads(10, 14, 4);
+}
+
+// From 20,000 positions on, a second thread evaluates the queue's runner-up ahead of the
+// loop (collapse.cpp, "Lookahead"); the arrays and the counts must be those of one thread.
+TEST(SimplifyDeterminism, TheLookaheadChangesNothing) {
+  const SimplifyReport r = expect_same_whatever_the_threads(150, 150, 2);
+  EXPECT_GE(r.positions, 20000u) << "the mesh is under the lookahead's size";
+  EXPECT_GT(r.priced_flips, 0u) << "nothing was priced: the lookahead had nothing to do";
 }
 
 // Random meshes (jittered grids with random holes) on random skeleton bends.
