@@ -101,6 +101,7 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   EXPECT_EQ(j["settings"]["simplify"]["form"], "exact");
   EXPECT_FALSE(j["stages"].empty());
   EXPECT_EQ(j["lod"]["max_vertices"], 3);
+  EXPECT_EQ(j["lod"]["unpriced_collapses"], 0) << "a small character is priced throughout";
   bool geometry = false;
   for (const auto& c : j["chunks"]) geometry |= c["tag"] == "GEOM";
   EXPECT_TRUE(geometry);
