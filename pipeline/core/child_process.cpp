@@ -79,7 +79,8 @@ size_t expected_size(const std::string& bytes) {
   uint64_t file_size = 0, payload_size = 0;
   if (bytes.size() < kFixedHead + 8) return 0;
   std::memcpy(&file_size, bytes.data() + kFixedHead, 8);
-  if (file_size > bytes.size() || bytes.size() - kFixedHead - 8 - file_size < 8) return 0;
+  const size_t after_file_size = bytes.size() - kFixedHead - 8;
+  if (file_size > after_file_size || after_file_size - file_size < 8) return 0;
   std::memcpy(&payload_size, bytes.data() + kFixedHead + 8 + file_size, 8);
   const uint64_t total = kFixedHead + 8 + file_size + 8 + payload_size;
   return total < (uint64_t{1} << 34) ? static_cast<size_t>(total) : 0;  // a hint only

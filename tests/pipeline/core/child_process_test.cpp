@@ -44,6 +44,17 @@ TEST(ChildProcess, ACrowdbakeErrorKeepsItsKindAndFile) {
   EXPECT_EQ(r.error_file, "out.bin");
 }
 
+// The result's head (lengths, then the error file) arrives over several reads when the file
+// name is longer than a pipe buffer; the reader sizes its buffer only once the head is whole.
+TEST(ChildProcess, AHeadLongerThanAPipeBufferArrivesWhole) {
+  const std::string file(200000, 'f');
+  const ChildOutcome r =
+      run_in_child([&]() -> std::string { throw Error(Error::Kind::kOutput, file, "full"); });
+  ASSERT_EQ(r.end, ChildOutcome::End::kThrew);
+  EXPECT_EQ(r.error_file, file);
+  EXPECT_EQ(r.payload, "full");
+}
+
 TEST(ChildProcess, OtherExceptionsHaveNoKind) {
   const ChildOutcome r = run_in_child([]() -> std::string { throw std::runtime_error("odd"); });
   ASSERT_EQ(r.end, ChildOutcome::End::kThrew);
