@@ -29,9 +29,8 @@ class StageClock {
  public:
   explicit StageClock(BakeReport& report) : report_(report) {}
   void done(const std::string& name) {
-    const auto now = std::chrono::steady_clock::now();
-    report_.stages.push_back({name, std::chrono::duration<double>(now - start_).count()});
-    start_ = now;
+    report_.stages.push_back({name, seconds_since(start_)});
+    restart();
   }
   void restart() { start_ = std::chrono::steady_clock::now(); }
 
