@@ -209,15 +209,16 @@ PackLevelErrors measure_level_errors(const SkinnedAsset& asset, const Progressiv
   const uint32_t vertex_count = static_cast<uint32_t>(pm.collapse_to.size());
   out.vertices = level_error_samples(pm.min_vertices, vertex_count, options.samples);
   if (out.vertices.empty()) return out;
-  std::vector<SkinnedAsset> lods;
-  for (size_t k = 0; k + 1 < out.vertices.size(); ++k)
-    lods.push_back(extract_lod(asset, pm, out.vertices[k]));
+  std::vector<SkinnedAsset> lods(out.vertices.size() - 1);
+  parallel_for(lods.size(), threads,
+               [&](size_t k) { lods[k] = extract_lod(asset, pm, out.vertices[k]); });
   std::vector<const SkinnedAsset*> pointers;
   for (const SkinnedAsset& l : lods) pointers.push_back(&l);
   AnimatedErrorOptions measure;
   measure.fps = options.fps;
   measure.threads = threads;
   measure.max_points = kLevelErrorPoints;
+  measure.bind_pose = false;  // note: the table holds the clips' errors only
   const std::vector<AnimatedError> errors = animated_error(asset, pointers, measure);
   out.max_error.assign(out.vertices.size(), 0.0f);
   out.rms_error.assign(out.vertices.size(), 0.0f);

@@ -61,8 +61,10 @@ using PosedSurfaces = std::vector<Posed>;
 // Distance between the original and each LoD in one pose. The 2 × LoDs one-way distances
 // run in parallel and are combined in order, so the answer does not depend on threads.
 std::vector<SurfaceError> measure(const Surface& original, const std::vector<Surface>& lods,
-                                  const PosedSurfaces& posed, int threads) {
+                                  const PosedSurfaces& posed, int threads,
+                                  std::vector<std::vector<uint32_t>>& closest) {
   std::vector<OneWayDistance> one_way(2 * lods.size());
+  closest.resize(one_way.size());
   const bool original_empty = original.triangles.empty();
   // note: the original's weights are the same against every LoD; on a hero mesh summing
   // them again per LoD cost more than the thinned points' searches.
@@ -73,10 +75,12 @@ std::vector<SurfaceError> measure(const Surface& original, const std::vector<Sur
     const size_t i = one_way.size() - 1 - j;
     const size_t l = i / 2;
     if (lods[l].triangles.empty() || original_empty) return;
-    one_way[i] =
-        i % 2 == 0
-            ? one_way_distance(original.plan, posed[0].at, original_weights, posed[l + 1].bvh)
-            : one_way_distance(lods[l].plan, posed[l + 1].at, lods[l].triangles, posed[0].bvh);
+    one_way[i] = i % 2 == 0 ? one_way_distance(original.plan, posed[0].at, original_weights,
+                                               posed[l + 1].bvh, &closest[i])
+                            : one_way_distance(
+                                  lods[l].plan, posed[l + 1].at,
+                                  point_weights(lods[l].plan, posed[l + 1].at, lods[l].triangles),
+                                  posed[0].bvh, &closest[i]);
   });
   std::vector<SurfaceError> out(lods.size());
   for (size_t l = 0; l < lods.size(); ++l) {
@@ -165,26 +169,33 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     hashes.push_back(hash);
     surfaces.push_back(make_surface(*lod));
   }
-  // note: the original, the largest surface by far, is planned first.
-  parallel_for(surfaces.size() + 1, options.threads, [&](size_t i) {
-    Surface& s = i == 0 ? base : surfaces[i - 1];
-    s.plan = plan_samples(s.bind, s.triangles, spacing);
-    limit_points(s.plan, options.max_points);
-  });
-
   std::vector<AnimatedError> unique(surfaces.size());
   const double scale = diagonal > 0.0 ? 1.0 / diagonal : 1.0;
   // note: the trees are built once, on the bind pose, and refitted to every frame; one set
   // for all threads, which share each frame's work, so memory does not grow with threads.
+  // Plans and trees are independent jobs, handed out together so that the original's two,
+  // the largest by far and first, run side by side.
   PosedSurfaces posed(surfaces.size() + 1);
-  parallel_for(posed.size(), options.threads, [&](size_t i) {
-    const Surface& s = i == 0 ? base : surfaces[i - 1];
-    posed[i] = {s.bind, TriangleBvh(s.bind, s.triangles)};
+  parallel_for(2 * posed.size(), options.threads, [&](size_t job) {
+    const size_t i = job / 2;
+    Surface& s = i == 0 ? base : surfaces[i - 1];
+    if (job % 2 == 1) {
+      posed[i] = {s.bind, TriangleBvh(s.bind, s.triangles)};
+      return;
+    }
+    s.plan = plan_samples(s.bind, s.triangles, spacing);
+    limit_points(s.plan, options.max_points);
   });
-  {
-    const std::vector<SurfaceError> bind = measure(base, surfaces, posed, options.threads);
+  // note: each point's closest triangle in the last pose, the first guess in the next one.
+  std::vector<std::vector<uint32_t>> closest;
+  std::vector<Frame> frames;
+  for (const Clip& clip : original.clips)
+    for (double t : clip_frame_times(clip, options.fps, options.frame_stride))
+      frames.push_back({&clip, t});
+  for (AnimatedError& e : unique) e.diagonal = diagonal;
+  if (options.bind_pose || frames.empty()) {
+    const std::vector<SurfaceError> bind = measure(base, surfaces, posed, options.threads, closest);
     for (size_t l = 0; l < surfaces.size(); ++l) {
-      unique[l].diagonal = diagonal;
       unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
       unique[l].bind_max = unique[l].max = bind[l].max * scale;
     }
@@ -194,11 +205,6 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     for (size_t l = 0; l < lods.size(); ++l) out[l] = unique[surface_of[l]];
     return out;
   };
-
-  std::vector<Frame> frames;
-  for (const Clip& clip : original.clips)
-    for (double t : clip_frame_times(clip, options.fps, options.frame_stride))
-      frames.push_back({&clip, t});
   if (frames.empty()) return expand();
 
   std::vector<std::vector<SurfaceError>> per_frame(frames.size());
@@ -213,7 +219,7 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
       skin(i == 0 ? base : surfaces[i - 1], skinning, posed[i].at, scratch);
       posed[i].bvh.refit(posed[i].at);
     });
-    per_frame[f] = measure(base, surfaces, posed, options.threads);
+    per_frame[f] = measure(base, surfaces, posed, options.threads, closest);
   }
 
   // note: reduced in frame order, so the sums do not depend on the thread count.

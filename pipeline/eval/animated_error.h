@@ -66,7 +66,8 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
 // measured against several others computes them once.
 OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<glm::dvec3>& positions,
-                                const std::vector<double>& weights, const TriangleBvh& other);
+                                const std::vector<double>& weights, const TriangleBvh& other,
+                                std::vector<uint32_t>* closest = nullptr);
 
 // Each point's share of its triangles' areas at these positions.
 std::vector<double> point_weights(const SurfaceSampling& plan,

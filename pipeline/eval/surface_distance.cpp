@@ -256,17 +256,22 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
 
 OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<glm::dvec3>& positions,
-                                const std::vector<double>& weight, const TriangleBvh& other) {
+                                const std::vector<double>& weight, const TriangleBvh& other,
+                                std::vector<uint32_t>* closest) {
   OneWayDistance out;
   double max_sq = 0.0;
   uint32_t hint = UINT32_MAX;
+  if (closest) closest->resize(plan.points.size(), UINT32_MAX);
   for (size_t i = 0; i < plan.points.size(); ++i) {
     const SurfaceSampling::Point& s = plan.points[i];
     const glm::dvec3 p =
         positions[s.v[0]] * s.b[0] + positions[s.v[1]] * s.b[1] + positions[s.v[2]] * s.b[2];
-    // note: points are in Morton order, so the previous point's closest triangle is
-    // usually close to this one's and prunes most of the tree.
+    // note: the point's own answer in the previous pose is usually still closest or nearly
+    // so; without one, points are in Morton order, so the previous point's closest triangle
+    // is usually close to this one's. Either prunes most of the tree.
+    if (closest && (*closest)[i] != UINT32_MAX) hint = (*closest)[i];
     const double d_sq = other.distance_sq(p, hint, hint);
+    if (closest) (*closest)[i] = hint;
     out.sum_sq += weight[i] * d_sq;
     out.weight += weight[i];
     max_sq = std::max(max_sq, d_sq);

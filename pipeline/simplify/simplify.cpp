@@ -28,7 +28,7 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
     apply_pose_ranges(distribution, asset.skeleton, options.ranges_file);
   const std::vector<std::vector<glm::dmat4>> poses = sample_poses(asset, distribution, options);
   const SimplifyMesh mesh = build_simplify_mesh(asset);
-  const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses);
+  const std::vector<glm::dvec3> posed = posed_positions(asset, mesh, poses, options.threads);
   r.poses = static_cast<int>(poses.size());
   r.pose_estimator = distribution.estimator;
   r.positions = mesh.position_count();

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "crowdbake/base/parallel.h"
+
 namespace crowdbake {
 namespace {
 
@@ -126,6 +128,9 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     mesh.inverse_scale = extent > 0.0 ? 1.0 / extent : 1.0;
   }
+  mesh.normalise = glm::dmat4(mesh.inverse_scale);
+  mesh.normalise[3] = glm::dvec4(-mesh.centre * mesh.inverse_scale, 1.0);
+  mesh.denormalise = glm::inverse(mesh.normalise);
   return mesh;
 }
 
@@ -165,22 +170,27 @@ glm::dmat4 position_transform(const SkinnedAsset& asset, const SimplifyMesh& mes
                               uint32_t position, const std::vector<glm::dmat4>& pose) {
   const Skin s = skin_of(asset, mesh.representative[position]);
   // normalised posed = N · A · N⁻¹ · normalised bind, N(x) = (x - centre) * inverse_scale.
-  glm::dmat4 n(mesh.inverse_scale);
-  n[3] = glm::dvec4(-mesh.centre * mesh.inverse_scale, 1.0);
-  return n * blend(s, pose) * glm::inverse(n);
+  return mesh.normalise * blend(s, pose) * mesh.denormalise;
 }
 
 std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const SimplifyMesh& mesh,
-                                        const std::vector<std::vector<glm::dmat4>>& poses) {
+                                        const std::vector<std::vector<glm::dmat4>>& poses,
+                                        int threads) {
   const uint32_t positions = mesh.position_count();
-  std::vector<Skin> skins(positions);
-  for (uint32_t p = 0; p < positions; ++p) skins[p] = skin_of(asset, mesh.representative[p]);
   std::vector<glm::dvec3> out(poses.size() * positions);
-  for (size_t s = 0; s < poses.size(); ++s)
-    for (uint32_t p = 0; p < positions; ++p) {
-      const glm::dvec3 x = glm::dvec3(blend(skins[p], poses[s]) * glm::dvec4(skins[p].bind, 1.0));
-      out[p * poses.size() + s] = (x - mesh.centre) * mesh.inverse_scale;
+  // note: every position is skinned on its own, so blocks of them run in parallel and the
+  // result does not depend on the thread count.
+  constexpr uint32_t kBlock = 4096;
+  parallel_for((positions + kBlock - 1) / kBlock, threads, [&](size_t block) {
+    const uint32_t end = std::min(positions, static_cast<uint32_t>((block + 1) * kBlock));
+    for (uint32_t p = static_cast<uint32_t>(block * kBlock); p < end; ++p) {
+      const Skin skin = skin_of(asset, mesh.representative[p]);
+      for (size_t s = 0; s < poses.size(); ++s) {
+        const glm::dvec3 x = glm::dvec3(blend(skin, poses[s]) * glm::dvec4(skin.bind, 1.0));
+        out[p * poses.size() + s] = (x - mesh.centre) * mesh.inverse_scale;
+      }
     }
+  });
   return out;
 }
 

@@ -32,6 +32,8 @@ struct SimplifyMesh {
 
   glm::dvec3 centre{0.0};  // normalised = (p - centre) * inverse_scale
   double inverse_scale = 1.0;
+  // The normalisation as a matrix and its inverse (position_transform conjugates by them).
+  glm::dmat4 normalise{1.0}, denormalise{1.0};
 
   uint32_t position_count() const { return static_cast<uint32_t>(representative.size()); }
   uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
@@ -43,7 +45,8 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset);
 // (pose 0 = bind): out[p * poses + s], a position's poses side by side (the collapse loop
 // reads all poses of a few positions at a time).
 std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const SimplifyMesh& mesh,
-                                        const std::vector<std::vector<glm::dmat4>>& poses);
+                                        const std::vector<std::vector<glm::dmat4>>& poses,
+                                        int threads = 1);
 
 // A position's skinning transform in pose s, in normalised coordinates: Σ w_i · S_i
 // conjugated by the normalisation, so that posed = M · bind for that position.

@@ -366,6 +366,27 @@ TEST(AnimatedError, BatchEqualsOneByOne) {
   EXPECT_EQ(both[0].max, animated_error(a, b).max);
 }
 
+TEST(AnimatedError, SkippingTheBindPoseChangesOnlyTheBindNumbers) {
+  // The wobbled LoD differs from the original in the bind pose, so a skipped bind pose shows.
+  const SkinnedAsset a = bending_strip(1.0, 0.0), b = bending_strip(1.0, 0.03);
+  AnimatedErrorOptions clips_only;
+  clips_only.bind_pose = false;
+  const AnimatedError with = animated_error(a, b), without = animated_error(a, b, clips_only);
+  EXPECT_GT(with.bind_rms, 0.0);
+  EXPECT_EQ(without.bind_rms, 0.0);
+  EXPECT_EQ(without.bind_max, 0.0);
+  EXPECT_EQ(without.mean_rms, with.mean_rms);
+  EXPECT_EQ(without.max, with.max);
+  EXPECT_EQ(without.frames, with.frames);
+  EXPECT_EQ(without.diagonal, with.diagonal);
+  // Without clips the bind pose is measured regardless: it is all there is.
+  SkinnedAsset still = a;
+  still.clips.clear();
+  const AnimatedError bind = animated_error(still, b, clips_only);
+  EXPECT_GT(bind.bind_rms, 0.0);
+  EXPECT_EQ(bind.mean_rms, bind.bind_rms);
+}
+
 TEST(AnimatedError, RejectsAnotherSkeleton) {
   const SkinnedAsset a = bending_strip(1.0, 0.0);
   const SkinnedAsset b = rigid_character(grid(1, 1.0));

@@ -50,6 +50,10 @@ struct AnimatedErrorOptions {
   // point per run of neighbouring points stands for the run (limit_points), so the cost of a
   // frame stops growing with the triangle count.
   uint32_t max_points = 0;
+  // Also measure the bind pose (bind_rms, bind_max). Without it they stay 0, unless the
+  // original has no clips (the bind pose is then all there is); a caller that reads only
+  // mean_rms and max saves one pose's work.
+  bool bind_pose = true;
 };
 
 // All numbers but `diagonal` and `frames` are divided by `diagonal`.
