@@ -1,6 +1,8 @@
 // write_pack(): validate, encode each chunk, then lay the file out as header, chunk table
 // and 16-byte-aligned chunks in the fixed order of pack_format.h (docs/pack-format.md).
 #include <cmath>
+#include <deque>
+#include <future>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -202,10 +204,19 @@ namespace {
 std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
                                        const PackWriteOptions& options,
                                        const std::vector<uint8_t>* bounded_animation) {
-  std::vector<EncodedChunk> chunks;
+  // note: a deque, so that a chunk stays where it is while later ones are added.
+  std::deque<EncodedChunk> chunks;
   const auto add = [&](uint32_t tag, uint32_t version) -> ByteWriter& {
     chunks.push_back({tag, version, ByteWriter{}});
     return chunks.back().payload;
+  };
+  const bool compressed = options.compression == PackCompression::kZstd;
+  const auto frames_of = [&chunks](size_t begin, size_t end) {
+    std::vector<std::vector<uint8_t>> frames(end - begin);
+    for (size_t i = begin; i < end; ++i)
+      if (pack_io::is_wrappable(chunks[i].tag))
+        frames[i - begin] = pack_io::zstd_frame(chunks[i].payload.bytes());
+    return frames;
   };
   pack_io::encode_head(contents, add(kTagHead, kHeadVersion));
   pack_io::encode_skeleton(contents.joints, add(kTagSkel, kSkelVersion));
@@ -219,11 +230,17 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
   pack_io::encode_progressive(contents.progressive, add(kTagProg, kProgVersion));
   if (!contents.level_errors.vertices.empty())
     pack_io::encode_level_errors(contents.level_errors, add(kTagLerr, kLerrVersion));
+  // note: the frames of the chunks so far (PROG: a hero mesh's collapse records, as slow at
+  // zstd's level 19 as the geometry's longest part) are made beside the geometry's coding.
+  const size_t early = chunks.size();
+  std::future<std::vector<std::vector<uint8_t>>> early_frames;
+  if (compressed)
+    early_frames = std::async(options.threads == 1 ? std::launch::deferred : std::launch::async,
+                              frames_of, size_t{0}, early);
   pack_io::encode_geometry(contents.geometry, contents.progressive, options,
                            add(kTagGeom, pack_io::geometry_version(contents.geometry, options)));
   if (!contents.vertex_colors.empty())
     pack_io::encode_vertex_colors(contents.vertex_colors, add(kTagVcol, kVcolVersion));
-  const bool compressed = options.compression == PackCompression::kZstd;
   pack_io::encode_animation(contents.animation, compressed, bounded_animation,
                             add(kTagAnim, bounded_animation ? kAnimVersion
                                           : compressed      ? kAnimLosslessVersion
@@ -233,18 +250,24 @@ std::vector<uint8_t> write_pack_chunks(const PackContents& contents,
     pack_io::encode_images(contents.images, add(kTagImgs, kImgsVersion));
   if (!contents.impostor.empty())
     pack_io::encode_impostor(contents.impostor, add(kTagImps, kImpsVersion));
-  if (compressed)
-    for (EncodedChunk& chunk : chunks)
+  if (compressed) {
+    std::vector<std::vector<uint8_t>> frames = early_frames.get();
+    for (std::vector<uint8_t>& frame : frames_of(early, chunks.size()))
+      frames.push_back(std::move(frame));
+    for (size_t i = 0; i < chunks.size(); ++i) {
+      EncodedChunk& chunk = chunks[i];
+      std::vector<uint8_t>& frame = frames[i];
       if (pack_io::is_wrappable(chunk.tag)) {
         // note: version 2 of these chunks is the version-1 payload as one zstd frame; a
         // payload that compresses beyond what readers expand (§6) stays at version 1.
-        std::vector<uint8_t> frame = pack_io::zstd_frame(chunk.payload.bytes());
         if (chunk.payload.bytes().size() >
             kWrappedExpansionSlack + kWrappedExpansionRatio * frame.size())
           continue;
         chunk.payload.bytes() = std::move(frame);
         chunk.version = kWrappedVersion;
       }
+    }
+  }
 
   ByteWriter file;
   file.raw(kMagic.data(), kMagic.size());
