@@ -127,14 +127,16 @@ class Collapser {
     stop_worker();
   }
 
-  // Lookahead. Between two collapses the loop only prices candidates and puts them back
-  // (about 6 attempts per collapse below the pose-price limit, most of the loop's time), and
-  // an attempt reads the mesh without changing it. So while this thread evaluates the top,
-  // a second one evaluates the runner-up (the queue's top once the top is out); when the
-  // runner-up is the next attempt and no collapse came between, its evaluation is used as
-  // it is. The results are the ones one thread gives, byte for byte.
+  // Lookahead. An attempt reads the mesh without changing it, and only a collapse changes
+  // it. So while this thread evaluates the top, a second one evaluates the runner-up (the
+  // queue's top once the top is out); when the runner-up is the next attempt, its evaluation
+  // is used as it is, unless a collapse came between that changed what it read (see
+  // forget_ahead_near). Below the pose-price limit that saves the pricing of about 6 attempts
+  // per collapse. Above it an attempt is cheap and nearly always collapses; there the
+  // handover cost as much as it saved (docs/simplification.md), so the loop runs alone.
+  // The results are the ones one thread gives, byte for byte.
   Outcome attempt_with_lookahead(uint32_t from, const Candidate& c, CollapseRecord& record) {
-    if (ahead_ready_ && ahead_collapses_ == collapses_ && ahead_from_ == from &&
+    if (ahead_ready_ && ahead_pose_priced_ == pose_priced() && ahead_from_ == from &&
         same(ahead_candidate_, c)) {
       ahead_ready_ = false;
       return decide(from, c, ahead_evaluation_, ahead_scratch_, record);
@@ -161,7 +163,7 @@ class Collapser {
       for (unsigned spins = 0; done_.load(std::memory_order_acquire) != job;)
         if (++spins % 4096 == 0) std::this_thread::yield();
       ahead_ready_ = !ahead_failed_;
-      ahead_collapses_ = collapses_;
+      ahead_pose_priced_ = pose_priced();
     }
     return decide(from, c, e, scratch_, record);
   }
@@ -479,7 +481,24 @@ class Collapser {
     return -1;
   }
 
+  // An evaluation reads the faces around its two ends and their corners, their stars, the
+  // ends' quadrics and the live positions of from's limb. A collapse of `from` onto `to`
+  // changes the faces around `from`, `to` and their rings, the stars of `to` and its ring
+  // after, the quadric of `to` and the count of from's limb: an evaluation of a pair with an
+  // end among those positions, or made before a collapse of a limb's position, is dropped.
+  void forget_ahead_near(uint32_t from, uint32_t to, const Scratch& scratch) {
+    if (!ahead_ready_) return;
+    const auto near = [&](uint32_t p) {
+      return p == from || p == to ||
+             std::binary_search(scratch.from_ring.begin(), scratch.from_ring.end(), p) ||
+             std::binary_search(scratch.to_ring.begin(), scratch.to_ring.end(), p);
+    };
+    if (limb_[from] != kNoLimb || near(ahead_from_) || near(ahead_candidate_.to))
+      ahead_ready_ = false;
+  }
+
   void perform(uint32_t from, uint32_t to, const Scratch& scratch, CollapseRecord& record) {
+    forget_ahead_near(from, to, scratch);
     // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
     for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
       const uint32_t v = mesh_.wedges[i];
@@ -806,7 +825,7 @@ class Collapser {
   Evaluation ahead_evaluation_;
   Scratch ahead_scratch_;
   bool ahead_ready_ = false, ahead_failed_ = false;
-  uint32_t ahead_collapses_ = 0;
+  bool ahead_pose_priced_ = false;  // whether pose penalties were priced then
   uint32_t collapses_ = 0;
   uint32_t live_ = 0;  // positions with faces
 };
