@@ -174,16 +174,21 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
       s.moved[j] = to_mat(with_motion);
     }
     FrameError& e = errors[i];
-    for (const Primitive& p : asset.primitives) {
-      skin_positions(p, s.skinning, s.exact);
-      skin_positions(p, s.moved, s.baked);
-      skin_positions(p, s.in_place, s.still);
-      for (size_t v = 0; v < s.exact.size(); ++v) {
-        const double d = glm::length(s.exact[v] - s.baked[v]);
-        e.sum += d, e.worst = std::max(e.worst, d), ++e.count;
-        e.far = std::max(e.far, glm::length(s.still[v] - centre));
+    // note: in blocks that stay in cache; three whole skinned copies of a hero mesh per
+    // frame made this stage bound by memory. The sums still run over the vertices in order.
+    constexpr size_t kBlock = 2048;
+    for (const Primitive& p : asset.primitives)
+      for (size_t begin = 0; begin < p.positions.size(); begin += kBlock) {
+        const size_t end = std::min(p.positions.size(), begin + kBlock);
+        skin_positions(p, s.skinning, begin, end, s.exact);
+        skin_positions(p, s.moved, begin, end, s.baked);
+        skin_positions(p, s.in_place, begin, end, s.still);
+        for (size_t v = 0; v < s.exact.size(); ++v) {
+          const double d = glm::length(s.exact[v] - s.baked[v]);
+          e.sum += d, e.worst = std::max(e.worst, d), ++e.count;
+          e.far = std::max(e.far, glm::length(s.still[v] - centre));
+        }
       }
-    }
   });
   double sum = 0.0, worst = 0.0, far = 0.0;
   size_t count = 0;

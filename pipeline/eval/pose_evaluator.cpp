@@ -107,15 +107,20 @@ void skinning_matrices(const Skeleton& skeleton, const std::vector<glm::dmat4>& 
 
 void skin_positions(const Primitive& primitive, const std::vector<glm::dmat4>& skinning,
                     std::vector<glm::dvec3>& out) {
-  out.resize(primitive.positions.size());
-  for (size_t v = 0; v < primitive.positions.size(); ++v) {
+  skin_positions(primitive, skinning, 0, primitive.positions.size(), out);
+}
+
+void skin_positions(const Primitive& primitive, const std::vector<glm::dmat4>& skinning,
+                    size_t begin, size_t end, std::vector<glm::dvec3>& out) {
+  out.resize(end - begin);
+  for (size_t v = begin; v < end; ++v) {
     const glm::dvec4 p(glm::dvec3(primitive.positions[v]), 1.0);
     glm::dvec4 sum(0.0);
     for (int k = 0; k < 4; ++k) {
       const double w = primitive.weights[v][k];
       if (w != 0.0) sum += w * (skinning[primitive.joints[v][k]] * p);
     }
-    out[v] = glm::dvec3(sum);
+    out[v - begin] = glm::dvec3(sum);
   }
 }
 

@@ -28,6 +28,9 @@ void skinning_matrices(const Skeleton& skeleton, const std::vector<glm::dmat4>& 
 // v'_k = Σ_i w_ki · S_{j_ki} · v_k for every vertex of the primitive.
 void skin_positions(const Primitive& primitive, const std::vector<glm::dmat4>& skinning,
                     std::vector<glm::dvec3>& out);
+// The same for the vertices [begin, end) only: out[i] is vertex begin + i.
+void skin_positions(const Primitive& primitive, const std::vector<glm::dmat4>& skinning,
+                    size_t begin, size_t end, std::vector<glm::dvec3>& out);
 
 // Convenience: every primitive's skinned positions, concatenated, at time t of a clip.
 // clip == nullptr skins the rest pose.
