@@ -183,7 +183,8 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
       posed[i] = {s.bind, TriangleBvh(s.bind, s.triangles)};
       return;
     }
-    s.plan = plan_samples(s.bind, s.triangles, spacing);
+    s.plan = plan_samples(s.bind, s.triangles,
+                          limited_spacing(s.bind, s.triangles, spacing, options.max_points));
     limit_points(s.plan, options.max_points);
   });
   // note: each point's closest triangle in the last pose, the first guess in the next one.

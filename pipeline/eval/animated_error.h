@@ -33,6 +33,15 @@ struct SurfaceSampling {
 // points kept.
 void limit_points(SurfaceSampling& plan, uint32_t max_points);
 
+// The spacing to plan a surface at when it will be thinned to max_points: `spacing` when its
+// grid would hold no more than about max_points points, otherwise the wider spacing at which
+// it would hold about kPlannedPerKept × max_points (from the surface's area). A coarse LoD
+// planned at a fine original's spacing gets about as many points as the original, nearly all
+// of them thinned away again; this keeps what thinning keeps without making them first.
+constexpr double kPlannedPerKept = 4.0;
+double limited_spacing(const std::vector<glm::dvec3>& positions,
+                       const std::vector<uint32_t>& triangles, double spacing, uint32_t max_points);
+
 // Grid level per triangle: k = clamp(ceil(longest edge / spacing), 1, 16); points are the
 // barycentric grid (i/k, j/k) plus the centroid: a triangle no longer than `spacing` gives
 // its corners and centroid, a longer one also points on its edges and inside. Vertices are

@@ -231,6 +231,22 @@ void limit_points(SurfaceSampling& plan, uint32_t max_points) {
   for (uint32_t& i : plan.triangle_points) i = static_cast<uint32_t>(i / stride);
 }
 
+double limited_spacing(const std::vector<glm::dvec3>& positions,
+                       const std::vector<uint32_t>& triangles, double spacing,
+                       uint32_t max_points) {
+  if (max_points == 0 || !(spacing > 0.0)) return spacing;
+  double area = 0.0;
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const glm::dvec3& a = positions[triangles[t]];
+    const double a2 =
+        glm::length(glm::cross(positions[triangles[t + 1]] - a, positions[triangles[t + 2]] - a));
+    if (std::isfinite(a2)) area += 0.5 * a2;
+  }
+  // note: a triangular grid of spacing h holds 2 / (√3 h²) points per unit of area.
+  const double wide = std::sqrt(2.0 / std::sqrt(3.0) * area / (kPlannedPerKept * max_points));
+  return std::isfinite(wide) ? std::max(spacing, wide) : spacing;
+}
+
 std::vector<double> point_weights(const SurfaceSampling& plan,
                                   const std::vector<glm::dvec3>& positions,
                                   const std::vector<uint32_t>& triangles) {

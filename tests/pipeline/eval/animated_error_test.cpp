@@ -166,6 +166,25 @@ TEST(TriangleBvh, RefitAnswersLikeARebuild) {
   }
 }
 
+TEST(SurfaceSampling, ALimitWidensOnlyTheSpacingOfSurfacesBeyondIt) {
+  // A unit square of 512 triangles at a fine spacing: tens of thousands of grid points.
+  const TriangleSurface coarse = grid(16, 1.0);
+  const double fine = 0.005;
+  const size_t planned = plan_samples(coarse.positions, coarse.triangles, fine).points.size();
+  ASSERT_GT(planned, 10000u);
+  EXPECT_EQ(limited_spacing(coarse.positions, coarse.triangles, fine, 0), fine);
+  EXPECT_EQ(limited_spacing(coarse.positions, coarse.triangles, fine, 100000), fine);
+  // Under a limit of 256 it is planned at about kPlannedPerKept × 256 points (the estimate is
+  // for equilateral grids; right triangles hold somewhat more).
+  const double wide = limited_spacing(coarse.positions, coarse.triangles, fine, 256);
+  EXPECT_GT(wide, fine);
+  const size_t kept = plan_samples(coarse.positions, coarse.triangles, wide).points.size();
+  EXPECT_GE(kept, 256u);
+  EXPECT_LE(kept, static_cast<size_t>(3 * kPlannedPerKept * 256));
+  // A degenerate or empty surface keeps the spacing it was given.
+  EXPECT_EQ(limited_spacing(coarse.positions, {}, fine, 256), fine);
+}
+
 TEST(SurfaceSampling, LimitedPointsEstimateTheWholeMeasure) {
   // A 40 x 40 grid against a plane tilted under it: the distance varies over the surface.
   const TriangleSurface a = grid(40, 1.0);
