@@ -211,10 +211,20 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   std::vector<std::vector<SurfaceError>> per_frame(frames.size());
   std::vector<Transform> local;
   std::vector<glm::dmat4> global, skinning;
+  std::vector<std::vector<glm::dmat4>> poses;  // per frame measured; empty for a repeat
   for (size_t f = 0; f < frames.size(); ++f) {
     sample_clip(original.skeleton, *frames[f].clip, frames[f].t, local);
     local_to_global(original.skeleton, local, global);
     skinning_matrices(original.skeleton, global, skinning);
+    // note: a clip that ends where it starts, and a hold, give a pose already measured; its
+    // answers are the same (the searches' starting guesses change only their speed).
+    const auto seen = std::find(poses.begin(), poses.end(), skinning);
+    if (seen != poses.end()) {
+      per_frame[f] = per_frame[static_cast<size_t>(seen - poses.begin())];
+      poses.emplace_back();  // keeps poses[g] the pose of frame g
+      continue;
+    }
+    poses.push_back(skinning);
     parallel_for(posed.size(), options.threads, [&](size_t i) {
       std::vector<glm::dvec3> scratch;
       skin(i == 0 ? base : surfaces[i - 1], skinning, posed[i].at, scratch);

@@ -406,6 +406,33 @@ TEST(AnimatedError, SkippingTheBindPoseChangesOnlyTheBindNumbers) {
   EXPECT_EQ(bind.mean_rms, bind.bind_rms);
 }
 
+TEST(AnimatedError, APoseThatComesBackCountsOnceForEachFrame) {
+  // There and back: frames at t = 0, 0.5 and 1 at 2 fps, the first and the last the same pose,
+  // which is measured once and counted twice.
+  const SkinnedAsset lod = bending_strip(1.0, 0.03);
+  SkinnedAsset round_trip = bending_strip(1.0, 0.0);
+  Clip& clip = round_trip.clips[0];
+  clip.duration = 1.0;
+  clip.channels[1].rotation.times = {0.0, 0.5, 1.0};
+  clip.channels[1].rotation.values = {
+      glm::dquat(1, 0, 0, 0), glm::angleAxis(kPi / 2, glm::dvec3(0, 0, 1)), glm::dquat(1, 0, 0, 0)};
+  // The two poses on their own: one-frame clips holding each.
+  SkinnedAsset straight = round_trip, bent = round_trip;
+  straight.clips[0].duration = 0.0;
+  bent.clips[0].duration = 0.0;
+  bent.clips[0].channels[1].rotation.values[0] = clip.channels[1].rotation.values[1];
+  AnimatedErrorOptions at_2fps;
+  at_2fps.fps = 2.0;
+  const AnimatedError e = animated_error(round_trip, lod, at_2fps);
+  const AnimatedError s = animated_error(straight, lod, at_2fps);
+  const AnimatedError b = animated_error(bent, lod, at_2fps);
+  ASSERT_EQ(e.frames, 3);
+  ASSERT_EQ(s.frames, 1);
+  EXPECT_NE(s.mean_rms, b.mean_rms);
+  EXPECT_NEAR(e.mean_rms, (2.0 * s.mean_rms + b.mean_rms) / 3.0, 1e-12 * e.mean_rms);
+  EXPECT_EQ(e.max, std::max(s.max, b.max));
+}
+
 TEST(AnimatedError, RejectsAnotherSkeleton) {
   const SkinnedAsset a = bending_strip(1.0, 0.0);
   const SkinnedAsset b = rigid_character(grid(1, 1.0));
