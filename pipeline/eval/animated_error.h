@@ -72,7 +72,9 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<uint32_t>& triangles, const TriangleBvh& other);
 
 // The same with the points' area weights in this pose given (point_weights): one surface
-// measured against several others computes them once.
+// measured against several others computes them once. `closest`, when given, holds each
+// point's closest triangle from the last call against the same tree (its first guess; the
+// answer does not depend on it) and receives this call's.
 OneWayDistance one_way_distance(const SurfaceSampling& plan,
                                 const std::vector<glm::dvec3>& positions,
                                 const std::vector<double>& weights, const TriangleBvh& other,

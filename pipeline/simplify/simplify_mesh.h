@@ -43,7 +43,8 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset);
 
 // Positions of every position (normalised) in each pose, from skinning matrices per pose
 // (pose 0 = bind): out[p * poses + s], a position's poses side by side (the collapse loop
-// reads all poses of a few positions at a time).
+// reads all poses of a few positions at a time). On `threads` (0 = every core); the result
+// does not depend on them.
 std::vector<glm::dvec3> posed_positions(const SkinnedAsset& asset, const SimplifyMesh& mesh,
                                         const std::vector<std::vector<glm::dmat4>>& poses,
                                         int threads = 1);
