@@ -19,10 +19,6 @@ constexpr double kMinBindNormalDot = 0.0;
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
 
-// From this many positions on, and when more than one thread is allowed, a second thread
-// evaluates the queue's runner-up while the loop evaluates its top (see Lookahead below).
-constexpr uint32_t kLookaheadPositions = 20000;
-
 // A collapse of the position whose list holds it onto `to`. Every live directed edge has
 // at most one; its DQEM cost is always computed on the current quadrics (candidates of a
 // position whose quadric changes are replaced).
@@ -59,7 +55,7 @@ class Collapser {
  public:
   Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
             bool all_poses, uint32_t priced_positions, DqemCost& cost, CollapseStats& stats,
-            int threads)
+            int threads, uint32_t lookahead_positions)
       : mesh_(mesh),
         posed_(posed),
         poses_(poses),
@@ -68,7 +64,8 @@ class Collapser {
         cost_(cost),
         stats_(stats),
         queue_(mesh.position_count()),
-        lookahead_(thread_count(threads, 2) > 1 && mesh.position_count() >= kLookaheadPositions) {
+        lookahead_(thread_count(threads, 2) > 1 && lookahead_positions > 0 &&
+                   mesh.position_count() >= lookahead_positions) {
     const uint32_t positions = mesh.position_count();
     corner_ = mesh.triangles;
     triangle_alive_.assign(mesh.triangle_count(), 1);
@@ -835,8 +832,11 @@ class Collapser {
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          bool all_poses, uint32_t priced_positions, DqemCost& cost,
-                                         CollapseStats& stats, int threads) {
-  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats, threads).run();
+                                         CollapseStats& stats, int threads,
+                                         uint32_t lookahead_positions) {
+  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats, threads,
+                   lookahead_positions)
+      .run();
 }
 
 }  // namespace crowdbake

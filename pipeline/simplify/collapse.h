@@ -50,10 +50,11 @@ constexpr double kLimbFraction = 0.15;
 // seam crossings and flips in the other sampled poses (when all_poses) are priced. The flip
 // and left-behind prices apply once at most `priced_positions` positions are left (0: always).
 // threads (0: all cores): more than one lets a second thread evaluate the next attempt ahead
-// on big meshes; the records do not depend on it.
+// on meshes of lookahead_positions or more (0: never); the records depend on neither.
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          bool all_poses, uint32_t priced_positions, DqemCost& cost,
-                                         CollapseStats& stats, int threads = 1);
+                                         CollapseStats& stats, int threads = 1,
+                                         uint32_t lookahead_positions = 20000);
 
 }  // namespace crowdbake

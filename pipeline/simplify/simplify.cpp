@@ -57,7 +57,7 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
   CollapseStats stats;
   const std::vector<CollapseRecord> records = collapse_all(
       mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
-      options.max_pose_priced_positions, cost, stats, options.threads);
+      options.max_pose_priced_positions, cost, stats, options.threads, options.lookahead_positions);
   ProgressiveMesh pm =
       build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
   r.seconds_collapse = seconds_since(start);

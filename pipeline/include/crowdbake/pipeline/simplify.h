@@ -48,6 +48,11 @@ struct SimplifyOptions {
   // errors, and the simplification takes a third of the time (docs/simplification.md,
   // "Hero meshes"). 0 = prices from the first collapse.
   uint32_t max_pose_priced_positions = 100000;
+  // From this many positions on, with more than one thread, a second thread evaluates the
+  // collapse queue's runner-up while the loop evaluates its top (docs/simplification.md,
+  // "Lookahead"); below it the handover costs more than it saves. The result never depends
+  // on it. 0 = never.
+  uint32_t lookahead_positions = 20000;
 };
 
 struct SimplifyReport {
