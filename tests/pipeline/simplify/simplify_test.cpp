@@ -15,6 +15,7 @@
 #include "crowdbake/pipeline/pose_evaluator.h"
 #include "gltf_test_builder.h"
 #include "pipeline_calls.h"
+#include "same_simplification.h"
 #include "simplify/collapse.h"
 #include "simplify/dqem.h"
 #include "simplify/pose_sampler.h"
@@ -416,16 +417,7 @@ SimplifyReport expect_same_whatever_the_threads(int rings, int segments, int thr
   SimplifyOptions one, many;
   one.threads = 1;
   many.threads = threads;
-  SimplifyReport r1, r2;
-  const ProgressiveMesh x = test::simplify_or_throw(a, one, &r1);
-  const ProgressiveMesh y = test::simplify_or_throw(a, many, &r2);
-  EXPECT_EQ(x.vertex_source, y.vertex_source);
-  EXPECT_EQ(x.triangles, y.triangles);
-  EXPECT_EQ(x.collapse_to, y.collapse_to);
-  EXPECT_EQ(r1.priced_flips, r2.priced_flips);
-  EXPECT_EQ(r1.rejected_flips, r2.rejected_flips);
-  EXPECT_EQ(r1.seam_crossings, r2.seam_crossings);
-  return r1;
+  return test::expect_same_simplification(a, one, many);
 }
 
 TEST(SimplifyDeterminism, SameInputsSameArraysWhateverTheThreads) {
