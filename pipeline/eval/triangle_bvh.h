@@ -8,12 +8,9 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-namespace crowdbake {
+#include "eval/closest_point.h"
 
-// Closest point to p on triangle (a, b, c); degenerate triangles (zero area, or all three
-// corners equal) are handled: the answer is then the closest point on their edges.
-glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c);
+namespace crowdbake {
 
 class TriangleBvh {
  public:
