@@ -1,7 +1,7 @@
 #include "simplify/dqem.h"
 
+#include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 
 #include "crowdbake/base/parallel.h"
@@ -13,20 +13,47 @@ struct BorderEdge {
   uint32_t a, b, c;  // edge a-b of the triangle (a, b, c)
 };
 
-// Edges used by exactly one triangle, found on positions so seams are not borders.
+// Edges used by exactly one triangle, found on positions so seams are not borders, in
+// order of (lower end, higher end), each with the triangle it borders.
+// note: edges are bucketed by their lower end (a counting sort, which keeps the triangles'
+// order within a bucket) and each small bucket sorted; a map of every edge took 0.3 s of a
+// 1M-triangle mesh on one thread.
 std::vector<BorderEdge> border_edges(const SimplifyMesh& mesh) {
-  std::map<std::pair<uint32_t, uint32_t>, std::pair<int, BorderEdge>> edges;
-  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+  const uint32_t triangles = mesh.triangle_count();
+  const auto corner = [&](uint32_t t, int k) {
+    return mesh.position_of[mesh.triangles[3 * t + k]];
+  };
+  std::vector<uint32_t> start(size_t{mesh.position_count()} + 1, 0);
+  for (uint32_t t = 0; t < triangles; ++t)
+    for (int k = 0; k < 3; ++k) ++start[std::min(corner(t, k), corner(t, (k + 1) % 3)) + 1];
+  for (size_t p = 1; p < start.size(); ++p) start[p] += start[p - 1];
+  struct Edge {
+    uint32_t high, slot;  // the edge's higher end; 3 × triangle + its first corner
+  };
+  std::vector<Edge> edges(3 * size_t{triangles});
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (uint32_t t = 0; t < triangles; ++t)
     for (int k = 0; k < 3; ++k) {
-      const uint32_t a = mesh.position_of[mesh.triangles[3 * t + k]];
-      const uint32_t b = mesh.position_of[mesh.triangles[3 * t + (k + 1) % 3]];
-      const uint32_t c = mesh.position_of[mesh.triangles[3 * t + (k + 2) % 3]];
-      auto& e = edges[{std::min(a, b), std::max(a, b)}];
-      if (e.first++ == 0) e.second = {a, b, c};
+      const uint32_t a = corner(t, k), b = corner(t, (k + 1) % 3);
+      edges[fill[std::min(a, b)]++] = {std::max(a, b), 3 * t + k};
     }
   std::vector<BorderEdge> out;
-  for (const auto& [key, e] : edges)
-    if (e.first == 1) out.push_back(e.second);
+  for (size_t p = 0; p + 1 < start.size(); ++p) {
+    const auto first = edges.begin() + start[p], last = edges.begin() + start[p + 1];
+    std::sort(first, last, [](const Edge& x, const Edge& y) {
+      return x.high != y.high ? x.high < y.high : x.slot < y.slot;
+    });
+    for (auto it = first; it != last;) {
+      auto next = it + 1;
+      while (next != last && next->high == it->high) ++next;
+      if (next - it == 1) {
+        const uint32_t t = it->slot / 3;
+        const int k = static_cast<int>(it->slot % 3);
+        out.push_back({corner(t, k), corner(t, (k + 1) % 3), corner(t, (k + 2) % 3)});
+      }
+      it = next;
+    }
+  }
   return out;
 }
 
