@@ -543,6 +543,7 @@ class Collapser {
     for (const std::vector<uint32_t>* before : {&scratch.from_ring, &scratch.to_ring})
       for (uint32_t x : *before)
         if (x != from && x != to && !std::binary_search(ring.begin(), ring.end(), x)) {
+          ++star_[x];  // note: it lost the removed face, so its prices are stale
           forget(x, from, to);
           update(x);
         }
