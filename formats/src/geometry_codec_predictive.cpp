@@ -347,8 +347,9 @@ void encode_geometry_predictive(const PackGeometry& g, const PackProgressive& pr
   parts.push_back([&](ByteWriter& w) {
     put_attribute(w, keys, float_layout(3, layout.position_bits), p, rules[kSlotPosition]);
   });
-  parts.push_back(
-      [&](ByteWriter& w) { put_predictive_triangles(w, g.triangles, n, keys, p.prog); });
+  parts.push_back([&](ByteWriter& w) {
+    put_predictive_triangles(w, g.triangles, n, keys, p.prog, layout.threads);
+  });
   if (layout.has(kAttrNormals))
     parts.push_back([&](ByteWriter& w) {
       const int bits = layout.normal_bits;

@@ -8,10 +8,12 @@
 #include "predictive_triangles.h"
 
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 #include <string>
 #include <tuple>
 
+#include "crowdbake/base/parallel.h"
 #include "symbol_stream.h"
 
 namespace crowdbake::pack_io {
@@ -286,7 +288,7 @@ struct TriangleStreams {
 
 void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& triangles,
                               uint32_t vertex_count, const std::vector<uint32_t>& position_keys,
-                              const PackProgressive* prog) {
+                              const PackProgressive* prog, int threads) {
   TriangleStreams s;
   TriangleModel m(vertex_count, position_keys, prog);
   const uint32_t count = static_cast<uint32_t>(triangles.size() / 3);
@@ -323,11 +325,17 @@ void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& tria
   out.u32(static_cast<uint32_t>(s.first_use.size()));
   out.u32(static_cast<uint32_t>(s.escape.size()));
   out.u32(static_cast<uint32_t>(s.subtree.size()));
-  for (const std::vector<uint32_t>& corner : s.corner) put_symbols(out, corner, 1);
-  put_symbols(out, s.wedge, 1);
-  put_symbols(out, s.first_use, 1);
-  put_symbols(out, s.escape, 1);
-  put_symbols(out, s.subtree, 1);
+  // note: each stream is padded to 4 bytes from where it starts, so streams coded apart and
+  // appended to an aligned writer are the same bytes as streams coded into it in turn.
+  const std::vector<uint32_t>* streams[] = {&s.corner[0], &s.corner[1], &s.corner[2], &s.wedge,
+                                            &s.first_use, &s.escape,    &s.subtree};
+  if (threads == 1 || out.bytes().size() % 4 != 0) {
+    for (const std::vector<uint32_t>* stream : streams) put_symbols(out, *stream, 1);
+    return;
+  }
+  std::vector<ByteWriter> coded(std::size(streams));
+  parallel_for(coded.size(), threads, [&](size_t i) { put_symbols(coded[i], *streams[i], 1); });
+  for (const ByteWriter& w : coded) out.raw(w.bytes().data(), w.bytes().size());
 }
 
 namespace {

@@ -17,9 +17,10 @@ namespace crowdbake::pack_io {
 // `position_keys`: three integers per vertex; vertices with equal keys share a position
 // (the quantised positions, which the decoder has before the triangles). `prog` may be null
 // (then no level is known); it must satisfy PROG's structural rules for `vertex_count`.
+// The symbol streams are coded on `threads` (0 = every core); the bytes never depend on it.
 void put_predictive_triangles(ByteWriter& out, const std::vector<uint32_t>& triangles,
                               uint32_t vertex_count, const std::vector<uint32_t>& position_keys,
-                              const PackProgressive* prog);
+                              const PackProgressive* prog, int threads = 1);
 
 bool get_predictive_triangles(ByteReader& in, uint32_t triangle_count, uint32_t vertex_count,
                               const std::vector<uint32_t>& position_keys,
