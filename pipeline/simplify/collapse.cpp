@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "crowdbake/base/parallel.h"
-#include "eval/triangle_bvh.h"
+#include "eval/closest_point.h"
 #include "simplify/position_queue.h"
 
 namespace crowdbake {
