@@ -480,9 +480,10 @@ class Collapser {
 
   // An evaluation reads the faces around its two ends and their corners, their stars, the
   // ends' quadrics and the live positions of from's limb. A collapse of `from` onto `to`
-  // changes the faces around `from`, `to` and their rings, the stars of `to` and its ring
-  // after, the quadric of `to` and the count of from's limb: an evaluation of a pair with an
-  // end among those positions, or made before a collapse of a limb's position, is dropped.
+  // changes the faces around `from`, `to` and their rings, the stars of `to`, its ring after
+  // and the former neighbours that left it, the quadric of `to` and the count of from's limb:
+  // an evaluation of a pair with an end among those positions, or made before a collapse of
+  // a limb's position, is dropped.
   void forget_ahead_near(uint32_t from, uint32_t to, const Scratch& scratch) {
     if (!ahead_ready_) return;
     const auto near = [&](uint32_t p) {
