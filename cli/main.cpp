@@ -128,6 +128,11 @@ void add_bench_render(Commands& c) {
       ->add_option("--pixel-errors", bench_render.pixel_errors,
                    "Error-driven rows: lod.max_pixel_error values in pixels (default 0.5,1,2)")
       ->delimiter(',');
+  bench_render_cmd
+      ->add_option("--uniform-levels", bench_render.uniform_levels,
+                   "Uniform rows: every instance at this fraction of the full vertex count, in "
+                   "(0, 1] (default none)")
+      ->delimiter(',');
   bench_render_cmd->add_option("--frames", bench_render.frames,
                                "Timed frames per configuration after one warm-up (default 3)");
   bench_render_cmd->add_option("--resolution", bench_render.resolution,

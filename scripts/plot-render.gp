@@ -11,7 +11,8 @@
 # change |dLoD - dFull| on 4x-shrunk images (lower = less popping).
 # datafile: one block per size (columns: mode, budget, frame_ms, psnr, triangles, psnr_4x);
 # popfile: pair, then per sequence (continuous, discrete equal, discrete same budget, full,
-# continuous with geomorphs) three columns: change_4x, error jump, popping pixels (%).
+# continuous with geomorphs, error-driven at equal triangles) three columns: change_4x, error
+# jump, popping pixels (%).
 if (!exists("datafile")) datafile = 'docs/data/render-bench.dat'
 if (!exists("popfile")) popfile = ''
 if (!exists("outfile")) outfile = 'docs/render-bench.png'
@@ -43,6 +44,7 @@ do for [i = 0:n - 1] {
        '' index i using 3:(is('discrete') ? $6 : NaN) with linespoints pt 4 ps 0.9 dt 2 lc rgb "#d62728" title "discrete, 4x-shrunk images", \
        '' index i using 3:(is('error') ? $4 : NaN) with linespoints pt 13 ps 1.3 lc rgb "#2ca02c" title "error-driven (0.5, 1, 2 px)", \
        '' index i using 3:(is('error') ? $6 : NaN) with linespoints pt 12 ps 1.1 dt 2 lc rgb "#2ca02c" title "error-driven, 4x-shrunk images", \
+       '' index i using 3:(is('uniform') ? $4 : NaN) with linespoints pt 8 ps 1.1 dt 4 lc rgb "#8c564b" title "one level for every instance (--uniform-levels)", \
        '' index i using 3:(is('full') ? $4 : NaN) with points pt 9 ps 1.6 lc rgb "#555555" title "full resolution (reference)", \
        '' index i using 3:4:(is('continuous') ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
        35 with lines dt 3 lc rgb "#2ca02c" title "35 dB target"
@@ -57,7 +59,8 @@ if (has_pop) {
   set y2tics
   set yrange [0:*]
   set y2range [0:*]
-  plot popfile using 1:4 with lines lw 2 lc rgb "#1f77b4" title "continuous: popping pixels", \
+  plot popfile using 1:4 with lines lw 2 lc rgb "#1f77b4" title "continuous (budget): popping pixels", \
+       '' using 1:19 with lines lw 2 lc rgb "#2ca02c" title "error-driven: popping pixels", \
        '' using 1:7 with lines lw 2 lc rgb "#d62728" title "discrete: popping pixels", \
        '' using 1:16 with lines lw 1 lc rgb "#9467bd" title "continuous with geomorphs: popping pixels", \
        '' using 1:2 axes x1y2 with lines lw 1 dt 2 lc rgb "#1f77b4" title "continuous: mean change (right)", \

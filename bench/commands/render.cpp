@@ -162,6 +162,32 @@ uint32_t discrete_budget_for(runtime::Scene& scene, const Dolly& dolly, double t
   return best;
 }
 
+// The error-mode pixel error whose mean triangle count over the dolly is closest to `target`,
+// with a cap no selection reaches (so the pixel error alone decides; bisection in log space).
+// Leaves the scene's LoD settings as it found them.
+float pixel_error_for(runtime::Scene& scene, const Dolly& dolly, double target, double& achieved) {
+  const runtime::LodSettings saved = scene.lod;
+  scene.lod.mode = runtime::LodMode::kError;
+  scene.lod.budget = std::numeric_limits<uint32_t>::max();
+  double lo = 1.0 / 64, hi = 64;
+  float best = 1.0f;
+  double best_gap = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 28; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    scene.lod.max_pixel_error = static_cast<float>(mid);
+    const double tris = mean_selected_triangles(scene, dolly);
+    if (std::abs(tris - target) < best_gap) {
+      best_gap = std::abs(tris - target);
+      best = scene.lod.max_pixel_error;
+      achieved = tris;
+    }
+    if (best_gap <= 0.002 * target) break;
+    (tris > target ? lo : hi) = mid;  // a larger pixel error selects fewer triangles
+  }
+  scene.lod = saved;
+  return best;
+}
+
 struct PopSequence {
   std::vector<RgbaImage> frames, small;  // small: shrunk 4x
   std::vector<double> triangles;
@@ -279,12 +305,14 @@ void check_settings(const BenchRenderSettings& s) {
   for (float p : s.pixel_errors)
     if (!(p > 0.0f) || !std::isfinite(p))
       throw usage("--pixel-errors", "pixel errors must be numbers > 0");
+  for (float f : s.uniform_levels)
+    if (!(f > 0.0f && f <= 1.0f)) throw usage("--uniform-levels", "fractions must be in (0, 1]");
   if (s.pop_size > 0 && (s.pop_frames < 2 || s.pop_frames > 1000))
     throw usage("--pop-frames", "must be in 2..1000");
 }
 
 // One stand of n instances: full resolution (the reference), continuous and discrete LoD at
-// each budget, and error-driven selection at each pixel error.
+// each budget, error-driven selection at each pixel error, and the uniform levels.
 void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_t n,
                    const BenchRenderSettings& s, uint32_t width, uint32_t height,
                    RenderBenchResult& result) {
@@ -335,6 +363,28 @@ void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_
     rows.push_back(row);
     print_render_rows({row}, false);
   }
+  // Uniform levels: discrete mode with one level and the budget of full resolution, so every
+  // instance draws that level whatever its distance (one level is also the coarsest).
+  const uint32_t every_at_full = static_cast<uint32_t>(
+      std::min<uint64_t>(std::numeric_limits<uint32_t>::max(),
+                         full_tris / result.pack_triangles * result.pack_vertices));
+  for (float fraction : s.uniform_levels) {
+    const runtime::LodSettings saved = scene.lod;
+    scene.lod.discrete_levels[0] = fraction;
+    scene.lod.discrete_level_count = 1;
+    RenderBenchRow row;
+    const RgbaImage image = measure(context, *renderer, scene, runtime::LodMode::kDiscrete,
+                                    every_at_full, 1, s.frames, row);
+    scene.lod = saved;
+    row.mode = "uniform";
+    row.budget = 0;
+    char note[64];
+    std::snprintf(note, sizeof note, "every instance at %g of the vertices", fraction);
+    row.note = note + (row.note.empty() ? "" : "; " + row.note);
+    score(row, image, reference, reference_4x, full);
+    rows.push_back(row);
+    print_render_rows({row}, false);
+  }
   result.rows.insert(result.rows.end(), rows.begin(), rows.end());
 }
 
@@ -356,10 +406,12 @@ void measure_popping(gpu::VulkanContext& context, const std::string& pack,
   const double target = mean_selected_triangles(scene, dolly);
   double achieved = 0;
   const uint32_t equal = discrete_budget_for(scene, dolly, target, budget, achieved);
+  double error_achieved = 0;
+  const float pixels = pixel_error_for(scene, dolly, target, error_achieved);
   std::printf(
       "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
-      "reference); discrete N = %u selects %.0f\n",
-      budget, target, equal, achieved);
+      "reference); discrete N = %u selects %.0f; error mode at %.3g px selects %.0f\n",
+      budget, target, equal, achieved, pixels, error_achieved);
   auto renderer = make_renderer(context, scene, s.shadows, s.msaa, "bench dolly");
   result.pop_instances = s.pop_size;
   result.pop_frames = s.pop_frames;
@@ -377,6 +429,12 @@ void measure_popping(gpu::VulkanContext& context, const std::string& pack,
   const PopSequence cont_morph =
       render_sequence(context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, "");
   scene.lod.geomorph = geomorph;
+  // The default selection, error-driven, at the pixel error that spends the same triangles.
+  const runtime::LodSettings saved = scene.lod;
+  scene.lod.max_pixel_error = pixels;
+  const PopSequence error = render_sequence(context, *renderer, scene, runtime::LodMode::kError,
+                                            std::numeric_limits<uint32_t>::max(), dolly, "");
+  scene.lod = saved;
   result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
   result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
   result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
@@ -384,6 +442,9 @@ void measure_popping(gpu::VulkanContext& context, const std::string& pack,
   char morph_why[32];
   std::snprintf(morph_why, sizeof morph_why, "geomorphs %g", s.geomorph);
   result.pops.push_back(pop_row(cont_morph, full, "continuous", budget, morph_why));
+  char error_why[48];
+  std::snprintf(error_why, sizeof error_why, "equal triangles, %.3g px", pixels);
+  result.pops.push_back(pop_row(error, full, "error", 0, error_why));
   print_pop_rows(result);
 }
 
@@ -425,6 +486,7 @@ int run_bench_render(const BenchRenderSettings& settings) {
     s.sizes = {60};
     s.budgets = {3000, 12000};
     s.pixel_errors = {1.0f};
+    s.uniform_levels = {0.5f};
     s.frames = 1;
     s.resolution = "256x144";
     s.pop_size = 60;

@@ -58,6 +58,9 @@ struct BenchRenderSettings {
   bool shadows = true;
   uint32_t msaa = 4;  // samples per pixel of every image, the full-resolution reference too
   std::vector<float> pixel_errors{0.5f, 1.0f, 2.0f};  // error-mode rows (max_pixel_error)
+  // Uniform rows: every instance at one level, this fraction of the full vertex count (none by
+  // default): what image quality each triangle count buys when no selection is involved.
+  std::vector<float> uniform_levels;
   float geomorph = 0.25f;  // lod.geomorph of the dolly's extra continuous sequence
   // Seats of the far stand (200 a row, seen from about 350 m and 720 m at 640x360, shadows
   // off): full resolution, the coarsest level, error mode with and without impostors (0 = none).
