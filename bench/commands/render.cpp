@@ -137,55 +137,58 @@ double mean_selected_triangles(runtime::Scene& scene, const Dolly& dolly) {
   return total / static_cast<double>(dolly.cameras.size());
 }
 
-// The discrete budget whose mean triangle count over the dolly is closest to `target`
-// (bisection in log space). Leaves the scene's LoD settings as it found them.
-uint32_t discrete_budget_for(runtime::Scene& scene, const Dolly& dolly, double target,
-                             uint32_t start, double& achieved) {
+// The setting in [lo, hi] whose mean triangle count over the dolly is closest to `target`, by
+// bisection in log space: `apply` puts a value into the scene's LoD settings (and returns what
+// it put there, after rounding), `more_when_larger` says which way the count moves. Leaves the
+// scene's LoD settings as it found them.
+template <class Apply>
+double setting_for_triangles(runtime::Scene& scene, const Dolly& dolly, double target, double lo,
+                             double hi, bool more_when_larger, Apply apply, double& achieved) {
   const runtime::LodSettings saved = scene.lod;
-  scene.lod.mode = runtime::LodMode::kDiscrete;
-  double lo = std::max(1.0, start / 8.0), hi = std::min(4294967295.0, start * 32.0);
-  uint32_t best = start;
+  double best = lo;
   double best_gap = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 28; ++it) {
     const double mid = std::sqrt(lo * hi);
-    scene.lod.budget = static_cast<uint32_t>(mid);
+    const double applied = apply(scene.lod, mid);
     const double tris = mean_selected_triangles(scene, dolly);
     if (std::abs(tris - target) < best_gap) {
       best_gap = std::abs(tris - target);
-      best = scene.lod.budget;
+      best = applied;
       achieved = tris;
     }
     if (best_gap <= 0.002 * target) break;
-    (tris < target ? lo : hi) = mid;
+    ((tris < target) == more_when_larger ? lo : hi) = mid;
   }
   scene.lod = saved;
   return best;
 }
 
-// The error-mode pixel error whose mean triangle count over the dolly is closest to `target`,
-// with a cap no selection reaches (so the pixel error alone decides; bisection in log space).
-// Leaves the scene's LoD settings as it found them.
+// The budget that spends `target` triangles a frame on the dolly in `mode` (discrete or
+// continuous).
+uint32_t budget_for(runtime::LodMode mode, runtime::Scene& scene, const Dolly& dolly, double target,
+                    uint32_t start, double& achieved) {
+  return static_cast<uint32_t>(setting_for_triangles(
+      scene, dolly, target, std::max(1.0, start / 8.0), std::min(4294967295.0, start * 32.0), true,
+      [mode](runtime::LodSettings& lod, double v) {
+        lod.mode = mode;
+        lod.budget = static_cast<uint32_t>(v);
+        return static_cast<double>(lod.budget);
+      },
+      achieved));
+}
+
+// The error-mode pixel error that spends `target` triangles a frame on the dolly, under a cap
+// no selection reaches (so the pixel error alone decides).
 float pixel_error_for(runtime::Scene& scene, const Dolly& dolly, double target, double& achieved) {
-  const runtime::LodSettings saved = scene.lod;
-  scene.lod.mode = runtime::LodMode::kError;
-  scene.lod.budget = std::numeric_limits<uint32_t>::max();
-  double lo = 1.0 / 64, hi = 64;
-  float best = 1.0f;
-  double best_gap = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < 28; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    scene.lod.max_pixel_error = static_cast<float>(mid);
-    const double tris = mean_selected_triangles(scene, dolly);
-    if (std::abs(tris - target) < best_gap) {
-      best_gap = std::abs(tris - target);
-      best = scene.lod.max_pixel_error;
-      achieved = tris;
-    }
-    if (best_gap <= 0.002 * target) break;
-    (tris > target ? lo : hi) = mid;  // a larger pixel error selects fewer triangles
-  }
-  scene.lod = saved;
-  return best;
+  return static_cast<float>(setting_for_triangles(
+      scene, dolly, target, 1.0 / 64, 64.0, false,
+      [](runtime::LodSettings& lod, double v) {
+        lod.mode = runtime::LodMode::kError;
+        lod.budget = std::numeric_limits<uint32_t>::max();
+        lod.max_pixel_error = static_cast<float>(v);
+        return static_cast<double>(lod.max_pixel_error);
+      },
+      achieved));
 }
 
 struct PopSequence {
@@ -312,7 +315,8 @@ void check_settings(const BenchRenderSettings& s) {
 }
 
 // One stand of n instances: full resolution (the reference), continuous and discrete LoD at
-// each budget, error-driven selection at each pixel error, and the uniform levels.
+// each budget, both continuous selections at the discrete rows' triangle counts, error-driven
+// selection at each pixel error, and the uniform levels.
 void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_t n,
                    const BenchRenderSettings& s, uint32_t width, uint32_t height,
                    RenderBenchResult& result) {
@@ -350,6 +354,46 @@ void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_
       rows.push_back(row);
       print_render_rows({row}, false);
     }
+  // Equal triangles: at each triangle count the discrete rows drew, the budget formula and the
+  // error-driven selection set to draw as many (by the CPU reference at this camera, within
+  // 0.2 %), so that the three selections compare at one cost.
+  std::vector<std::pair<uint64_t, uint32_t>> discrete_drawn;  // triangles, budget
+  for (const RenderBenchRow& d : rows)
+    if (d.mode == "discrete" && std::none_of(discrete_drawn.begin(), discrete_drawn.end(),
+                                             [&](const auto& t) { return t.first == d.triangles; }))
+      discrete_drawn.emplace_back(d.triangles, d.budget);
+  Dolly still;
+  still.cameras = {scene.camera};
+  for (const auto& [triangles, discrete_budget] : discrete_drawn) {
+    const double target = static_cast<double>(triangles);
+    char why[80];
+    std::snprintf(why, sizeof why, "equal triangles to discrete N = %u", discrete_budget);
+    double achieved = 0;
+    const uint32_t budget =
+        budget_for(runtime::LodMode::kContinuous, scene, still, target, discrete_budget, achieved);
+    RenderBenchRow row;
+    RgbaImage image =
+        measure(context, *renderer, scene, runtime::LodMode::kContinuous, budget, 1, s.frames, row);
+    row.note = why + (row.note.empty() ? "" : "; " + row.note);
+    score(row, image, reference, reference_4x, full);
+    rows.push_back(row);
+    print_render_rows({row}, false);
+
+    const float pixels = pixel_error_for(scene, still, target, achieved);
+    const runtime::LodSettings saved = scene.lod;
+    scene.lod.max_pixel_error = pixels;
+    RenderBenchRow error_row;
+    image = measure(context, *renderer, scene, runtime::LodMode::kError,
+                    std::numeric_limits<uint32_t>::max(), 1, s.frames, error_row);
+    scene.lod = saved;
+    error_row.budget = 0;  // uncapped: the pixel error alone decides
+    char note[128];
+    std::snprintf(note, sizeof note, "%s, max_pixel_error %.3g px", why, pixels);
+    error_row.note = note + (error_row.note.empty() ? "" : "; " + error_row.note);
+    score(error_row, image, reference, reference_4x, full);
+    rows.push_back(error_row);
+    print_render_rows({error_row}, false);
+  }
   // Error-driven selection (the default mode) at a few pixel errors, the default cap N.
   for (float pixels : s.pixel_errors) {
     RenderBenchRow row;
@@ -405,7 +449,8 @@ void measure_popping(gpu::VulkanContext& context, const std::string& pack,
   scene.lod.budget = budget;
   const double target = mean_selected_triangles(scene, dolly);
   double achieved = 0;
-  const uint32_t equal = discrete_budget_for(scene, dolly, target, budget, achieved);
+  const uint32_t equal =
+      budget_for(runtime::LodMode::kDiscrete, scene, dolly, target, budget, achieved);
   double error_achieved = 0;
   const float pixels = pixel_error_for(scene, dolly, target, error_achieved);
   std::printf(
