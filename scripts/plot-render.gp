@@ -4,7 +4,8 @@
 #                scripts/plot-render.gp
 # One panel per crowd size: x = frame time (ms, log), y = PSNR against full resolution (dB;
 # full resolution itself sits on the 60 dB line); continuous points are labelled with their
-# budget N in thousands of vertices; dashed: the PSNR of both images shrunk 4x (area average).
+# budget N in thousands of vertices (not those tuned to a discrete row's triangles, whose N is
+# not a round number); dashed: the PSNR of both images shrunk 4x (area average).
 # The last panel (when popfile is given): the popping measure per frame pair of the camera
 # dolly, continuous vs. discrete at an equal triangle count — the share of 4x-shrunk pixels
 # whose change differs from full resolution's by more than 24 (visible pops), and the mean
@@ -46,7 +47,7 @@ do for [i = 0:n - 1] {
        '' index i using 3:(is('error') ? $6 : NaN) with linespoints pt 12 ps 1.1 dt 2 lc rgb "#2ca02c" title "error-driven, 4x-shrunk images", \
        '' index i using 3:(is('uniform') ? $4 : NaN) with linespoints pt 8 ps 1.1 dt 4 lc rgb "#8c564b" title "one level for every instance (--uniform-levels)", \
        '' index i using 3:(is('full') ? $4 : NaN) with points pt 9 ps 1.6 lc rgb "#555555" title "full resolution (reference)", \
-       '' index i using 3:4:(is('continuous') ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
+       '' index i using 3:4:(is('continuous') && int($2) % 1000 == 0 ? sprintf("%gk", $2 / 1000) : '') with labels offset char 0.6, char 0.7 font ",7" notitle, \
        35 with lines dt 3 lc rgb "#2ca02c" title "35 dB target"
 }
 if (has_pop) {
