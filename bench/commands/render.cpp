@@ -410,8 +410,7 @@ void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_
   // Uniform levels: discrete mode with one level and the budget of full resolution, so every
   // instance draws that level whatever its distance (one level is also the coarsest).
   const uint32_t every_at_full = static_cast<uint32_t>(
-      std::min<uint64_t>(std::numeric_limits<uint32_t>::max(),
-                         full_tris / result.pack_triangles * result.pack_vertices));
+      std::min<uint64_t>(std::numeric_limits<uint32_t>::max(), uint64_t{n} * result.pack_vertices));
   for (float fraction : s.uniform_levels) {
     const runtime::LodSettings saved = scene.lod;
     scene.lod.discrete_levels[0] = fraction;
