@@ -1,7 +1,7 @@
 // crowdbake bench render: for each stand size, full resolution first (the reference image and
-// frame time), then continuous and discrete LoD at each budget; then the popping measure over
-// a camera dolly, continuous against discrete at an equal mean triangle count, and continuous
-// without and with geomorphs.
+// frame time), then continuous and discrete LoD at each budget, both continuous selections at
+// the discrete rows' triangle counts, error-driven selection and uniform levels; then the
+// popping dolly (render_popping.h) and the far stand (render_far.h).
 
 #include <algorithm>
 #include <chrono>
@@ -13,20 +13,18 @@
 #include <limits>
 
 #include "cli/image_compare.h"
-#include "cli/image_png.h"
-#include "cli/image_sheet.h"
 #include "cli/render_device.h"
 #include "cli/render_plan.h"
 #include "commands/child.h"
 #include "commands/render_far.h"
 #include "commands/render_frame.h"
+#include "commands/render_popping.h"
 #include "commands/render_report.h"
 #include "commands/render_scene.h"
+#include "commands/triangle_match.h"
 #include "commands/work_folder.h"
 #include "crowdbake/bench/bench.h"
 #include "crowdbake/pipeline/error.h"
-#include "crowdbake/runtime/cpu_reference.h"
-#include "crowdbake/runtime/reconstruct_job.h"
 
 namespace crowdbake::bench {
 
@@ -37,34 +35,17 @@ using cli::open_vulkan;
 using cli::parse_resolution;
 using cli::psnr;
 using cli::RgbaImage;
-using cli::write_png;
 namespace fs = std::filesystem;
 namespace gpu = runtime::gpu;
 namespace {
 
-constexpr float kTableTime = 1.0f;  // scene time of the table's frames (clips mid-motion)
 constexpr uint32_t kDefaultErrorCap = 1000000;  // LodSettings::budget's default: the cap N
-constexpr float kPopFps = 30.0f;
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-const char* mode_name(runtime::LodMode mode) {
-  switch (mode) {
-    case runtime::LodMode::kContinuous:
-      return "continuous";
-    case runtime::LodMode::kError:
-      return "error";
-    case runtime::LodMode::kDiscrete:
-      return "discrete";
-    case runtime::LodMode::kFull:
-      return "full";
-  }
-  return "?";
 }
 
 // Times `frames` renders after `warmup` untimed ones; the row's counts and the returned image
@@ -74,7 +55,7 @@ RgbaImage measure(gpu::VulkanContext& context, gpu::Renderer& renderer, runtime:
                   RenderBenchRow& row) {
   scene.lod.mode = mode;
   if (budget) scene.lod.budget = budget;
-  row.mode = mode_name(mode);
+  row.mode = lod_mode_name(mode);
   row.budget = mode == runtime::LodMode::kFull ? 0 : budget;
   row.instances = static_cast<uint32_t>(scene.instances.size());
   std::vector<double> wall, gpu_ms;
@@ -107,160 +88,6 @@ void score(RenderBenchRow& row, const RgbaImage& image, const RgbaImage& referen
   row.mean_abs_diff = mean_abs_diff(image, reference);
   row.psnr_4x = psnr(shrink4(image), reference_4x);
   row.speedup = full.frame_ms / row.frame_ms;
-}
-
-// The popping dolly: one camera per frame, rendered at one scene time (animation frozen), so
-// the only thing that changes between frames is the camera, and with it the LoD selection.
-struct Dolly {
-  std::vector<runtime::Camera> cameras;
-  float time = kTableTime;
-};
-
-// Mean triangles per frame that LoD selection gives over the dolly, from the CPU reference
-// (update_frame and the packs' triangle_count tables): cheap enough to search budgets with.
-double mean_selected_triangles(runtime::Scene& scene, const Dolly& dolly) {
-  runtime::FrameState state;
-  std::vector<runtime::ProgressiveView> views;
-  for (const runtime::CharacterType& t : scene.types)
-    views.push_back(runtime::progressive_view(t.pack.contents()));
-  const runtime::Camera saved = scene.camera;
-  double total = 0;
-  for (const runtime::Camera& camera : dolly.cameras) {
-    scene.camera = camera;
-    const runtime::Status s = runtime::update_frame(scene, dolly.time, state);
-    if (!s.ok()) throw input_error("bench", s.message());
-    for (size_t i = 0; i < state.vertex_count.size(); ++i)
-      if (state.vertex_count[i] > 0)
-        total += runtime::lod_triangle_count(views[scene.instances.type[i]], state.vertex_count[i]);
-  }
-  scene.camera = saved;
-  return total / static_cast<double>(dolly.cameras.size());
-}
-
-// The setting in [lo, hi] whose mean triangle count over the dolly is closest to `target`, by
-// bisection in log space: `apply` puts a value into the scene's LoD settings (and returns what
-// it put there, after rounding), `more_when_larger` says which way the count moves. Leaves the
-// scene's LoD settings as it found them.
-template <class Apply>
-double setting_for_triangles(runtime::Scene& scene, const Dolly& dolly, double target, double lo,
-                             double hi, bool more_when_larger, Apply apply, double& achieved) {
-  const runtime::LodSettings saved = scene.lod;
-  double best = lo;
-  double best_gap = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < 28; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    const double applied = apply(scene.lod, mid);
-    const double tris = mean_selected_triangles(scene, dolly);
-    if (std::abs(tris - target) < best_gap) {
-      best_gap = std::abs(tris - target);
-      best = applied;
-      achieved = tris;
-    }
-    if (best_gap <= 0.002 * target) break;
-    ((tris < target) == more_when_larger ? lo : hi) = mid;
-  }
-  scene.lod = saved;
-  return best;
-}
-
-// The budget that spends `target` triangles a frame on the dolly in `mode` (discrete or
-// continuous).
-uint32_t budget_for(runtime::LodMode mode, runtime::Scene& scene, const Dolly& dolly, double target,
-                    uint32_t start, double& achieved) {
-  return static_cast<uint32_t>(setting_for_triangles(
-      scene, dolly, target, std::max(1.0, start / 8.0), std::min(4294967295.0, start * 32.0), true,
-      [mode](runtime::LodSettings& lod, double v) {
-        lod.mode = mode;
-        lod.budget = static_cast<uint32_t>(v);
-        return static_cast<double>(lod.budget);
-      },
-      achieved));
-}
-
-// The error-mode pixel error that spends `target` triangles a frame on the dolly, under a cap
-// no selection reaches (so the pixel error alone decides).
-float pixel_error_for(runtime::Scene& scene, const Dolly& dolly, double target, double& achieved) {
-  return static_cast<float>(setting_for_triangles(
-      scene, dolly, target, 1.0 / 64, 64.0, false,
-      [](runtime::LodSettings& lod, double v) {
-        lod.mode = runtime::LodMode::kError;
-        lod.budget = std::numeric_limits<uint32_t>::max();
-        lod.max_pixel_error = static_cast<float>(v);
-        return static_cast<double>(lod.max_pixel_error);
-      },
-      achieved));
-}
-
-struct PopSequence {
-  std::vector<RgbaImage> frames, small;  // small: shrunk 4x
-  std::vector<double> triangles;
-};
-
-PopSequence render_sequence(gpu::VulkanContext& context, gpu::Renderer& renderer,
-                            runtime::Scene& scene, runtime::LodMode mode, uint32_t budget,
-                            const Dolly& dolly, const std::string& frames_dir) {
-  scene.lod.mode = mode;
-  if (budget) scene.lod.budget = budget;
-  const runtime::Camera saved = scene.camera;
-  PopSequence seq;
-  for (size_t i = 0; i < dolly.cameras.size(); ++i) {
-    scene.camera = dolly.cameras[i];
-    Frame f = render_frame(context, renderer, scene, dolly.time);
-    seq.triangles.push_back(static_cast<double>(f.profile.triangles));
-    if (!frames_dir.empty()) {
-      char name[64];
-      std::snprintf(name, sizeof name, "%s-%u-%04zu.png", mode_name(mode), budget, i);
-      write_png((fs::path(frames_dir) / name).string(), f.image);
-    }
-    seq.small.push_back(shrink4(f.image));
-    seq.frames.push_back(std::move(f.image));
-  }
-  scene.camera = saved;
-  return seq;
-}
-
-void summarise(const std::vector<double>& values, double& mean, double& p95, double& max) {
-  std::vector<double> sorted = values;
-  std::sort(sorted.begin(), sorted.end());
-  double sum = 0;
-  for (double v : sorted) sum += v;
-  mean = sorted.empty() ? 0 : sum / static_cast<double>(sorted.size());
-  p95 = sorted.empty() ? 0
-                       : sorted[static_cast<size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
-  max = sorted.empty() ? 0 : sorted.back();
-}
-
-PopRow pop_row(const PopSequence& seq, const PopSequence& full, const char* mode, uint32_t budget,
-               const std::string& why) {
-  PopRow row;
-  row.mode = mode;
-  row.budget = budget;
-  row.why = why;
-  double tris = 0, psnr_sum = 0;
-  std::vector<double> error;  // mean |LoD - full| per frame
-  for (size_t i = 0; i < seq.frames.size(); ++i) {
-    tris += seq.triangles[i];
-    const double p = psnr(seq.frames[i], full.frames[i]);
-    psnr_sum += std::isfinite(p) ? p : 99.0;
-    error.push_back(mean_abs_diff(seq.frames[i], full.frames[i]));
-  }
-  for (size_t i = 0; i + 1 < seq.frames.size(); ++i) {
-    row.per_pair.push_back(
-        change_difference(seq.frames[i], seq.frames[i + 1], full.frames[i], full.frames[i + 1]));
-    row.per_pair_4x.push_back(
-        change_difference(seq.small[i], seq.small[i + 1], full.small[i], full.small[i + 1]));
-    row.error_jumps.push_back(std::abs(error[i + 1] - error[i]));
-    row.pop_pixels.push_back(100.0 * change_outliers(seq.small[i], seq.small[i + 1], full.small[i],
-                                                     full.small[i + 1], kPopThreshold));
-  }
-  row.mean_triangles = tris / static_cast<double>(seq.frames.size());
-  row.mean_psnr = psnr_sum / static_cast<double>(seq.frames.size());
-  summarise(row.per_pair, row.mean_change, row.p95_change, row.max_change);
-  summarise(row.per_pair_4x, row.mean_change_4x, row.p95_change_4x, row.max_change_4x);
-  double unused = 0;
-  summarise(row.error_jumps, row.mean_jump, unused, row.max_jump);
-  summarise(row.pop_pixels, row.mean_pop_pixels, unused, row.max_pop_pixels);
-  return row;
 }
 
 void draw_plot(const BenchRenderSettings& s, const std::string& data, const std::string& pop_data,
@@ -429,67 +256,6 @@ void measure_stand(gpu::VulkanContext& context, const std::string& pack, uint32_
     print_render_rows({row}, false);
   }
   result.rows.insert(result.rows.end(), rows.begin(), rows.end());
-}
-
-// The popping dolly: the same camera path at full resolution, continuous LoD, discrete LoD at
-// equal triangles and at the same budget, and continuous LoD with geomorphs.
-void measure_popping(gpu::VulkanContext& context, const std::string& pack,
-                     const BenchRenderSettings& s, uint32_t width, uint32_t height,
-                     RenderBenchResult& result) {
-  runtime::Scene scene = load_stand_scene(pack, s.pop_size, width, height);
-  Dolly dolly;
-  dolly.cameras = dolly_cameras(scene, s.pop_size, s.pop_frames);
-  const uint32_t budget =
-      s.pop_budget
-          ? s.pop_budget
-          : std::max<uint32_t>(
-                1, static_cast<uint32_t>(0.25 * s.pop_size * scene.types[0].pack.max_vertices()));
-  scene.lod.mode = runtime::LodMode::kContinuous;
-  scene.lod.budget = budget;
-  const double target = mean_selected_triangles(scene, dolly);
-  double achieved = 0;
-  const uint32_t equal =
-      budget_for(runtime::LodMode::kDiscrete, scene, dolly, target, budget, achieved);
-  double error_achieved = 0;
-  const float pixels = pixel_error_for(scene, dolly, target, error_achieved);
-  std::printf(
-      "\npopping: continuous N = %u selects %.0f triangles a frame on average (CPU "
-      "reference); discrete N = %u selects %.0f; error mode at %.3g px selects %.0f\n",
-      budget, target, equal, achieved, pixels, error_achieved);
-  auto renderer = make_renderer(context, scene, s.shadows, s.msaa, "bench dolly");
-  result.pop_instances = s.pop_size;
-  result.pop_frames = s.pop_frames;
-  const PopSequence full =
-      render_sequence(context, *renderer, scene, runtime::LodMode::kFull, 0, dolly, s.frames_dir);
-  const PopSequence cont = render_sequence(context, *renderer, scene, runtime::LodMode::kContinuous,
-                                           budget, dolly, s.frames_dir);
-  const PopSequence disc_eq = render_sequence(
-      context, *renderer, scene, runtime::LodMode::kDiscrete, equal, dolly, s.frames_dir);
-  const PopSequence disc_same =
-      render_sequence(context, *renderer, scene, runtime::LodMode::kDiscrete, budget, dolly, "");
-  // note: the same continuous selection with geomorphs (off by default): what they change.
-  const float geomorph = scene.lod.geomorph;
-  scene.lod.geomorph = s.geomorph;
-  const PopSequence cont_morph =
-      render_sequence(context, *renderer, scene, runtime::LodMode::kContinuous, budget, dolly, "");
-  scene.lod.geomorph = geomorph;
-  // The default selection, error-driven, at the pixel error that spends the same triangles.
-  const runtime::LodSettings saved = scene.lod;
-  scene.lod.max_pixel_error = pixels;
-  const PopSequence error = render_sequence(context, *renderer, scene, runtime::LodMode::kError,
-                                            std::numeric_limits<uint32_t>::max(), dolly, "");
-  scene.lod = saved;
-  result.pops.push_back(pop_row(cont, full, "continuous", budget, "budget"));
-  result.pops.push_back(pop_row(disc_eq, full, "discrete", equal, "equal triangles"));
-  result.pops.push_back(pop_row(disc_same, full, "discrete", budget, "same budget"));
-  result.pops.push_back(pop_row(full, full, "full", 0, "reference"));
-  char morph_why[32];
-  std::snprintf(morph_why, sizeof morph_why, "geomorphs %g", s.geomorph);
-  result.pops.push_back(pop_row(cont_morph, full, "continuous", budget, morph_why));
-  char error_why[48];
-  std::snprintf(error_why, sizeof error_why, "equal triangles, %.3g px", pixels);
-  result.pops.push_back(pop_row(error, full, "error", 0, error_why));
-  print_pop_rows(result);
 }
 
 // The output folders exist (and the plot can be written) before any measurement.

@@ -23,6 +23,20 @@ Frame render_frame(runtime::gpu::VulkanContext& context, runtime::gpu::Renderer&
   return f;
 }
 
+const char* lod_mode_name(runtime::LodMode mode) {
+  switch (mode) {
+    case runtime::LodMode::kContinuous:
+      return "continuous";
+    case runtime::LodMode::kError:
+      return "error";
+    case runtime::LodMode::kDiscrete:
+      return "discrete";
+    case runtime::LodMode::kFull:
+      return "full";
+  }
+  return "?";
+}
+
 double gpu_total(const runtime::gpu::FrameProfile& p) {
   double ms = 0;
   for (const runtime::gpu::PassTiming& pass : p.passes) ms += pass.gpu_ms;

@@ -7,6 +7,8 @@
 
 namespace crowdbake::bench {
 
+constexpr float kTableTime = 1.0f;  // scene time of the table's frames (clips mid-motion)
+
 struct Frame {
   cli::RgbaImage image;
   runtime::gpu::FrameProfile profile;
@@ -17,6 +19,9 @@ struct Frame {
 // validation layer (when on) reported anything.
 Frame render_frame(runtime::gpu::VulkanContext& context, runtime::gpu::Renderer& renderer,
                    const runtime::Scene& scene, float time);
+
+// The mode's name in tables and files: continuous, error, discrete, full.
+const char* lod_mode_name(runtime::LodMode mode);
 
 // The GPU passes' milliseconds summed.
 double gpu_total(const runtime::gpu::FrameProfile& profile);
