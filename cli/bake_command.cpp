@@ -113,6 +113,7 @@ int run_bake(const BakeCommandSettings& s) {
     j["seconds"] = total;
     j["lod"] = {{"min_vertices", pack.progressive.min_vertices},
                 {"seamless_min_vertices", report.simplify.seamless_min_vertices},
+                {"stopped_at_cost_ceiling", report.simplify.stopped_at_cost_ceiling},
                 {"unpriced_collapses", report.simplify.unpriced_collapses},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()}};

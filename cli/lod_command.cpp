@@ -21,6 +21,9 @@ int run_lod(const LodSettings& settings) {
   if (settings.ratio == 0.0 && settings.vertices < 1) throw usage("--vertices must be at least 1");
   if (settings.simplify.samples < 1)
     throw usage("--samples must be at least 1 (1 = classic QEM on the bind pose)");
+  if (!(settings.simplify.max_collapse_cost >= 0.0 &&
+        std::isfinite(settings.simplify.max_collapse_cost)))
+    throw usage("--max-collapse-cost must be a finite number >= 0 (0 = no ceiling)");
 
   SkinnedAsset asset;
   throw_if_failed(import_asset(settings.input, settings.import, asset));
@@ -46,7 +49,15 @@ int run_lod(const LodSettings& settings) {
   SimplifyReport report;
   ProgressiveMesh pm;
   throw_if_failed(simplify(asset, settings.simplify, pm, &report));
-  const uint32_t used = pm.usable_vertices(wanted);
+  uint32_t used = pm.usable_vertices(wanted);
+  // note: without a cost ceiling an open sheet collapses to no triangle at all; the coarsest
+  // level that keeps one is written instead of an empty file.
+  const bool empty = pm.triangle_count[used] == 0;
+  while (pm.triangle_count[used] == 0 && used < total) {
+    uint32_t n = used + 1;
+    while (pm.usable_vertices(n) != n) ++n;
+    used = n;
+  }
   const SkinnedAsset lod = extract_lod(asset, pm, used);
   throw_if_failed(export_glb(lod, settings.output));
 
@@ -62,9 +73,14 @@ int run_lod(const LodSettings& settings) {
     if (used < report.seamless_min_vertices)
       std::printf("  note       levels below %u vertices cross UV seams or material borders\n",
                   report.seamless_min_vertices);
-    if (wanted < pm.min_vertices)
-      std::printf("  note       %u vertices is the coarsest level this mesh reaches\n",
-                  pm.min_vertices);
+    if (empty)
+      std::printf("  note       levels below %u vertices have no triangle left\n", used);
+    else if (wanted < pm.min_vertices)
+      std::printf("  note       %u vertices is the coarsest level this mesh reaches%s\n",
+                  pm.min_vertices,
+                  report.stopped_at_cost_ceiling
+                      ? " (the next collapse costs more than --max-collapse-cost)"
+                      : "");
     for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
   }
   return 0;

@@ -101,6 +101,9 @@ void add_lod(CLI::App& app, Commands& c) {
                    "DQEM form: pullback (one quadric per vertex) or exact")
       ->transform(CLI::CheckedTransformer(std::map<std::string, crowdbake::DqemForm>{
           {"pullback", crowdbake::DqemForm::kPullback}, {"exact", crowdbake::DqemForm::kExact}}));
+  lod_cmd->add_option("--max-collapse-cost", lod.simplify.max_collapse_cost,
+                      "Stop before the first collapse costing more (normalised quadric units; "
+                      "0 = as far as topology allows; default 0.005)");
   lod_cmd->add_option("--ranges", lod.simplify.ranges_file,
                       "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
   lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");

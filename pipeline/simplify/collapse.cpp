@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "crowdbake/base/parallel.h"
@@ -29,7 +30,7 @@ struct Candidate {
   uint32_t star_from = kUnpriced, star_to = kUnpriced;
 };
 
-enum class Outcome { kDone, kRefused, kRequeued };
+enum class Outcome { kDone, kRefused, kRequeued, kCeiling };
 
 // What one attempt learns about a candidate: a pure function of the mesh, which changes only
 // when a collapse is made (so attempts between two collapses can be evaluated ahead).
@@ -54,18 +55,19 @@ enum class Kind { kInterior, kBorder, kLocked };
 class Collapser {
  public:
   Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
-            bool all_poses, uint32_t priced_positions, DqemCost& cost, CollapseStats& stats,
-            int threads, uint32_t lookahead_positions)
+            const SimplifyOptions& options, DqemCost& cost, CollapseStats& stats)
       : mesh_(mesh),
         posed_(posed),
         poses_(poses),
-        all_poses_(all_poses),
-        priced_positions_(priced_positions),
+        all_poses_(options.check_flips_in_all_poses),
+        priced_positions_(options.max_pose_priced_positions),
+        max_cost_(options.max_collapse_cost > 0.0 ? options.max_collapse_cost
+                                                  : std::numeric_limits<double>::infinity()),
         cost_(cost),
         stats_(stats),
         queue_(mesh.position_count()),
-        lookahead_(thread_count(threads, 2) > 1 && lookahead_positions > 0 &&
-                   mesh.position_count() >= lookahead_positions) {
+        lookahead_(thread_count(options.threads, 2) > 1 && options.lookahead_positions > 0 &&
+                   mesh.position_count() >= options.lookahead_positions) {
     const uint32_t positions = mesh.position_count();
     corner_ = mesh.triangles;
     triangle_alive_.assign(mesh.triangle_count(), 1);
@@ -114,6 +116,9 @@ class Collapser {
                                                           : try_collapse(from, c, record);
       if (outcome == Outcome::kDone) {
         records.push_back(std::move(record));
+      } else if (outcome == Outcome::kCeiling) {
+        stats_.stopped_at_ceiling = true;
+        break;
       } else if (outcome == Outcome::kRefused) {
         // note: a refused collapse may become legal when either end's neighbourhood
         // changes; it waits at both ends instead of being tried after every collapse.
@@ -370,6 +375,10 @@ class Collapser {
       offer(from, {e.base + e.penalty, to, star_[from], star_[to]});
       return Outcome::kRequeued;
     }
+    // note: the queue pops in cost order, so the first legal collapse over the ceiling ends
+    // the sequence: the ones after it cost about as much (docs/simplification.md, "Cost
+    // ceiling").
+    if ((e.priced ? candidate.cost : e.base + e.penalty) > max_cost_) return Outcome::kCeiling;
     if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
       stats_.collapses_before_crossing = collapses_;
     if (!pose_priced()) ++stats_.unpriced_collapses;
@@ -795,6 +804,7 @@ class Collapser {
   uint32_t poses_;
   bool all_poses_;
   uint32_t priced_positions_;
+  double max_cost_;
   DqemCost& cost_;
   CollapseStats& stats_;
 
@@ -833,12 +843,9 @@ class Collapser {
 
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, uint32_t priced_positions, DqemCost& cost,
-                                         CollapseStats& stats, int threads,
-                                         uint32_t lookahead_positions) {
-  return Collapser(mesh, posed, poses, all_poses, priced_positions, cost, stats, threads,
-                   lookahead_positions)
-      .run();
+                                         const SimplifyOptions& options, DqemCost& cost,
+                                         CollapseStats& stats) {
+  return Collapser(mesh, posed, poses, options, cost, stats).run();
 }
 
 }  // namespace crowdbake

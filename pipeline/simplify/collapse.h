@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "crowdbake/pipeline/progressive_mesh.h"
+#include "crowdbake/pipeline/simplify.h"
 #include "simplify/dqem.h"
 #include "simplify/simplify_mesh.h"
 
@@ -22,6 +23,8 @@ struct CollapseStats {
   uint32_t seam_crossings = 0;      // collapses made that cross a UV seam or material border
   // Collapses made before the first seam crossing: levels down to there keep every seam.
   uint32_t collapses_before_crossing = 0;
+  // The sequence ended at the cost ceiling (legal collapses were left), not at topology.
+  bool stopped_at_ceiling = false;
 };
 
 // Penalties added to a candidate's DQEM cost, in the quadrics' units (area × squared
@@ -46,15 +49,15 @@ constexpr double kLimbFraction = 0.15;
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
 // condition, manifold borders, locked positions), the limb floor and the bind-pose fold
-// guard refuse;
-// seam crossings and flips in the other sampled poses (when all_poses) are priced. The flip
-// and left-behind prices apply once at most `priced_positions` positions are left (0: always).
-// threads (0: all cores): more than one lets a second thread evaluate the next attempt ahead
-// on meshes of lookahead_positions or more (0: never); the records depend on neither.
+// guard refuse; seam crossings and flips in the other sampled poses (when
+// options.check_flips_in_all_poses) are priced. The flip and left-behind prices apply once at
+// most options.max_pose_priced_positions positions are left (0: always). The sequence ends
+// before the first collapse costing more than options.max_collapse_cost (0: no ceiling).
+// options.threads and options.lookahead_positions set how the work is shared; the records
+// depend on neither.
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
-                                         bool all_poses, uint32_t priced_positions, DqemCost& cost,
-                                         CollapseStats& stats, int threads = 1,
-                                         uint32_t lookahead_positions = 20000);
+                                         const SimplifyOptions& options, DqemCost& cost,
+                                         CollapseStats& stats);
 
 }  // namespace crowdbake

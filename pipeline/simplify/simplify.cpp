@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -19,6 +20,9 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
   if (options.samples < 1)
     throw Error(Error::Kind::kUsage, asset.source,
                 "samples must be at least 1 (S = 1 is classic QEM on the bind pose)");
+  if (!(options.max_collapse_cost >= 0.0 && std::isfinite(options.max_collapse_cost)))
+    throw Error(Error::Kind::kUsage, asset.source,
+                "max_collapse_cost must be a finite number >= 0 (0 = no ceiling)");
   SimplifyReport local;
   SimplifyReport& r = report ? *report : local;
 
@@ -55,9 +59,8 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
 
   start = std::chrono::steady_clock::now();
   CollapseStats stats;
-  const std::vector<CollapseRecord> records = collapse_all(
-      mesh, posed, static_cast<uint32_t>(poses.size()), options.check_flips_in_all_poses,
-      options.max_pose_priced_positions, cost, stats, options.threads, options.lookahead_positions);
+  const std::vector<CollapseRecord> records =
+      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options, cost, stats);
   ProgressiveMesh pm =
       build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive, records);
   r.seconds_collapse = seconds_since(start);
@@ -66,6 +69,7 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
     removed += static_cast<uint32_t>(records[i].wedges.size());
   r.seamless_min_vertices = mesh.vertex_count - removed;
   r.seam_crossings = stats.seam_crossings;
+  r.stopped_at_cost_ceiling = stats.stopped_at_ceiling;
   r.priced_flips = stats.priced_flips;
   r.unpriced_collapses = stats.unpriced_collapses;
 

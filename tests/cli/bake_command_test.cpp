@@ -223,6 +223,26 @@ TEST(BakeCommand, PosePricedPositionsKeyIsRecordedOnlyWhenNotTheDefault) {
   EXPECT_NE(bad.err.find("simplify.max_pose_priced_positions"), std::string::npos) << bad.err;
 }
 
+// The collapse-cost ceiling is a config key, always named in the settings text (packs from
+// before it had none); a bad value names the key.
+TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
+  test::TempDir dir;
+  const auto inspect = [&](const std::string& config) {
+    const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return test::run_crowdbake({"inspect", (dir / "x.crowdpack").string()}).out;
+  };
+  EXPECT_NE(inspect("{}").find("max_collapse_cost=0.005"), std::string::npos);
+  EXPECT_NE(inspect(R"({"simplify": {"max_collapse_cost": 0}})").find("max_collapse_cost=0.0 "),
+            std::string::npos);
+  for (const char* bad : {R"({"simplify": {"max_collapse_cost": -1}})",
+                          R"({"simplify": {"max_collapse_cost": "high"}})"}) {
+    const test::CommandResult r = bake_with_config(dir, bad);
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find("simplify.max_collapse_cost"), std::string::npos) << r.err;
+  }
+}
+
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
   test::TempDir dir;
   const auto input = write_character(dir);

@@ -72,6 +72,31 @@ TEST(LodCommand, WritesTheRequestedLevel) {
 
 // The full level is the character as imported: the simplifier's settings (which reorder the
 // progressive mesh's vertices) do not change a byte of it.
+// --max-collapse-cost ends the sequence; the note on the coarsest level says why it ends there.
+// Without a ceiling (0) the grid, an open sheet, collapses to no triangle at all: the
+// coarsest level that keeps one is written, and the note says so.
+TEST(LodCommand, CollapseCeilingSetsTheCoarsestLevel) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  const auto coarsest = [&](const std::string& ceiling) {
+    const test::CommandResult r =
+        test::run_crowdbake({"lod", input.string(), "--vertices", "1", "--max-collapse-cost",
+                             ceiling, "-o", (dir / "x.glb").string()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("costs more than --max-collapse-cost"), std::string::npos) << r.out;
+    return nlohmann::json::parse(
+               test::run_crowdbake({"inspect", (dir / "x.glb").string(), "--json"}).out)["vertices"]
+        .get<int>();
+  };
+  EXPECT_GT(coarsest("1e-5"), coarsest("0.005"));
+  EXPECT_GT(coarsest("1e-7"), coarsest("1e-5"));
+  const test::CommandResult r =
+      test::run_crowdbake({"lod", input.string(), "--vertices", "1", "--max-collapse-cost", "0",
+                           "-o", (dir / "x.glb").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("have no triangle left"), std::string::npos) << r.out;
+}
+
 TEST(LodCommand, FullResolutionIsTheImportedCharacterWhateverTheSimplifierSettings) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
@@ -132,6 +157,14 @@ TEST(LodCommandErrors, ZeroSamples) {
   expect_usage_error(
       {"lod", input.string(), "--ratio", "0.5", "--samples", "0", "-o", (dir / "x.glb").string()},
       "--samples must be at least 1", dir / "x.glb");
+}
+
+TEST(LodCommandErrors, NegativeCollapseCeiling) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--max-collapse-cost", "-1", "-o",
+                      (dir / "x.glb").string()},
+                     "--max-collapse-cost must be a finite number >= 0", dir / "x.glb");
 }
 
 TEST(LodCommandErrors, UnreadableRangesFile) {

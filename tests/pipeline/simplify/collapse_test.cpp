@@ -127,13 +127,19 @@ TEST(CollapseSeams, FlatShadedMultiMaterialCubeNeverCracks) {
   const SkinnedAsset cube = flat_shaded_cube(4);
   test::validate_or_throw(cube);
   SimplifyReport report;
-  const ProgressiveMesh pm = test::simplify_or_throw(cube, SimplifyOptions{}, &report);
-  const int levels = expect_no_crack_at_any_level(cube, pm);
-  EXPECT_GT(levels, 20);
   // Every corner sits on a seam (flat shading) or a material border, yet the cube goes far
-  // below the 6 x 4 x 4 x 2 = 192 triangles: to at most its 12-triangle box.
-  EXPECT_LE(pm.triangle_count[pm.min_vertices], 12u);
+  // below the 6 x 4 x 4 x 2 = 192 triangles: to at most its 12-triangle box as far as
+  // topology allows, and to at most two triangles per face under the default cost ceiling
+  // (the collapses after those slide the UV charts along the cube's edges).
+  SimplifyOptions deepest;
+  deepest.max_collapse_cost = 0.0;
+  const ProgressiveMesh box = test::simplify_or_throw(cube, deepest, &report);
+  EXPECT_GT(expect_no_crack_at_any_level(cube, box), 20);
+  EXPECT_LE(box.triangle_count[box.min_vertices], 12u);
   EXPECT_GT(report.seamless_min_vertices, 0u);
+  const ProgressiveMesh pm = test::simplify_or_throw(cube, SimplifyOptions{}, &report);
+  EXPECT_GT(expect_no_crack_at_any_level(cube, pm), 20);
+  EXPECT_LE(pm.triangle_count[pm.min_vertices], 24u);
 }
 
 TEST(CollapseSeams, SpectatorNeverCracks) {
@@ -141,6 +147,28 @@ TEST(CollapseSeams, SpectatorNeverCracks) {
   EXPECT_GT(expect_no_crack_at_any_level(spectator,
                                          test::simplify_or_throw(spectator, SimplifyOptions{})),
             100);
+}
+
+// The cost ceiling ends the sequence: a lower one ends it earlier, 0 lets topology end it.
+// The spectator's last collapse costs about half the default ceiling, so the sample the
+// render benchmarks use reaches the same minimum with it as without.
+TEST(CollapseCeiling, LowerCeilingsEndTheSequenceEarlier) {
+  const SkinnedAsset spectator = samples::make_spectator_character();
+  const auto minimum = [&](double ceiling, bool stopped) {
+    SCOPED_TRACE(ceiling);
+    SimplifyOptions options;
+    options.max_collapse_cost = ceiling;
+    SimplifyReport report;
+    const ProgressiveMesh pm = test::simplify_or_throw(spectator, options, &report);
+    EXPECT_EQ(check_progressive_mesh(pm).message(), "");
+    EXPECT_EQ(report.stopped_at_cost_ceiling, stopped);
+    return pm.min_vertices;
+  };
+  const uint32_t deepest = minimum(0.0, false);
+  EXPECT_EQ(minimum(SimplifyOptions{}.max_collapse_cost, false), deepest);
+  const uint32_t low = minimum(1e-4, true);
+  EXPECT_GT(low, deepest);
+  EXPECT_GT(minimum(1e-6, true), low);
 }
 
 // The fold guard: no collapse flips a surviving face in the bind pose (its normal turns by

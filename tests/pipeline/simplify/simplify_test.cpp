@@ -93,13 +93,16 @@ Outcome run_stages(const SkinnedAsset& asset, const SimplifyOptions& options) {
     }
   CollapseStats stats;
   Outcome out;
-  out.records = collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()),
-                             options.check_flips_in_all_poses, options.max_pose_priced_positions,
-                             cost, stats);
+  out.records =
+      collapse_all(mesh, posed, static_cast<uint32_t>(poses.size()), options, cost, stats);
   out.pm = build_progressive_mesh(mesh.vertex_count, mesh.triangles, mesh.triangle_primitive,
                                   out.records);
   expect_reconstruction_equals_replay(mesh, out.records, out.pm);
   return out;
+}
+
+bool same(const CollapseRecord& a, const CollapseRecord& b) {
+  return a.wedges == b.wedges && a.removed_triangles == b.removed_triangles;
 }
 
 void expect_valid(const SkinnedAsset& asset, int samples = 16) {
@@ -108,6 +111,9 @@ void expect_valid(const SkinnedAsset& asset, int samples = 16) {
     SimplifyOptions options;
     options.samples = samples;
     options.form = form;
+    // The default cost ceiling ends the sequence early on these tiny meshes; the whole
+    // sequence, as far as topology allows, is checked.
+    options.max_collapse_cost = 0.0;
     const Outcome o = run_stages(asset, options);
     EXPECT_EQ(check_progressive_mesh(o.pm).message(), "");
     EXPECT_EQ(o.pm.vertex_count(), asset.vertex_count());
@@ -125,6 +131,12 @@ void expect_valid(const SkinnedAsset& asset, int samples = 16) {
       for (const glm::dvec3& p : skin_asset(lod, &lod.clips[0], 0.5))
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     }
+    // With the ceiling, the sequence is the start of the same one.
+    options.max_collapse_cost = SimplifyOptions{}.max_collapse_cost;
+    const Outcome capped = run_stages(asset, options);
+    ASSERT_LE(capped.records.size(), o.records.size());
+    for (size_t i = 0; i < capped.records.size(); ++i)
+      ASSERT_TRUE(same(capped.records[i], o.records[i])) << "record " << i;
   }
 }
 
@@ -145,9 +157,15 @@ TEST(SimplifyHardCases, ClosedMeshWithoutBorder) {
   test::sphere(8, 12, p, i);
   const SkinnedAsset a = from(p, i);
   expect_valid(a);
+  // A closed surface simplifies far as topology goes; the default cost ceiling stops
+  // earlier, where a collapse would cut the sphere's volume by a large step.
   SimplifyOptions o;
-  EXPECT_LT(test::simplify_or_throw(a, o).min_vertices,
-            a.vertex_count() / 4);  // a closed surface simplifies far
+  o.max_collapse_cost = 0.0;
+  const uint32_t deepest = test::simplify_or_throw(a, o).min_vertices;
+  EXPECT_LT(deepest, a.vertex_count() / 4);
+  SimplifyReport report;
+  EXPECT_GT(test::simplify_or_throw(a, SimplifyOptions{}, &report).min_vertices, deepest);
+  EXPECT_TRUE(report.stopped_at_cost_ceiling);
 }
 
 TEST(SimplifyHardCases, ZeroAreaAndSliverTriangles) {

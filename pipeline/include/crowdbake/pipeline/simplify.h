@@ -53,6 +53,13 @@ struct SimplifyOptions {
   // "Lookahead"); below it the handover costs more than it saves. The result never depends
   // on it. 0 = never.
   uint32_t lookahead_positions = 20000;
+  // The collapse sequence (and so the pack's minimum) ends before the first collapse whose
+  // cost is over this, in the quadrics' units (area x squared distance, coordinates divided
+  // by the bind-pose diagonal). A character's last few collapses cost several times those
+  // before them: they merge arms, head and body into one sheet. 0.005 keeps them out on
+  // every shared character and leaves the sample spectator's minimum as it was
+  // (docs/simplification.md, "Cost ceiling"). 0 = simplify as far as topology allows.
+  double max_collapse_cost = 0.005;
 };
 
 struct SimplifyReport {
@@ -70,6 +77,8 @@ struct SimplifyReport {
   // Levels with at least this many vertices keep every seam and material border (the
   // first seam crossing comes below it); the vertex count itself when none is crossed.
   uint32_t seamless_min_vertices = 0;
+  // The sequence ended at max_collapse_cost, with legal collapses left.
+  bool stopped_at_cost_ceiling = false;
   double seconds_poses = 0.0, seconds_quadrics = 0.0, seconds_collapse = 0.0;
   std::vector<std::string> warnings;
 };
