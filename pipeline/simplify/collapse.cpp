@@ -376,7 +376,8 @@ class Collapser {
       return Outcome::kRequeued;
     }
     // note: the queue pops in cost order, so the first legal collapse over the ceiling ends
-    // the sequence: the ones after it cost about as much (docs/simplification.md, "Cost
+    // the sequence rather than being skipped: what is left costs as much or more, and the
+    // levels stay a prefix of the sequence without a ceiling (docs/simplification.md, "Cost
     // ceiling").
     if ((e.priced ? candidate.cost : e.base + e.penalty) > max_cost_) return Outcome::kCeiling;
     if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
