@@ -2,12 +2,36 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
 #include "crowdbake/pipeline/simplify.h"
 
 namespace crowdbake::cli {
+
+namespace {
+
+// The level's animated error (docs/accuracy.md, "What is measured") and where its max is.
+void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, double fps) {
+  AnimatedErrorOptions options;
+  options.fps = fps;
+  options.bind_pose = false;
+  const AnimatedError e = animated_error(original, lod, options);
+  std::printf("  error      rms %.3f%%, max %.3f%% of the bind-pose diagonal (%d frames at %g fps)\n",
+              100.0 * e.mean_rms, 100.0 * e.max, e.frames, fps);
+  if (e.max_joint < 0) return;
+  const std::string joint = original.skeleton.joints[static_cast<size_t>(e.max_joint)].name;
+  char when[256] = "the bind pose";
+  if (e.max_clip >= 0)
+    std::snprintf(when, sizeof when, "clip '%s' at %.2f s",
+                  original.clips[static_cast<size_t>(e.max_clip)].name.c_str(), e.max_time);
+  std::printf("  max at     joint '%s', %s: %s\n", joint.c_str(), when,
+              e.max_on_lod ? "the level strays from the original's surface"
+                           : "part of the original is missing from the level");
+}
+
+}  // namespace
 
 int run_lod(const LodSettings& settings) {
   const auto usage = [&](const std::string& why) {
@@ -21,6 +45,8 @@ int run_lod(const LodSettings& settings) {
   if (settings.ratio == 0.0 && settings.vertices < 1) throw usage("--vertices must be at least 1");
   if (settings.simplify.samples < 1)
     throw usage("--samples must be at least 1 (1 = classic QEM on the bind pose)");
+  if (!(settings.measure_fps >= 0.0 && settings.measure_fps <= 240.0))
+    throw usage("--measure must be a frame rate in (0, 240] frames a second");
   if (!(settings.simplify.max_collapse_cost >= 0.0 &&
         std::isfinite(settings.simplify.max_collapse_cost)))
     throw usage("--max-collapse-cost must be a finite number >= 0 (0 = no ceiling)");
@@ -81,6 +107,7 @@ int run_lod(const LodSettings& settings) {
                   report.stopped_at_cost_ceiling
                       ? " (the next collapse costs more than --max-collapse-cost)"
                       : "");
+    if (settings.measure_fps > 0.0) print_error(asset, lod, settings.measure_fps);
     for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
   }
   return 0;

@@ -104,6 +104,9 @@ void add_lod(CLI::App& app, Commands& c) {
   lod_cmd->add_option("--max-collapse-cost", lod.simplify.max_collapse_cost,
                       "Stop before the first collapse costing more (normalised quadric units; "
                       "0 = as far as topology allows; default 0.005)");
+  lod_cmd->add_option("--measure", lod.measure_fps,
+                      "Also measure the level's animated error against the original over every "
+                      "clip at this many frames a second (e.g. 10), and say where its max is");
   lod_cmd->add_option("--ranges", lod.simplify.ranges_file,
                       "Per-joint angle ranges (JSON, docs/pose-ranges.md)");
   lod_cmd->add_flag("--quiet", lod.quiet, "Print nothing on success");

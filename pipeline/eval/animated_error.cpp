@@ -126,6 +126,27 @@ struct Frame {
   double t;
 };
 
+// The joint with the largest weight at a vertex of the surface's concatenated primitives
+// (the first on ties); -1 when out of range.
+int dominant_joint(const Surface& s, uint32_t vertex) {
+  for (const Primitive& p : s.asset->primitives) {
+    if (vertex < p.positions.size()) {
+      if (vertex >= p.joints.size() || vertex >= p.weights.size()) return -1;
+      int best = 0;
+      for (int k = 1; k < 4; ++k)
+        if (p.weights[vertex][k] > p.weights[vertex][best]) best = k;
+      return p.joints[vertex][best];
+    }
+    vertex -= static_cast<uint32_t>(p.positions.size());
+  }
+  return -1;
+}
+
+int max_joint(const Surface& original, const Surface& lod, const SurfaceError& e) {
+  if (e.max_vertex == UINT32_MAX) return -1;
+  return dominant_joint(e.max_on_b ? lod : original, e.max_vertex);
+}
+
 }  // namespace
 
 std::vector<double> clip_frame_times(const Clip& clip, double fps, int frame_stride) {
@@ -199,6 +220,8 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     for (size_t l = 0; l < surfaces.size(); ++l) {
       unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
       unique[l].bind_max = unique[l].max = bind[l].max * scale;
+      if (bind[l].max > 0.0) unique[l].max_joint = max_joint(base, surfaces[l], bind[l]);
+      unique[l].max_on_lod = bind[l].max > 0.0 && bind[l].max_on_b;
     }
   }
   auto expand = [&] {
@@ -236,13 +259,19 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
   // note: reduced in frame order, so the sums do not depend on the thread count.
   for (size_t l = 0; l < surfaces.size(); ++l) {
     double sum = 0.0, max = 0.0;
-    for (const auto& errors : per_frame) {
-      sum += errors[l].rms;
-      max = std::max(max, errors[l].max);
+    size_t worst = 0;
+    for (size_t f = 0; f < per_frame.size(); ++f) {
+      sum += per_frame[f][l].rms;
+      if (per_frame[f][l].max > max) max = per_frame[f][l].max, worst = f;
     }
     unique[l].mean_rms = sum / frames.size() * scale;
     unique[l].max = max * scale;
     unique[l].frames = static_cast<int>(frames.size());
+    // note: a LoD equal to the original has no place where it is furthest.
+    unique[l].max_joint = max > 0.0 ? max_joint(base, surfaces[l], per_frame[worst][l]) : -1;
+    unique[l].max_clip = max > 0.0 ? static_cast<int>(frames[worst].clip - original.clips.data()) : -1;
+    unique[l].max_time = max > 0.0 ? frames[worst].t : 0.0;
+    unique[l].max_on_lod = max > 0.0 && per_frame[worst][l].max_on_b;
   }
   return expand();
 }

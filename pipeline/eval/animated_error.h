@@ -60,11 +60,13 @@ constexpr double kSpacingPerMedianEdge = 1.5;
 double default_spacing(const std::vector<glm::dvec3>& positions,
                        const std::vector<uint32_t>& triangles);
 
-// Σ w·d², Σ w and max d over the sample points of one surface against another surface.
+// Σ w·d², Σ w and max d over the sample points of one surface against another surface;
+// max_vertex: the vertex with the largest barycentric weight in the (first) farthest point.
 struct OneWayDistance {
   double sum_sq = 0.0;
   double weight = 0.0;
   double max = 0.0;
+  uint32_t max_vertex = UINT32_MAX;
 };
 
 OneWayDistance one_way_distance(const SurfaceSampling& plan,

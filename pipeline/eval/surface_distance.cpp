@@ -290,7 +290,11 @@ OneWayDistance one_way_distance(const SurfaceSampling& plan,
     if (closest) (*closest)[i] = hint;
     out.sum_sq += weight[i] * d_sq;
     out.weight += weight[i];
-    max_sq = std::max(max_sq, d_sq);
+    if (d_sq > max_sq || out.max_vertex == UINT32_MAX) {
+      max_sq = std::max(max_sq, d_sq);
+      const int k = s.b[0] >= s.b[1] ? (s.b[0] >= s.b[2] ? 0 : 2) : (s.b[1] >= s.b[2] ? 1 : 2);
+      out.max_vertex = s.v[k];
+    }
   }
   out.max = std::sqrt(max_sq);
   return out;
@@ -301,6 +305,8 @@ SurfaceError combine(const OneWayDistance& a, const OneWayDistance& b) {
   const double weight = a.weight + b.weight;
   e.rms = weight > 0.0 ? std::sqrt((a.sum_sq + b.sum_sq) / weight) : 0.0;
   e.max = std::max(a.max, b.max);
+  e.max_on_b = b.max > a.max;
+  e.max_vertex = e.max_on_b ? b.max_vertex : a.max_vertex;
   return e;
 }
 

@@ -28,6 +28,10 @@ namespace crowdbake {
 struct SurfaceError {
   double rms = 0.0;  // area-weighted RMS of the symmetric distance
   double max = 0.0;  // largest distance of any sample, both directions (sampled Hausdorff)
+  // Where `max` is: the vertex nearest the farthest sample (the one with the largest
+  // barycentric weight), on b when max_on_b, else on a; UINT32_MAX for an empty surface.
+  uint32_t max_vertex = UINT32_MAX;
+  bool max_on_b = false;
 };
 
 struct TriangleSurface {
@@ -64,6 +68,15 @@ struct AnimatedError {
   double max = 0.0;                       // max over all frames of the per-frame max
   int frames = 0;                         // frames measured; 0 when the original has no clips (then
                                           // mean_rms and max repeat the bind-pose numbers)
+  // Where `max` is: the joint with the largest weight at the vertex nearest the farthest
+  // sample (on the original or the LoD), and the clip and time of that frame (the first such
+  // frame; clip -1: the bind pose). -1 when nothing was measured.
+  int max_joint = -1;
+  int max_clip = -1;
+  double max_time = 0.0;
+  // The farthest sample is on the LoD (its surface strays from the original's) rather than
+  // on the original (a part of the original the LoD lacks).
+  bool max_on_lod = false;
 };
 
 // Measures every LoD against the original. Each LoD must use the original's skeleton
