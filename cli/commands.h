@@ -34,8 +34,8 @@ int run_diff(const DiffSettings& settings);
 struct LodSettings {
   std::string input;
   std::string output;
-  double ratio = 0.0;    // kept fraction of vertices, (0, 1]; 0 = unset
-  int64_t vertices = 0;  // or an absolute count; 0 = unset
+  double ratio = 0.0;        // kept fraction of vertices, (0, 1]; 0 = unset
+  int64_t vertices = 0;      // or an absolute count; 0 = unset
   double measure_fps = 0.0;  // > 0: also measure the level's animated error at this rate
   bool quiet = false;
   ImportOptions import;

@@ -18,8 +18,9 @@ void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, double f
   options.fps = fps;
   options.bind_pose = false;
   const AnimatedError e = animated_error(original, lod, options);
-  std::printf("  error      rms %.3f%%, max %.3f%% of the bind-pose diagonal (%d frames at %g fps)\n",
-              100.0 * e.mean_rms, 100.0 * e.max, e.frames, fps);
+  std::printf(
+      "  error      rms %.3f%%, max %.3f%% of the bind-pose diagonal (%d frames at %g fps)\n",
+      100.0 * e.mean_rms, 100.0 * e.max, e.frames, fps);
   if (e.max_joint < 0) return;
   const std::string joint = original.skeleton.joints[static_cast<size_t>(e.max_joint)].name;
   char when[256] = "the bind pose";

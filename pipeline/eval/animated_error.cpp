@@ -121,6 +121,9 @@ uint64_t surface_hash(const SkinnedAsset& a) {
   return h;
 }
 
+// A max under this fraction of the diagonal is rounding in the skinning: no place is furthest.
+constexpr double kRounding = 1e-9;
+
 struct Frame {
   const Clip* clip;
   double t;
@@ -220,8 +223,10 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     for (size_t l = 0; l < surfaces.size(); ++l) {
       unique[l].bind_rms = unique[l].mean_rms = bind[l].rms * scale;
       unique[l].bind_max = unique[l].max = bind[l].max * scale;
-      if (bind[l].max > 0.0) unique[l].max_joint = max_joint(base, surfaces[l], bind[l]);
-      unique[l].max_on_lod = bind[l].max > 0.0 && bind[l].max_on_b;
+      if (bind[l].max * scale > kRounding) {
+        unique[l].max_joint = max_joint(base, surfaces[l], bind[l]);
+        unique[l].max_on_lod = bind[l].max_on_b;
+      }
     }
   }
   auto expand = [&] {
@@ -268,10 +273,16 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     unique[l].max = max * scale;
     unique[l].frames = static_cast<int>(frames.size());
     // note: a LoD equal to the original has no place where it is furthest.
-    unique[l].max_joint = max > 0.0 ? max_joint(base, surfaces[l], per_frame[worst][l]) : -1;
-    unique[l].max_clip = max > 0.0 ? static_cast<int>(frames[worst].clip - original.clips.data()) : -1;
-    unique[l].max_time = max > 0.0 ? frames[worst].t : 0.0;
-    unique[l].max_on_lod = max > 0.0 && per_frame[worst][l].max_on_b;
+    if (max * scale > kRounding) {
+      unique[l].max_joint = max_joint(base, surfaces[l], per_frame[worst][l]);
+      unique[l].max_clip = static_cast<int>(frames[worst].clip - original.clips.data());
+      unique[l].max_time = frames[worst].t;
+      unique[l].max_on_lod = per_frame[worst][l].max_on_b;
+    } else {
+      unique[l].max_joint = unique[l].max_clip = -1;
+      unique[l].max_time = 0.0;
+      unique[l].max_on_lod = false;
+    }
   }
   return expand();
 }

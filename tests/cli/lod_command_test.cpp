@@ -97,6 +97,21 @@ TEST(LodCommand, CollapseCeilingSetsTheCoarsestLevel) {
   EXPECT_NE(r.out.find("have no triangle left"), std::string::npos) << r.out;
 }
 
+// --measure prints the level's animated error and where its max is.
+TEST(LodCommand, MeasureSaysTheErrorAndWhereItsMaxIs) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  const test::CommandResult r = test::run_crowdbake(
+      {"lod", input.string(), "--ratio", "0.1", "--measure", "5", "-o", (dir / "x.glb").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("of the bind-pose diagonal ("), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("max at     joint '"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at 5 fps"), std::string::npos) << r.out;
+  const test::CommandResult quiet = test::run_crowdbake(
+      {"lod", input.string(), "--ratio", "0.1", "-o", (dir / "y.glb").string()});
+  EXPECT_EQ(quiet.out.find("max at"), std::string::npos) << "measured only when asked";
+}
+
 TEST(LodCommand, FullResolutionIsTheImportedCharacterWhateverTheSimplifierSettings) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
@@ -165,6 +180,14 @@ TEST(LodCommandErrors, NegativeCollapseCeiling) {
   expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--max-collapse-cost", "-1", "-o",
                       (dir / "x.glb").string()},
                      "--max-collapse-cost must be a finite number >= 0", dir / "x.glb");
+}
+
+TEST(LodCommandErrors, MeasureRateOutOfRange) {
+  test::TempDir dir;
+  const auto input = write_grid_character(dir);
+  expect_usage_error(
+      {"lod", input.string(), "--ratio", "0.5", "--measure", "500", "-o", (dir / "x.glb").string()},
+      "--measure must be a frame rate", dir / "x.glb");
 }
 
 TEST(LodCommandErrors, UnreadableRangesFile) {

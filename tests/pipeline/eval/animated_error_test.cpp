@@ -232,6 +232,26 @@ TEST(SurfaceDistance, IsSymmetric) {
   EXPECT_EQ(ab.max, ba.max);
 }
 
+// The max's place: the vertex nearest the farthest sample, on the surface it lies on.
+TEST(SurfaceDistance, SaysWhereItsMaxIs) {
+  const TriangleSurface flat = grid(4, 1.0);
+  TriangleSurface tent = flat;
+  tent.positions[12].z = 0.3;  // the middle vertex
+  const SurfaceError e = surface_distance(flat, tent);
+  EXPECT_NEAR(e.max, 0.3, 1e-12);
+  EXPECT_TRUE(e.max_on_b);
+  EXPECT_EQ(e.max_vertex, 12u);
+  const SurfaceError swapped = surface_distance(tent, flat);
+  EXPECT_FALSE(swapped.max_on_b);
+  EXPECT_EQ(swapped.max_vertex, 12u);
+  // A = [0,1]², B = [0,1]×[0,½]: the max is on A's far edge, y = 1.
+  const TriangleSurface a = grid(16, 1.0);
+  const SurfaceError half = surface_distance(a, grid(16, 1.0, 0.0, 0.5));
+  EXPECT_FALSE(half.max_on_b);
+  ASSERT_LT(half.max_vertex, a.positions.size());
+  EXPECT_EQ(a.positions[half.max_vertex].y, 1.0);
+}
+
 TEST(SurfaceDistance, EmptySurfaces) {
   EXPECT_EQ(surface_distance({}, {}).rms, 0.0);
   EXPECT_EQ(surface_distance(grid(1, 1.0), {}).max, INFINITY);
@@ -295,6 +315,25 @@ TEST(AnimatedError, IdenticalCharacterIsZeroInEveryFrame) {
   EXPECT_NEAR(e.mean_rms, 0.0, 1e-15);
   EXPECT_NEAR(e.max, 0.0, 1e-15);
   EXPECT_NEAR(e.diagonal, std::sqrt(4.0 + 0.04), 1e-6);
+  EXPECT_EQ(e.max_joint, -1) << "no place is furthest";
+  EXPECT_EQ(e.max_clip, -1);
+}
+
+// The tip of the LoD stands off the original's by 0.5 in every frame: the max is there, on
+// the LoD, at the elbow's vertices, in the one clip.
+TEST(AnimatedError, SaysWhereItsMaxIs) {
+  const SkinnedAsset original = bending_strip(1.0, 0.0);
+  SkinnedAsset lod = original;
+  for (size_t v = 16; v < 18; ++v) lod.primitives[0].positions[v].z += 0.5f;
+  const AnimatedError e = animated_error(original, lod);
+  EXPECT_NEAR(e.max * e.diagonal, 0.5, 1e-6);
+  EXPECT_TRUE(e.max_on_lod);
+  EXPECT_EQ(e.max_joint, 1);
+  EXPECT_EQ(e.max_clip, 0);
+  // The same standing off in the original instead: the max is on the original.
+  const AnimatedError swapped = animated_error(lod, original);
+  EXPECT_FALSE(swapped.max_on_lod);
+  EXPECT_EQ(swapped.max_joint, 1);
 }
 
 TEST(AnimatedError, RigidMotionKeepsTheDisplacement) {
