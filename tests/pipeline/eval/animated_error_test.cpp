@@ -465,6 +465,8 @@ TEST(AnimatedError, WithoutClipsTheBindPoseIsTheAnswer) {
   EXPECT_EQ(e.frames, 0);
   EXPECT_NEAR(e.mean_rms, 0.1 / std::sqrt(2.0), 1e-6);
   EXPECT_EQ(e.max, e.bind_max);
+  EXPECT_EQ(e.max_joint, 0) << "the one joint";
+  EXPECT_EQ(e.max_clip, -1) << "the bind pose";
 }
 
 }  // namespace
