@@ -2,6 +2,7 @@
 // nothing written.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
@@ -166,28 +167,18 @@ TEST(LodCommandErrors, VerticesOutOfRange) {
                      "--vertices must be at least 1", dir / "x.glb");
 }
 
-TEST(LodCommandErrors, ZeroSamples) {
+// Simplifier and measurement options out of range: a usage error naming the option.
+TEST(LodCommandErrors, OptionsOutOfRange) {
   test::TempDir dir;
   const auto input = write_grid_character(dir);
-  expect_usage_error(
-      {"lod", input.string(), "--ratio", "0.5", "--samples", "0", "-o", (dir / "x.glb").string()},
-      "--samples must be at least 1", dir / "x.glb");
-}
-
-TEST(LodCommandErrors, NegativeCollapseCeiling) {
-  test::TempDir dir;
-  const auto input = write_grid_character(dir);
-  expect_usage_error({"lod", input.string(), "--ratio", "0.5", "--max-collapse-cost", "-1", "-o",
-                      (dir / "x.glb").string()},
-                     "--max-collapse-cost must be a finite number >= 0", dir / "x.glb");
-}
-
-TEST(LodCommandErrors, MeasureRateOutOfRange) {
-  test::TempDir dir;
-  const auto input = write_grid_character(dir);
-  expect_usage_error(
-      {"lod", input.string(), "--ratio", "0.5", "--measure", "500", "-o", (dir / "x.glb").string()},
-      "--measure must be a frame rate", dir / "x.glb");
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"--samples", "0", "--samples must be at least 1"},
+      {"--max-collapse-cost", "-1", "--max-collapse-cost must be a finite number >= 0"},
+      {"--measure", "500", "--measure must be a frame rate"}};
+  for (const auto& [option, value, message] : cases)
+    expect_usage_error(
+        {"lod", input.string(), "--ratio", "0.5", option, value, "-o", (dir / "x.glb").string()},
+        message, dir / "x.glb");
 }
 
 TEST(LodCommandErrors, UnreadableRangesFile) {
