@@ -140,8 +140,9 @@ BenchRow run_dqem(const SkinnedAsset& asset, const Config& config, const BenchSe
   return row;
 }
 
+// targets: the positions to keep at each fraction (see peer_targets).
 BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const std::string& gltfpack,
-                  const std::string& work_dir, uint32_t positions,
+                  const std::string& work_dir, const std::vector<uint32_t>& targets,
                   const std::vector<double>& fractions, std::vector<SkinnedAsset>& lods,
                   std::vector<int>& lod_level) {
   BenchRow row;
@@ -161,9 +162,9 @@ BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const st
   }
   int trials = 0;
   double peak = -1.0;
-  for (double f : fractions) {
-    row.levels.push_back(unmeasured(f));
-    const uint32_t target = static_cast<uint32_t>(std::lround(f * positions));
+  for (size_t i = 0; i < fractions.size(); ++i) {
+    row.levels.push_back(unmeasured(fractions[i]));
+    const uint32_t target = targets[i];
     PeerLod peer = method == "meshopt" ? meshopt_lod(asset, target)
                                        : gltfpack_lod(asset, gltfpack, input_glb, work_dir, target);
     trials += peer.trials;
@@ -180,6 +181,24 @@ BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const st
   row.peak_rss_mb = peak;
   row.note += (row.note.empty() ? "" : "; ") + std::to_string(trials) + " trial runs";
   return row;
+}
+
+// The positions the peers keep at each fraction: the fraction's, or the default
+// configuration's level when its minimum is above that, so that every comparison keeps as
+// much as ours (docs/accuracy.md).
+std::vector<uint32_t> peer_targets(const std::vector<BenchRow>& rows,
+                                   const std::vector<std::pair<size_t, size_t>>& owner,
+                                   const std::vector<SkinnedAsset>& lods, uint32_t positions,
+                                   const std::vector<double>& fractions) {
+  std::vector<uint32_t> targets;
+  for (double f : fractions) targets.push_back(static_cast<uint32_t>(std::lround(f * positions)));
+  const SimplifyOptions defaults;
+  const std::string label = "S=" + std::to_string(defaults.samples) +
+                            (defaults.form == DqemForm::kExact ? " exact" : " pullback");
+  for (size_t i = 0; i < owner.size(); ++i)
+    if (rows[owner[i].first].config == label)
+      targets[owner[i].second] = std::max(targets[owner[i].second], count_lod(lods[i]).positions);
+  return targets;
 }
 
 BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
@@ -207,12 +226,13 @@ BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
     for (size_t i = before; i < lods.size(); ++i)
       owner.push_back({out.rows.size() - 1, i - before});
   }
+  const std::vector<uint32_t> targets =
+      peer_targets(out.rows, owner, lods, counts.positions, fractions);
   for (const std::string peer : {"meshopt", "gltfpack"}) {
     progress.say(input.name + ": " + peer);
     std::vector<int> level;
     const size_t before = lods.size();
-    out.rows.push_back(
-        run_peer(peer, asset, gltfpack, work_dir, counts.positions, fractions, lods, level));
+    out.rows.push_back(run_peer(peer, asset, gltfpack, work_dir, targets, fractions, lods, level));
     for (size_t i = before; i < lods.size(); ++i)
       owner.push_back({out.rows.size() - 1, size_t(level[i - before])});
   }
