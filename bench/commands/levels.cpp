@@ -1,5 +1,7 @@
 #include "commands/levels.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -117,6 +119,16 @@ ProgressiveMesh deserialize_progressive_mesh(const std::string& bytes) {
     throw std::runtime_error("truncated progressive mesh");
   std::memcpy(&pm.min_vertices, bytes.data() + at, sizeof pm.min_vertices);
   return pm;
+}
+
+std::vector<uint32_t> peer_targets(const std::vector<double>& fractions, uint32_t positions,
+                                   const std::vector<uint32_t>& ours) {
+  std::vector<uint32_t> targets;
+  for (size_t i = 0; i < fractions.size(); ++i) {
+    const uint32_t asked = static_cast<uint32_t>(std::lround(fractions[i] * positions));
+    targets.push_back(std::max(asked, i < ours.size() ? ours[i] : 0u));
+  }
+  return targets;
 }
 
 }  // namespace crowdbake::bench

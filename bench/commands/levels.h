@@ -31,6 +31,12 @@ std::vector<uint32_t> position_ids(const SkinnedAsset& asset);
 uint32_t level_for_positions(const ProgressiveMesh& pm, const std::vector<uint32_t>& position_of,
                              uint32_t target);
 
+// The positions a peer keeps at each fraction: the fraction of `positions`, or what ours
+// keeps there (`ours`, the default configuration's level) when that is more, so that no
+// comparison gives ours more than the peers (a character's minimum can be above 2%).
+std::vector<uint32_t> peer_targets(const std::vector<double>& fractions, uint32_t positions,
+                                   const std::vector<uint32_t>& ours);
+
 // Byte form of a ProgressiveMesh, to bring one back from a benchmark child process.
 std::string serialize(const ProgressiveMesh& pm);
 ProgressiveMesh deserialize_progressive_mesh(const std::string& bytes);

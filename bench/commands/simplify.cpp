@@ -183,22 +183,17 @@ BenchRow run_peer(const std::string& method, const SkinnedAsset& asset, const st
   return row;
 }
 
-// The positions the peers keep at each fraction: the fraction's, or the default
-// configuration's level when its minimum is above that, so that every comparison keeps as
-// much as ours (docs/accuracy.md).
-std::vector<uint32_t> peer_targets(const std::vector<BenchRow>& rows,
+// What the default configuration's level keeps at each fraction (0 where it did not run).
+std::vector<uint32_t> default_kept(const std::vector<BenchRow>& rows,
                                    const std::vector<std::pair<size_t, size_t>>& owner,
-                                   const std::vector<SkinnedAsset>& lods, uint32_t positions,
-                                   const std::vector<double>& fractions) {
-  std::vector<uint32_t> targets;
-  for (double f : fractions) targets.push_back(static_cast<uint32_t>(std::lround(f * positions)));
+                                   const std::vector<SkinnedAsset>& lods, size_t fractions) {
+  std::vector<uint32_t> kept(fractions, 0);
   const SimplifyOptions defaults;
   const std::string label = "S=" + std::to_string(defaults.samples) +
                             (defaults.form == DqemForm::kExact ? " exact" : " pullback");
   for (size_t i = 0; i < owner.size(); ++i)
-    if (rows[owner[i].first].config == label)
-      targets[owner[i].second] = std::max(targets[owner[i].second], count_lod(lods[i]).positions);
-  return targets;
+    if (rows[owner[i].first].config == label) kept[owner[i].second] = count_lod(lods[i]).positions;
+  return kept;
 }
 
 BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
@@ -226,8 +221,8 @@ BenchAsset bench_asset(const Input& input, const BenchSettings& settings,
     for (size_t i = before; i < lods.size(); ++i)
       owner.push_back({out.rows.size() - 1, i - before});
   }
-  const std::vector<uint32_t> targets =
-      peer_targets(out.rows, owner, lods, counts.positions, fractions);
+  const std::vector<uint32_t> targets = peer_targets(
+      fractions, counts.positions, default_kept(out.rows, owner, lods, fractions.size()));
   for (const std::string peer : {"meshopt", "gltfpack"}) {
     progress.say(input.name + ": " + peer);
     std::vector<int> level;
