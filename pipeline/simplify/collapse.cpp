@@ -50,7 +50,7 @@ struct Scratch {
   std::vector<std::pair<uint32_t, int>> edges;
 };
 
-enum class Kind { kInterior, kBorder, kLocked };
+enum class Kind { kInterior, kBorder, kFin, kLocked };
 
 class Collapser {
  public:
@@ -267,7 +267,9 @@ class Collapser {
   }
 
   // Interior: every edge has two faces; border: exactly two edges have one face (a simple
-  // border); anything else (non-manifold edges, several borders meeting) stays put.
+  // border); fin: no border, and exactly two edges have more than two faces, as many each (a
+  // point inside a curve where several sheets meet: a fin or a flap joined to a body along an
+  // edge chain); anything else (several borders or curves meeting, a curve's ends) stays put.
   Kind kind(uint32_t p, std::vector<std::pair<uint32_t, int>>& edges) const {
     edges.clear();
     for (uint32_t t : incident_[p])
@@ -281,11 +283,15 @@ class Collapser {
         else
           ++it->second;
       }
-    int border = 0;
+    int border = 0, fin = 0, sheets = 0;
     for (const auto& e : edges) {
-      if (e.second > 2) return Kind::kLocked;
       border += e.second == 1;
+      if (e.second > 2) {
+        if (fin++ > 0 && e.second != sheets) return Kind::kLocked;
+        sheets = e.second;
+      }
     }
+    if (fin > 0) return border == 0 && fin == 2 ? Kind::kFin : Kind::kLocked;
     return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
   }
 
@@ -401,7 +407,16 @@ class Collapser {
     for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
     const Kind k = kind(from, scratch.edges);
     if (k == Kind::kLocked) return false;
-    if (shared.size() != (k == Kind::kBorder ? 1u : 2u)) return false;
+    size_t faces_on_edge = k == Kind::kBorder ? 1u : 2u;
+    if (k == Kind::kFin) {
+      // note: like a border position, a fin position moves only along its curve (onto the
+      // other end of one of its two shared edges), so the sheets stay joined along it.
+      const auto it = std::find_if(scratch.edges.begin(), scratch.edges.end(),
+                                   [&](const auto& e) { return e.first == to; });
+      if (it == scratch.edges.end() || it->second <= 2) return false;
+      faces_on_edge = static_cast<size_t>(it->second);
+    }
+    if (shared.size() != faces_on_edge) return false;
 
     // Link condition: the only positions next to both ends are the faces' third corners,
     // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared

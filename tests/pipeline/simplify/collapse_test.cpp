@@ -249,6 +249,40 @@ TEST(CollapseLookahead, ChangesNothingOnSeamedCharacters) {
   }
 }
 
+// A flat 6 x 6 sheet with a second sheet standing on it along the row y = 0.5 (a fin, with
+// its own vertices at the row's positions): the row's edges have three faces each. Its five
+// inner positions are fin positions and move along the row; its two ends, where the row
+// meets the borders, stay put.
+TEST(CollapseFins, InnerPositionsOfAFinCurveMoveAlongIt) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.02f);
+  const uint32_t fin = static_cast<uint32_t>(p.size());
+  for (int z = 0; z <= 2; ++z)
+    for (int x = 0; x <= 6; ++x) p.push_back({x / 6.0f, 0.5f, z == 0 ? p[3 * 7 + x].z : z / 6.0f});
+  for (uint32_t z = 0; z < 2; ++z)
+    for (uint32_t x = 0; x < 6; ++x) {
+      const uint32_t a = fin + z * 7 + x, b = a + 1, c = a + 7, d = c + 1;
+      i.insert(i.end(), {a, b, d, a, d, c});
+    }
+  const SkinnedAsset a = test::bending_character(p, i);
+  SimplifyReport report;
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{}, &report);
+  EXPECT_EQ(report.locked_vertices, 2u) << "only the curve's ends stay put";
+  EXPECT_GT(expect_no_crack_at_any_level(a, pm), 10);
+  // At the minimum the row keeps fewer than its seven positions, and the fin is still there.
+  const std::vector<uint32_t> lod = pm.reconstruct(pm.usable_vertices(pm.min_vertices));
+  std::set<uint32_t> row;
+  bool fin_kept = false;
+  for (uint32_t c = 0; c < lod.size(); ++c) {
+    const uint32_t v = pm.vertex_source[lod[c]];
+    if (p[v].y == 0.5f && p[v].z < 0.05f) row.insert(static_cast<uint32_t>(p[v].x * 6.0f + 0.5f));
+    fin_kept = fin_kept || p[v].z > 0.1f;
+  }
+  EXPECT_LT(row.size(), 7u);
+  EXPECT_TRUE(fin_kept) << "the fin vanished";
+}
+
 TEST(CollapseSeams, PerCornerCharactersNeverCrack) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   // Every corner its own vertex (flat-shaded FBX exports), several materials.
@@ -284,8 +318,10 @@ TEST(CollapseSmallParts, SmallNearPartsVanishLargeAndFarPartsStay) {
     for (const glm::vec3& v : q) p.push_back(centre + radius * v), part.push_back(id);
     for (uint32_t k : j) i.push_back(base + k);
   };
-  add_sphere({0, 1, 0}, 1.0f, 0);       // the body
-  add_sphere({0, 1, 1.05f}, 0.05f, 1);  // an eye on it: small and near
+  add_sphere({0, 1, 0}, 1.0f, 0);  // the body
+  // note: 0.01 off the body; at 1.05 its lowest corner and the body's were one position
+  // within float rounding, which the weld joins.
+  add_sphere({0, 1, 1.06f}, 0.05f, 1);  // an eye on it: small and near
   add_sphere({0, 3.2f, 0}, 0.2f, 2);    // a head above it: 0.4 across, a fifth of the whole
   add_sphere({2.5f, 0, 0}, 0.05f, 3);   // a pebble far away: small but apart
   const SkinnedAsset a = test::bending_character(p, i);
