@@ -14,8 +14,8 @@
 namespace crowdbake {
 
 struct CollapseStats {
-  uint32_t locked_positions =
-      0;  // on non-manifold edges off a fin curve, or complex borders: never moved
+  // On non-manifold edges off a fin curve, or on complex borders: never moved.
+  uint32_t locked_positions = 0;
   uint32_t rejected_flips = 0;  // collapses refused because a face folded in the bind pose
   uint32_t rejected_topology = 0;
   uint32_t rejected_limbs = 0;      // collapses refused because they took a limb's last position

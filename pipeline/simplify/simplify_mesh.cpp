@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstring>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 
 #include "crowdbake/base/parallel.h"
+#include "simplify/position_weld.h"
 
 namespace crowdbake {
 namespace {
@@ -26,57 +25,6 @@ std::vector<VertexRef> flatten(const SkinnedAsset& asset) {
   return refs;
 }
 
-// Positions closer than this fraction of the model's largest extent are one position. Most
-// exporters duplicate a corner shared by two meshes bitwise, but some write it through two
-// transforms a few ULPs apart (Quaternius' humanoids: a neck corner at x = 0 in the body and
-// x = -1.1e-16 in the head); welded only when bitwise equal, those corners left a border
-// that opened into a crack at the lowest levels. Relative to the extent, so the weld does not
-// depend on the model's units; about 15 float ULPs of the largest coordinate.
-constexpr double kWeldTolerance = 1e-6;
-
-// A position's cell on a grid of kWeldTolerance × extent: corners a few ULPs apart share a
-// cell unless they straddle a cell border, which needs them to lie within those few ULPs of
-// it (odds of about 1e-7 per near pair); corners farther apart than a cell's diagonal never
-// share one. Where the grid cannot hold a coordinate (a zero or huge extent), the float's
-// bits are the key, so such positions weld only when equal (+0.0 and -0.0 being equal).
-struct WeldKey {
-  bool exact;
-  int64_t x, y, z;
-  bool operator==(const WeldKey& o) const {
-    return exact == o.exact && x == o.x && y == o.y && z == o.z;
-  }
-};
-struct WeldKeyHash {
-  size_t operator()(const WeldKey& k) const {
-    const auto u = [](int64_t x) { return static_cast<uint64_t>(x); };
-    return static_cast<size_t>((u(k.x) * 73856093u) ^ (u(k.y) * 19349663u) ^ (u(k.z) * 83492791u) ^
-                               u(k.exact));
-  }
-};
-
-WeldKey weld_key(glm::vec3 p, double cell) {
-  const glm::dvec3 q = glm::dvec3(p) / cell;
-  constexpr double kLimit = 4.0e18;  // inside int64
-  if (cell > 0.0 && std::abs(q.x) < kLimit && std::abs(q.y) < kLimit && std::abs(q.z) < kLimit)
-    return {false, std::llround(q.x), std::llround(q.y), std::llround(q.z)};
-  for (int i = 0; i < 3; ++i)
-    if (p[i] == 0.0f) p[i] = 0.0f;
-  uint32_t b[3];
-  std::memcpy(b, &p, sizeof(b));
-  return {true, b[0], b[1], b[2]};
-}
-
-double weld_cell(const std::vector<VertexRef>& refs) {
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const VertexRef& r : refs) {
-    const glm::dvec3 x(r.primitive->positions[r.index]);
-    lo = glm::min(lo, x), hi = glm::max(hi, x);
-  }
-  if (refs.empty()) return 0.0;
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  return std::isfinite(extent) && extent > 0.0 ? kWeldTolerance * extent : 0.0;
-}
-
 }  // namespace
 
 SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
@@ -84,14 +32,18 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
   const std::vector<VertexRef> refs = flatten(asset);
   mesh.vertex_count = static_cast<uint32_t>(refs.size());
 
-  const double cell = weld_cell(refs);
-  std::unordered_map<WeldKey, uint32_t, WeldKeyHash> ids;
+  glm::dvec3 vertex_lo(std::numeric_limits<double>::max());
+  glm::dvec3 vertex_hi(-std::numeric_limits<double>::max());
+  for (const VertexRef& r : refs) {
+    const glm::dvec3 x(r.primitive->positions[r.index]);
+    vertex_lo = glm::min(vertex_lo, x), vertex_hi = glm::max(vertex_hi, x);
+  }
+  PositionWeld weld(refs.empty() ? 0.0 : weld_radius(vertex_lo, vertex_hi));
   mesh.position_of.resize(refs.size());
   for (uint32_t v = 0; v < refs.size(); ++v) {
-    const WeldKey key = weld_key(refs[v].primitive->positions[refs[v].index], cell);
-    auto [it, inserted] = ids.emplace(key, static_cast<uint32_t>(mesh.representative.size()));
-    if (inserted) mesh.representative.push_back(v);
-    mesh.position_of[v] = it->second;
+    const uint32_t p = weld.add(refs[v].primitive->positions[refs[v].index]);
+    if (p == mesh.representative.size()) mesh.representative.push_back(v);
+    mesh.position_of[v] = p;
   }
   const uint32_t positions = mesh.position_count();
   for (const Joint& j : asset.skeleton.joints) mesh.joint_parent.push_back(j.parent);
