@@ -39,6 +39,11 @@ struct Config {
   PoseSource source;
 };
 
+// The label of a sampled-pose configuration, as the tables print it ("S=16 exact").
+std::string sampled_label(int samples, DqemForm form) {
+  return "S=" + std::to_string(samples) + (form == DqemForm::kExact ? " exact" : " pullback");
+}
+
 std::vector<Config> dqem_configs(bool quick) {
   if (quick)
     return {{"S=1 static QEM", 1, DqemForm::kPullback, PoseSource::kSampled},
@@ -48,9 +53,7 @@ std::vector<Config> dqem_configs(bool quick) {
   std::vector<Config> configs = {{"S=1 static QEM", 1, DqemForm::kPullback, PoseSource::kSampled}};
   for (int s : {4, 16, 64, 256})
     for (DqemForm form : {DqemForm::kPullback, DqemForm::kExact})
-      configs.push_back(
-          {"S=" + std::to_string(s) + (form == DqemForm::kExact ? " exact" : " pullback"), s, form,
-           PoseSource::kSampled});
+      configs.push_back({sampled_label(s, form), s, form, PoseSource::kSampled});
   configs.push_back({"S=64 clips pullback", 64, DqemForm::kPullback, PoseSource::kClips});
   return configs;
 }
@@ -189,8 +192,7 @@ std::vector<uint32_t> default_kept(const std::vector<BenchRow>& rows,
                                    const std::vector<SkinnedAsset>& lods, size_t fractions) {
   std::vector<uint32_t> kept(fractions, 0);
   const SimplifyOptions defaults;
-  const std::string label = "S=" + std::to_string(defaults.samples) +
-                            (defaults.form == DqemForm::kExact ? " exact" : " pullback");
+  const std::string label = sampled_label(defaults.samples, defaults.form);
   for (size_t i = 0; i < owner.size(); ++i)
     if (rows[owner[i].first].config == label) kept[owner[i].second] = count_lod(lods[i]).positions;
   return kept;

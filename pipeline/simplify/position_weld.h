@@ -48,7 +48,7 @@ class PositionWeld {
 };
 
 // kWeldTolerance × the largest extent of the box [lo, hi], or 0 where that is not a positive
-// finite number.
+// finite number (an empty box, lo above hi, included).
 double weld_radius(const glm::dvec3& lo, const glm::dvec3& hi);
 
 }  // namespace crowdbake

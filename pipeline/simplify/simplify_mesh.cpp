@@ -38,7 +38,7 @@ SimplifyMesh build_simplify_mesh(const SkinnedAsset& asset) {
     const glm::dvec3 x(r.primitive->positions[r.index]);
     vertex_lo = glm::min(vertex_lo, x), vertex_hi = glm::max(vertex_hi, x);
   }
-  PositionWeld weld(refs.empty() ? 0.0 : weld_radius(vertex_lo, vertex_hi));
+  PositionWeld weld(weld_radius(vertex_lo, vertex_hi));  // 0 for no vertices
   mesh.position_of.resize(refs.size());
   for (uint32_t v = 0; v < refs.size(); ++v) {
     const uint32_t p = weld.add(refs[v].primitive->positions[refs[v].index]);
