@@ -267,9 +267,10 @@ class Collapser {
   }
 
   // Interior: every edge has two faces; border: exactly two edges have one face (a simple
-  // border); fin: no border, and exactly two edges have more than two faces, as many each (a
-  // point inside a curve where several sheets meet: a fin or a flap joined to a body along an
-  // edge chain); anything else (several borders or curves meeting, a curve's ends) stays put.
+  // border); fin: no border, and one or two edges have more than two faces, as many each (a
+  // point inside or at the end of a curve where several sheets meet: a fin or a flap joined
+  // to a body along an edge chain); anything else (several borders or curves meeting) stays
+  // put.
   Kind kind(uint32_t p, std::vector<std::pair<uint32_t, int>>& edges) const {
     edges.clear();
     for (uint32_t t : incident_[p])
@@ -291,7 +292,9 @@ class Collapser {
         sheets = e.second;
       }
     }
-    if (fin > 0) return border == 0 && fin == 2 ? Kind::kFin : Kind::kLocked;
+    // note: a curve's end moves along its one curve edge, so the curve shortens from its
+    // end and the sheets stay joined along what is left of it.
+    if (fin > 0) return border == 0 && fin <= 2 ? Kind::kFin : Kind::kLocked;
     return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
   }
 
@@ -410,7 +413,7 @@ class Collapser {
     size_t faces_on_edge = k == Kind::kBorder ? 1u : 2u;
     if (k == Kind::kFin) {
       // note: like a border position, a fin position moves only along its curve (onto the
-      // other end of one of its two shared edges), so the sheets stay joined along it.
+      // other end of one of its curve edges), so the sheets stay joined along it.
       const auto it = std::find_if(scratch.edges.begin(), scratch.edges.end(),
                                    [&](const auto& e) { return e.first == to; });
       if (it == scratch.edges.end() || it->second <= 2) return false;
@@ -679,8 +682,8 @@ class Collapser {
   }
 
   // The tips of chains whose dominant positions outside the small parts span at least
-  // kLimbFraction of the character's diagonal (bind pose); limb_[p] is p's joint when that
-  // joint is such a tip.
+  // kLimbFraction of the character's middle bounding-box extent (bind pose); limb_[p] is p's
+  // joint when that joint is such a tip.
   void mark_limbs() {
     const uint32_t positions = mesh_.position_count();
     uint32_t joints = 0;
@@ -694,7 +697,7 @@ class Collapser {
       const uint16_t j = mesh_.dominant_joint[p];
       lo[j] = glm::min(lo[j], at(0, p)), hi[j] = glm::max(hi[j], at(0, p));
     }
-    const double limit = kLimbFraction * glm::length(all_hi - all_lo);
+    const double limit = kLimbFraction * middle_extent(all_hi - all_lo);
     const std::vector<char> tips = chain_tips(lo, hi, limit);
     limb_.assign(positions, kNoLimb);
     limb_positions_.assign(joints, 0);

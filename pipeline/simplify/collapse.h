@@ -3,8 +3,11 @@
 // every level of detail is a subset of the original vertices and no seam ever cracks.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/simplify.h"
@@ -41,11 +44,18 @@ constexpr double kLeftBehindWeight = 3.0;
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
 // A chain of bones (each the only child of its parent) whose dominant positions (outside
-// the small parts) span at least this fraction of the character's bind-pose diagonal is a
-// limb: the last position of its tip joint (the chain's last joint with positions) is
-// never collapsed onto another joint's, so a limb, head or tail thins to a spike reaching
-// its tip at the lowest levels instead of vanishing.
-constexpr double kLimbFraction = 0.15;
+// the small parts) span at least this fraction of the character's middle bind-pose extent
+// (middle_extent) is a limb: the last position of its tip joint (the chain's last joint with
+// positions) is never collapsed onto another joint's, so a limb, head or tail thins to a
+// spike reaching its tip at the lowest levels instead of vanishing.
+constexpr double kLimbFraction = 0.2;
+
+// The middle one of a bounding box's three extents: how thick a body is, whatever its length.
+// note: a long body (a sauropod's neck and tail, a fish) makes the diagonal large, and a leg
+// short against it, although the leg is as long as the body is tall.
+inline double middle_extent(const glm::dvec3& extent) {
+  return std::max(std::min(extent.x, extent.y), std::min(std::max(extent.x, extent.y), extent.z));
+}
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
