@@ -5,9 +5,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/simplify.h"

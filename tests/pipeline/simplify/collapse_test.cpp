@@ -284,8 +284,7 @@ TEST(CollapseFins, InnerPositionsOfAFinCurveMoveAlongIt) {
 }
 
 // A closed n x n x n box with corner `origin` and edge `size`, six grids facing out.
-void box(glm::vec3 origin, float size, int n, std::vector<glm::vec3>& p,
-         std::vector<uint32_t>& i) {
+void box(glm::vec3 origin, float size, int n, std::vector<glm::vec3>& p, std::vector<uint32_t>& i) {
   for (int axis = 0; axis < 3; ++axis)
     for (int side = 0; side < 2; ++side) {
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -418,7 +417,8 @@ void expect_every_limb_at_the_minimum(const SkinnedAsset& a) {
   };
   int limbs = 0;
   for (const auto& [joint, b] : box) {
-    if (glm::length(b.second - b.first) < kLimbFraction * middle_extent(glm::dvec3(hi - lo))) continue;
+    if (glm::length(b.second - b.first) < kLimbFraction * middle_extent(glm::dvec3(hi - lo)))
+      continue;
     ++limbs;
     EXPECT_TRUE(reached(joint)) << "neither joint " << a.skeleton.joints[joint].name
                                 << " nor a joint below it has a vertex at the minimum ("
