@@ -698,7 +698,7 @@ class Collapser {
       lo[j] = glm::min(lo[j], at(0, p)), hi[j] = glm::max(hi[j], at(0, p));
     }
     const double limit = kLimbFraction * middle_extent(all_hi - all_lo);
-    const std::vector<char> tips = chain_tips(lo, hi, limit);
+    const std::vector<char> tips = limb_tips(mesh_.joint_parent, lo, hi, limit);
     limb_.assign(positions, kNoLimb);
     limb_positions_.assign(joints, 0);
     for (uint32_t p = 0; p < positions; ++p) {
@@ -707,36 +707,6 @@ class Collapser {
       limb_[p] = j;
       ++limb_positions_[j];
     }
-  }
-
-  // The last joint with positions of its own in each chain (bones whose parent has no other
-  // child: a tail of short bones, an arm down to the hand) whose positions together span at
-  // least `limit`, so the chain thins towards its tip instead of vanishing; one bone with
-  // several children ends a chain of its own.
-  std::vector<char> chain_tips(const std::vector<glm::dvec3>& lo, const std::vector<glm::dvec3>& hi,
-                               double limit) const {
-    const int joints = static_cast<int>(std::min(lo.size(), mesh_.joint_parent.size()));
-    const auto has_positions = [&](int j) { return j >= 0 && j < joints && lo[j].x <= hi[j].x; };
-    const auto parent = [&](int j) { return mesh_.joint_parent[j]; };
-    std::vector<int> children(joints, 0), only_child(joints, -1);
-    for (int j = 0; j < joints; ++j)
-      if (const int p = parent(j); p >= 0 && p < joints) ++children[p], only_child[p] = j;
-    for (int j = 0; j < joints; ++j)
-      if (children[j] != 1) only_child[j] = -1;
-    // note: joints come in topological order (parent < child), so one backward pass sees a
-    // joint's chain below it first. below[j]: a joint further down j's chain has positions.
-    std::vector<char> below(joints, 0);
-    for (int j = joints - 1; j >= 0; --j)
-      if (const int c = only_child[j]; c >= 0) below[j] = has_positions(c) || below[c];
-    std::vector<char> tips(lo.size(), 0);
-    for (int j = 0; j < joints; ++j) {
-      if (!has_positions(j) || below[j]) continue;
-      glm::dvec3 chain_lo = lo[j], chain_hi = hi[j];
-      for (int a = parent(j); a >= 0 && a < joints && only_child[a] >= 0; a = parent(a))
-        chain_lo = glm::min(chain_lo, lo[a]), chain_hi = glm::max(chain_hi, hi[a]);
-      tips[j] = glm::length(chain_hi - chain_lo) >= limit;
-    }
-    return tips;
   }
 
   double bind_area(uint32_t t) const {

@@ -3,14 +3,13 @@
 // every level of detail is a subset of the original vertices and no seam ever cracks.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <vector>
 
 #include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/simplify.h"
 #include "simplify/dqem.h"
+#include "simplify/limb_tips.h"
 #include "simplify/simplify_mesh.h"
 
 namespace crowdbake {
@@ -48,13 +47,6 @@ constexpr double kSmallPartFraction = 0.1;
 // positions) is never collapsed onto another joint's, so a limb, head or tail thins to a
 // spike reaching its tip at the lowest levels instead of vanishing.
 constexpr double kLimbFraction = 0.2;
-
-// The middle one of a bounding box's three extents: how thick a body is, whatever its length.
-// note: a long body (a sauropod's neck and tail, a fish) makes the diagonal large, and a leg
-// short against it, although the leg is as long as the body is tall.
-inline double middle_extent(const glm::dvec3& extent) {
-  return std::max(std::min(extent.x, extent.y), std::min(std::max(extent.x, extent.y), extent.z));
-}
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link

@@ -1,0 +1,28 @@
+// Which joints end a limb: the limb floor's skeleton half (docs/simplification.md, "Chains",
+// "Limbs against the body's thickness" and "Body joints").
+#pragma once
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace crowdbake {
+
+// The middle one of a bounding box's three extents: how thick a body is, whatever its length.
+// note: a long body (a sauropod's neck and tail, a fish) makes the diagonal large, and a leg
+// short against it, although the leg is as long as the body is tall.
+inline double middle_extent(const glm::dvec3& extent) {
+  return std::max(std::min(extent.x, extent.y), std::min(std::max(extent.x, extent.y), extent.z));
+}
+
+// parent: per joint, its parent or -1, parents before children. lo / hi: per joint, the
+// bounding box of the positions it weighs most (lo.x > hi.x for a joint with none). Returns per
+// joint whether it is a limb's tip: the last joint with positions of a chain (bones each the
+// only child of its parent: a tail of short bones, an arm down to the hand) whose positions
+// together span at least `limit`. A bone with several children ends a chain of its own (a
+// hand, whose fingers are too short to be limbs), unless a limb hangs below it: then it is a
+// body joint between limbs (hips, a chest), not the end of one.
+std::vector<char> limb_tips(const std::vector<int>& parent, const std::vector<glm::dvec3>& lo,
+                            const std::vector<glm::dvec3>& hi, double limit);
+
+}  // namespace crowdbake
