@@ -25,6 +25,9 @@ TEST(LimbTips, MiddleExtentIsTheMiddleSideWhateverTheAxis) {
   EXPECT_EQ(middle_extent({1, 2, 3}), 2.0);
   EXPECT_EQ(middle_extent({3, 1, 2}), 2.0);
   EXPECT_EQ(middle_extent({2, 3, 1}), 2.0);
+  EXPECT_EQ(middle_extent({3, 2, 1}), 2.0);
+  EXPECT_EQ(middle_extent({1, 3, 2}), 2.0);
+  EXPECT_EQ(middle_extent({2, 1, 3}), 2.0);
   EXPECT_EQ(middle_extent({10, 0.5, 0.5}), 0.5);
 }
 
