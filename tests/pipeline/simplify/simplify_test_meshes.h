@@ -90,4 +90,32 @@ inline void sphere(int rings, int segments, std::vector<glm::vec3>& positions,
                                    static_cast<uint32_t>(at(rings - 1, s))});
 }
 
+// A closed n x n x n box with corner `origin` and edge `size`, six grids facing out.
+inline void box(glm::vec3 origin, float size, int n, std::vector<glm::vec3>& p,
+                std::vector<uint32_t>& i) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const uint32_t base = static_cast<uint32_t>(p.size());
+      for (int b = 0; b <= n; ++b)
+        for (int a = 0; a <= n; ++a) {
+          glm::vec3 q = origin;
+          q[axis] += size * static_cast<float>(side);
+          q[u] += size * static_cast<float>(a) / static_cast<float>(n);
+          q[v] += size * static_cast<float>(b) / static_cast<float>(n);
+          p.push_back(q);
+        }
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a) {
+          const uint32_t c0 = base + b * (n + 1) + a, c1 = c0 + 1, c2 = c0 + (n + 1) + 1,
+                         c3 = c0 + (n + 1);
+          // note: u x v is +axis, the outside of the far side.
+          if (side == 1)
+            i.insert(i.end(), {c0, c1, c2, c0, c2, c3});
+          else
+            i.insert(i.end(), {c0, c2, c1, c0, c3, c2});
+        }
+    }
+}
+
 }  // namespace crowdbake::test
