@@ -78,10 +78,10 @@ class ConfigReader {
       json_reader::fail("simplify.relax_when_stuck",
                         "is no longer an option: the simplifier keeps one set of rules down to "
                         "its minimum (docs/simplification.md); remove the key");
-    json_reader::check_object(
-        body, "simplify",
-        {"samples", "seed", "stratified", "form", "pose_source", "check_flips_in_all_poses",
-         "max_pose_priced_positions", "max_collapse_cost", "ranges"});
+    json_reader::check_object(body, "simplify",
+                              {"samples", "seed", "stratified", "form", "pose_source",
+                               "check_flips_in_all_poses", "max_pose_priced_positions",
+                               "max_stand_off_priced_positions", "max_collapse_cost", "ranges"});
     if (const Json* p = find(body, "samples"))
       s.samples = static_cast<int>(json_reader::integer(*p, "simplify.samples", 1, 4096));
     if (const Json* p = find(body, "seed"))
@@ -98,6 +98,9 @@ class ConfigReader {
     if (const Json* p = find(body, "max_pose_priced_positions"))
       s.max_pose_priced_positions = static_cast<uint32_t>(
           json_reader::integer(*p, "simplify.max_pose_priced_positions", 0, int64_t{UINT32_MAX}));
+    if (const Json* p = find(body, "max_stand_off_priced_positions"))
+      s.max_stand_off_priced_positions = static_cast<uint32_t>(json_reader::integer(
+          *p, "simplify.max_stand_off_priced_positions", 0, int64_t{UINT32_MAX}));
     if (const Json* p = find(body, "max_collapse_cost"))
       s.max_collapse_cost = number(*p, "simplify.max_collapse_cost", 0.0, 1e9);
     if (const Json* p = find(body, "ranges"))
@@ -238,6 +241,8 @@ std::string bake_settings_json(const BakeSettings& s) {
   // note: only when not the default, so packs baked before the key existed keep their text.
   if (s.simplify.max_pose_priced_positions != SimplifyOptions{}.max_pose_priced_positions)
     j["simplify"]["max_pose_priced_positions"] = s.simplify.max_pose_priced_positions;
+  if (s.simplify.max_stand_off_priced_positions != SimplifyOptions{}.max_stand_off_priced_positions)
+    j["simplify"]["max_stand_off_priced_positions"] = s.simplify.max_stand_off_priced_positions;
   // note: always written: packs baked before the key existed had no ceiling.
   j["simplify"]["max_collapse_cost"] = s.simplify.max_collapse_cost;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();

@@ -45,7 +45,7 @@ struct Evaluation {
 
 // The lists one attempt fills (perform() reads those of the attempt it performs).
 struct Scratch {
-  std::vector<uint32_t> shared, moved, third, common, from_ring, to_ring;
+  std::vector<uint32_t> shared, moved, third, common, from_ring, to_ring, around;
   std::vector<std::pair<uint32_t, uint32_t>> map;
   std::vector<std::pair<uint32_t, int>> edges;
 };
@@ -61,6 +61,7 @@ class Collapser {
         poses_(poses),
         all_poses_(options.check_flips_in_all_poses),
         priced_positions_(options.max_pose_priced_positions),
+        stand_off_positions_(options.max_stand_off_priced_positions),
         max_cost_(options.max_collapse_cost > 0.0 ? options.max_collapse_cost
                                                   : std::numeric_limits<double>::infinity()),
         cost_(cost),
@@ -138,7 +139,7 @@ class Collapser {
   // handover cost as much as it saved (docs/simplification.md), so the loop runs alone.
   // The results are the ones one thread gives, byte for byte.
   Outcome attempt_with_lookahead(uint32_t from, const Candidate& c, CollapseRecord& record) {
-    if (ahead_ready_ && ahead_pose_priced_ == pose_priced() && ahead_from_ == from &&
+    if (ahead_ready_ && ahead_pricing_ == pricing() && ahead_from_ == from &&
         same(ahead_candidate_, c)) {
       ahead_ready_ = false;
       return decide(from, c, ahead_evaluation_, ahead_scratch_, record);
@@ -165,7 +166,7 @@ class Collapser {
       for (unsigned spins = 0; done_.load(std::memory_order_acquire) != job;)
         if (++spins % 4096 == 0) std::this_thread::yield();
       ahead_ready_ = !ahead_failed_;
-      ahead_pose_priced_ = pose_priced();
+      ahead_pricing_ = pricing();
     }
     return decide(from, c, e, scratch_, record);
   }
@@ -352,6 +353,7 @@ class Collapser {
     if (pose_priced()) {
       if (!closing) e.penalty += flip_penalty(from, to, scratch.moved, e.priced_flips);
       e.penalty += left_behind_penalty(from, to, scratch.moved);
+      if (stand_off_priced()) e.penalty += stand_off_penalty(from, to, scratch);
     }
   }
 
@@ -400,6 +402,11 @@ class Collapser {
   }
 
   bool pose_priced() const { return priced_positions_ == 0 || live_ <= priced_positions_; }
+  bool stand_off_priced() const {
+    return stand_off_positions_ == 0 || live_ <= stand_off_positions_;
+  }
+  // Which prices an evaluation made now includes (a lookahead made under others is dropped).
+  int pricing() const { return pose_priced() ? 1 + stand_off_priced() : 0; }
 
   // The collapse keeps the surface a manifold: fills scratch.shared (faces it removes),
   // .moved (faces it moves), .from_ring and .to_ring; closing: a tetrahedron flattening into
@@ -759,6 +766,41 @@ class Collapser {
     return kLeftBehindWeight * around * sum / poses_;
   }
 
+  // How far the faces the collapse moves stand off the surface they replace: per pose, each
+  // moved face's area times the squared distance from its centroid to the nearest face
+  // around `from` or `to` before the collapse, averaged over the poses. The left-behind price
+  // measures the old surface from the new one; this one the new from the old. A thin limb whose
+  // root collapses onto the body lies along the planes of its own sides, so DQEM barely sees the
+  // faces from its tip to the body (a web) that the collapse makes.
+  double stand_off_penalty(uint32_t from, uint32_t to, Scratch& scratch) const {
+    // note: the corners of the faces around both ends are gathered once (a face shared by
+    // the two ends once), so each pose reads positions without going through the faces.
+    std::vector<uint32_t>& around = scratch.around;
+    around.clear();
+    for (uint32_t t : incident_[from])
+      for (int c = 0; c < 3; ++c) around.push_back(position(t, c));
+    for (uint32_t t : incident_[to])
+      if (!contains(t, from))
+        for (int c = 0; c < 3; ++c) around.push_back(position(t, c));
+    double sum = 0.0;
+    for (uint32_t s = 0; s < poses_; ++s) {
+      for (uint32_t t : scratch.moved) {
+        glm::dvec3 q[3];
+        for (int c = 0; c < 3; ++c)
+          q[c] = position(t, c) == from ? at(s, to) : at(s, position(t, c));
+        const glm::dvec3 centre = (q[0] + q[1] + q[2]) / 3.0;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t k = 0; k < around.size(); k += 3) {
+          const glm::dvec3 y = closest_point_on_triangle(
+              centre, at(s, around[k]), at(s, around[k + 1]), at(s, around[k + 2]));
+          nearest = std::min(nearest, glm::dot(centre - y, centre - y));
+        }
+        sum += 0.5 * glm::length(glm::cross(q[1] - q[0], q[2] - q[0])) * nearest;
+      }
+    }
+    return kStandOffWeight * sum / poses_;
+  }
+
   // Expected cost of the faces the collapse flips in the sampled poses: per pose, each
   // flipped face's area times the squared length of the move, averaged over all poses
   // (a flip in one pose of S costs 1/S of it), so more poses refine the estimate instead
@@ -793,6 +835,7 @@ class Collapser {
   uint32_t poses_;
   bool all_poses_;
   uint32_t priced_positions_;
+  uint32_t stand_off_positions_;
   double max_cost_;
   DqemCost& cost_;
   CollapseStats& stats_;
@@ -823,7 +866,7 @@ class Collapser {
   Evaluation ahead_evaluation_;
   Scratch ahead_scratch_;
   bool ahead_ready_ = false, ahead_failed_ = false;
-  bool ahead_pose_priced_ = false;  // whether pose penalties were priced then
+  int ahead_pricing_ = 0;  // pricing() then
   uint32_t collapses_ = 0;
   uint32_t live_ = 0;  // positions with faces
 };

@@ -34,10 +34,14 @@ struct CollapseStats {
 // - a corner that crosses a seam or material border: kSeamWeight × its face's area × L²;
 // - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S;
 // - the surface leaving `from` behind: kLeftBehindWeight × the area around `from` × the
-//   squared distance from `from` to the new faces, averaged over the poses.
+//   squared distance from `from` to the new faces, averaged over the poses;
+// - the new faces standing off the surface they replace: kStandOffWeight × each moved face's
+//   area × the squared distance from its centroid to the faces around `from` and `to`
+//   before the collapse, averaged over the poses (docs/simplification.md, "Stand-off price").
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
 constexpr double kLeftBehindWeight = 3.0;
+constexpr double kStandOffWeight = 30.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
@@ -53,7 +57,8 @@ constexpr double kLimbFraction = 0.2;
 // condition, manifold borders, locked positions), the limb floor and the bind-pose fold
 // guard refuse; seam crossings and flips in the other sampled poses (when
 // options.check_flips_in_all_poses) are priced. The flip and left-behind prices apply once at
-// most options.max_pose_priced_positions positions are left (0: always). The sequence ends
+// most options.max_pose_priced_positions positions are left, the stand-off price once at most
+// options.max_stand_off_priced_positions are (0: always). The sequence ends
 // before the first collapse costing more than options.max_collapse_cost (0: no ceiling).
 // options.threads and options.lookahead_positions set how the work is shared; the records
 // depend on neither.

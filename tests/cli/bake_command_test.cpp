@@ -196,9 +196,9 @@ TEST(BakeCommand, ImpostorConfigGivesAPackWithAnImpostor) {
       << inspect.out;
 }
 
-// The hero-mesh limit is a config key; the settings text names it only when it is not the
+// The pricing limits are config keys; the settings text names one only when it is not the
 // default, so giving the default changes no byte; a bad value names the key.
-TEST(BakeCommand, PosePricedPositionsKeyIsRecordedOnlyWhenNotTheDefault) {
+TEST(BakeCommand, PricingLimitKeysAreRecordedOnlyWhenNotTheDefault) {
   test::TempDir dir;
   const auto input = write_character(dir);
   const auto bake = [&](const std::string& config, const std::string& name) {
@@ -213,17 +213,22 @@ TEST(BakeCommand, PosePricedPositionsKeyIsRecordedOnlyWhenNotTheDefault) {
     return test::run_crowdbake({"inspect", (dir / name).string()}).out;
   };
   const std::string plain = bake("", "plain.crowdpack");
-  const std::string same =
-      bake(R"({"simplify": {"max_pose_priced_positions": 100000}})", "same.crowdpack");
-  const std::string always =
-      bake(R"({"simplify": {"max_pose_priced_positions": 0}})", "always.crowdpack");
-  EXPECT_EQ(plain.find("max_pose_priced_positions"), std::string::npos) << plain;
-  EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "same.crowdpack"));
-  EXPECT_NE(always.find("max_pose_priced_positions=0"), std::string::npos) << always;
-  const test::CommandResult bad =
-      bake_with_config(dir, R"({"simplify": {"max_pose_priced_positions": -1}})");
-  EXPECT_EQ(bad.exit_code, 1);
-  EXPECT_NE(bad.err.find("simplify.max_pose_priced_positions"), std::string::npos) << bad.err;
+  // note: the defaults of SimplifyOptions (docs/bake-config.md).
+  for (const auto& [key, default_value] :
+       {std::pair<std::string, std::string>{"max_pose_priced_positions", "100000"},
+        {"max_stand_off_priced_positions", "5000"}}) {
+    const auto config = [&](const std::string& value) {
+      return R"({"simplify": {")" + key + R"(": )" + value + "}}";
+    };
+    bake(config(default_value), "same.crowdpack");
+    const std::string always = bake(config("0"), "always.crowdpack");
+    EXPECT_EQ(plain.find(key), std::string::npos) << plain;
+    EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "same.crowdpack")) << key;
+    EXPECT_NE(always.find(key + "=0"), std::string::npos) << always;
+    const test::CommandResult bad = bake_with_config(dir, config("-1"));
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("simplify." + key), std::string::npos) << bad.err;
+  }
 }
 
 // The collapse-cost ceiling is a config key, always named in the settings text (packs from
