@@ -41,7 +41,7 @@ struct CollapseStats {
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
 constexpr double kLeftBehindWeight = 3.0;
-constexpr double kStandOffWeight = 30.0;
+constexpr double kStandOffWeight = 20.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;
