@@ -40,7 +40,7 @@ struct CollapseStats {
 //   before the collapse, averaged over the poses (docs/simplification.md, "Stand-off price").
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
-constexpr double kLeftBehindWeight = 3.0;
+constexpr double kLeftBehindWeight = 6.0;
 constexpr double kStandOffWeight = 20.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
