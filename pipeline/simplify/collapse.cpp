@@ -763,7 +763,8 @@ class Collapser {
       }
       sum += best;
     }
-    return kLeftBehindWeight * around * sum / poses_;
+    const double weight = stand_off_priced() ? kStandOffLeftBehindWeight : kLeftBehindWeight;
+    return weight * around * sum / poses_;
   }
 
   // How far the faces the collapse moves stand off the surface they replace: per pose, each

@@ -34,13 +34,16 @@ struct CollapseStats {
 // - a corner that crosses a seam or material border: kSeamWeight × its face's area × L²;
 // - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S;
 // - the surface leaving `from` behind: kLeftBehindWeight × the area around `from` × the
-//   squared distance from `from` to the new faces, averaged over the poses;
+//   squared distance from `from` to the new faces, averaged over the poses; where the
+//   stand-off price applies, kStandOffLeftBehindWeight instead (the two were measured
+//   together; docs/simplification.md, "The left-behind weight again");
 // - the new faces standing off the surface they replace: kStandOffWeight × each moved face's
 //   area × the squared distance from its centroid to the faces around `from` and `to`
 //   before the collapse, averaged over the poses (docs/simplification.md, "Stand-off price").
 constexpr double kSeamWeight = 1.0;
 constexpr double kFlipWeight = 1.0;
-constexpr double kLeftBehindWeight = 6.0;
+constexpr double kLeftBehindWeight = 3.0;
+constexpr double kStandOffLeftBehindWeight = 6.0;
 constexpr double kStandOffWeight = 20.0;
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
