@@ -50,11 +50,10 @@ struct SimplifyOptions {
   uint32_t max_pose_priced_positions = 100000;
   // The stand-off price (how far the new faces lie from the surface they replace, with the
   // left-behind price's weight that goes with it) reads the faces around both ends of every
-  // candidate in every pose; it applies once at most this
-  // many positions are left: every position of a crowd character (the 20 measured have
-  // 62 to 2,338), a hero mesh's coarsest levels, where thin limbs turn into webs. Above it,
-  // on a fine mesh, it costs more than it finds (docs/simplification.md, "Stand-off price").
-  // 0 = always.
+  // candidate in every pose; it applies once at most this many positions are left: every
+  // position of a crowd character (the 20 measured have 62 to 2,338), a hero mesh's coarsest
+  // levels, where thin limbs turn into webs. Above it, on a fine mesh, it costs more than it
+  // finds (docs/simplification.md, "Stand-off price"). 0 = always.
   uint32_t max_stand_off_priced_positions = 5000;
   // From this many positions on, with more than one thread, a second thread evaluates the
   // collapse queue's runner-up while the loop evaluates its top (docs/simplification.md,
