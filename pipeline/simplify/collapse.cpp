@@ -1,13 +1,13 @@
 #include "simplify/collapse.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <thread>
 
 #include "crowdbake/base/parallel.h"
 #include "eval/closest_point.h"
+#include "simplify/handover_slot.h"
 #include "simplify/position_queue.h"
 
 namespace crowdbake {
@@ -155,16 +155,14 @@ class Collapser {
         start_worker();
         ahead_from_ = next.from;
         ahead_candidate_ = *it;
-        job_.store(job_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+        slot_.post();
         posted = true;
       }
     }
     Evaluation e;
     evaluate(from, c, scratch_, e);
-    if (posted) {
-      const uint32_t job = job_.load(std::memory_order_relaxed);
-      for (unsigned spins = 0; done_.load(std::memory_order_acquire) != job;)
-        if (++spins % 4096 == 0) std::this_thread::yield();
+    if (posted && !slot_.take_back()) {
+      slot_.wait_done();
       ahead_ready_ = !ahead_failed_;
       ahead_pricing_ = pricing();
     }
@@ -178,14 +176,7 @@ class Collapser {
   void start_worker() {
     if (worker_.joinable()) return;
     worker_ = std::thread([this] {
-      uint32_t seen = 0;
-      for (;;) {
-        uint32_t job = 0;
-        for (unsigned spins = 0; (job = job_.load(std::memory_order_acquire)) == seen;) {
-          if (stop_.load(std::memory_order_relaxed)) return;
-          if (++spins % 4096 == 0) std::this_thread::yield();
-        }
-        seen = job;
+      while (slot_.wait_job()) {
         // note: an evaluation that fails here (out of memory) is made again on the loop's
         // thread, which reports it.
         try {
@@ -194,14 +185,14 @@ class Collapser {
         } catch (...) {
           ahead_failed_ = true;
         }
-        done_.store(job, std::memory_order_release);
+        slot_.finish();
       }
     });
   }
 
   void stop_worker() {
     if (!worker_.joinable()) return;
-    stop_.store(true, std::memory_order_relaxed);
+    slot_.stop();
     worker_.join();
   }
 
@@ -860,8 +851,7 @@ class Collapser {
   // Lookahead (attempt_with_lookahead): the runner-up's evaluation, made by worker_.
   bool lookahead_;
   std::thread worker_;
-  std::atomic<uint32_t> job_{0}, done_{0};
-  std::atomic<bool> stop_{false};
+  HandoverSlot slot_;
   uint32_t ahead_from_ = 0;
   Candidate ahead_candidate_{};
   Evaluation ahead_evaluation_;
