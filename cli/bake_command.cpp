@@ -115,6 +115,7 @@ int run_bake(const BakeCommandSettings& s) {
                 {"seamless_min_vertices", report.simplify.seamless_min_vertices},
                 {"stopped_at_cost_ceiling", report.simplify.stopped_at_cost_ceiling},
                 {"unpriced_collapses", report.simplify.unpriced_collapses},
+                {"collapses_before_stand_off", report.simplify.collapses_before_stand_off},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()}};
     j["chunks"] = nlohmann::json::array();

@@ -385,6 +385,7 @@ class Collapser {
     if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
       stats_.collapses_before_crossing = collapses_;
     if (!pose_priced()) ++stats_.unpriced_collapses;
+    if (!stand_off_priced()) ++stats_.collapses_before_stand_off;
     ++collapses_;
     --live_;
 

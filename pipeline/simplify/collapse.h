@@ -22,7 +22,8 @@ struct CollapseStats {
   uint32_t rejected_limbs = 0;      // collapses refused because they took a limb's last position
   uint32_t priced_flips = 0;        // (face, pose) flips priced into candidates' costs
   uint32_t unpriced_collapses = 0;  // made before the pose prices applied
-  uint32_t seam_crossings = 0;      // collapses made that cross a UV seam or material border
+  uint32_t collapses_before_stand_off = 0;  // made before the stand-off price applied
+  uint32_t seam_crossings = 0;  // collapses made that cross a UV seam or material border
   // Collapses made before the first seam crossing: levels down to there keep every seam.
   uint32_t collapses_before_crossing = 0;
   // The sequence ended at the cost ceiling (legal collapses were left), not at topology.

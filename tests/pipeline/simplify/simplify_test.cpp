@@ -470,6 +470,26 @@ TEST(SimplifyOptionsHeroMeshes, PosePricesStartBelowTheLimit) {
   EXPECT_EQ(check_progressive_mesh(cheap).message(), "");
 }
 
+// The stand-off price starts once at most max_stand_off_priced_positions are left, and the
+// report counts the collapses made before.
+TEST(SimplifyOptionsHeroMeshes, StandOffPriceStartsBelowItsLimit) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::sphere(10, 14, p, i);
+  const SkinnedAsset a = from(p, i);
+  SimplifyReport r_default, r_half;
+  const ProgressiveMesh all = test::simplify_or_throw(a, SimplifyOptions{}, &r_default);
+  SimplifyOptions half;
+  half.max_stand_off_priced_positions = r_default.positions / 2;
+  const ProgressiveMesh later = test::simplify_or_throw(a, half, &r_half);
+  EXPECT_EQ(r_default.collapses_before_stand_off, 0u) << "under the default limit throughout";
+  EXPECT_EQ(r_half.collapses_before_stand_off,
+            r_default.positions - half.max_stand_off_priced_positions);
+  EXPECT_EQ(r_half.unpriced_collapses, 0u) << "the pose prices apply throughout";
+  EXPECT_NE(later.collapse_to, all.collapse_to) << "the stand-off price changed no collapse";
+  EXPECT_EQ(check_progressive_mesh(later).message(), "");
+}
+
 // A rings x segments sphere simplified on one thread and on `threads`: the same arrays and
 // counts. Returns the one-thread report.
 SimplifyReport expect_same_whatever_the_threads(int rings, int segments, int threads) {

@@ -80,6 +80,8 @@ struct SimplifyReport {
   uint32_t seam_crossings = 0;  // collapses that cross a UV seam or material border
   // Collapses made before the pose prices applied (see max_pose_priced_positions).
   uint32_t unpriced_collapses = 0;
+  // Collapses made before the stand-off price applied (see max_stand_off_priced_positions).
+  uint32_t collapses_before_stand_off = 0;
   DqemForm form = DqemForm::kExact;  // the form used (see max_quadric_megabytes)
   // Levels with at least this many vertices keep every seam and material border (the
   // first seam crossing comes below it); the vertex count itself when none is crossed.
