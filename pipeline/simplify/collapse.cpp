@@ -8,6 +8,7 @@
 #include "crowdbake/base/parallel.h"
 #include "eval/closest_point.h"
 #include "simplify/handover_slot.h"
+#include "simplify/part_floors.h"
 #include "simplify/position_queue.h"
 
 namespace crowdbake {
@@ -79,8 +80,13 @@ class Collapser {
     star_.assign(positions, 0);
     leaving_.resize(positions);
     refused_.resize(positions);
-    mark_small_parts();
-    mark_limbs();
+    small_part_ = small_parts(mesh, posed, poses, kSmallPartFraction);
+    limb_ = limb_joints(mesh, posed, poses, small_part_, kLimbFraction);
+    uint32_t joints = 0;
+    for (uint16_t j : mesh.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
+    limb_positions_.assign(joints, 0);
+    for (uint16_t j : limb_)
+      if (j != kNoLimb) ++limb_positions_[j];
   }
 
   ~Collapser() { stop_worker(); }
@@ -613,101 +619,6 @@ class Collapser {
     return best;
   }
 
-  // Connected parts (on positions) whose bind-pose bounding box is under kSmallPartFraction
-  // of the whole character's may vanish at the lowest levels; larger parts (limbs, heads,
-  // tails, a skeleton's bones) and the largest part always keep at least a tetrahedron.
-  void mark_small_parts() {
-    const uint32_t positions = mesh_.position_count();
-    std::vector<uint32_t> up(positions);
-    for (uint32_t p = 0; p < positions; ++p) up[p] = p;
-    auto find = [&](uint32_t x) {
-      while (up[x] != x) x = up[x] = up[up[x]];
-      return x;
-    };
-    for (uint32_t t = 0; t < mesh_.triangle_count(); ++t)
-      for (int k = 1; k < 3; ++k) {
-        const uint32_t a = find(position(t, 0)), b = find(position(t, k));
-        if (a != b) up[std::max(a, b)] = std::min(a, b);
-      }
-    std::vector<glm::dvec3> lo(positions, glm::dvec3(1e300)), hi(positions, glm::dvec3(-1e300));
-    glm::dvec3 all_lo(1e300), all_hi(-1e300);
-    for (uint32_t p = 0; p < positions; ++p) {
-      if (incident_[p].empty()) continue;
-      const uint32_t r = find(p);
-      lo[r] = glm::min(lo[r], at(0, p)), hi[r] = glm::max(hi[r], at(0, p));
-      all_lo = glm::min(all_lo, at(0, p)), all_hi = glm::max(all_hi, at(0, p));
-    }
-    const double whole = glm::length(all_hi - all_lo);
-    uint32_t largest = 0;
-    double largest_size = -1.0;
-    for (uint32_t p = 0; p < positions; ++p)
-      if (find(p) == p && !incident_[p].empty() && glm::length(hi[p] - lo[p]) > largest_size)
-        largest = p, largest_size = glm::length(hi[p] - lo[p]);
-    // note: a part that leaves the rest of the character in some pose (a prop left on the
-    // ground while the body jumps) is not small in what its loss costs: it must stay within
-    // the limit of a part that does not vanish, in every sampled pose. Brute force over positions,
-    // strided so that huge meshes with many parts stay cheap.
-    const double limit = kSmallPartFraction * whole;
-    std::vector<uint32_t> roots;
-    for (uint32_t p = 0; p < positions; ++p)
-      if (find(p) == p && p != largest && !incident_[p].empty() &&
-          glm::length(hi[p] - lo[p]) < limit)
-        roots.push_back(p);
-    std::vector<uint32_t> root_of(positions);
-    for (uint32_t p = 0; p < positions; ++p) root_of[p] = find(p);
-    std::vector<char> candidate(positions, 0), small(positions, 0);
-    for (uint32_t r : roots) candidate[r] = small[r] = 1;
-    const uint64_t work = uint64_t{roots.size()} * positions * poses_;
-    const uint32_t stride = static_cast<uint32_t>(std::max<uint64_t>(1, work / 50000000));
-    std::vector<glm::dvec3> centre(positions);
-    std::vector<double> count(positions);
-    for (uint32_t s = 0; s < poses_ && !roots.empty(); ++s) {
-      for (uint32_t r : roots) centre[r] = glm::dvec3(0.0), count[r] = 0.0;
-      for (uint32_t p = 0; p < positions; ++p)
-        if (!incident_[p].empty() && candidate[root_of[p]])
-          centre[root_of[p]] += at(s, p), count[root_of[p]] += 1.0;
-      for (uint32_t r : roots) {
-        if (!small[r]) continue;
-        const glm::dvec3 c = centre[r] / std::max(count[r], 1.0);
-        double nearest = 1e300;
-        for (uint32_t p = 0; p < positions; p += stride)
-          if (!incident_[p].empty() && !candidate[root_of[p]])
-            nearest = std::min(nearest, glm::length(at(s, p) - c));
-        small[r] = nearest < limit;
-      }
-    }
-    small_part_.assign(positions, 0);
-    for (uint32_t p = 0; p < positions; ++p) small_part_[p] = small[root_of[p]];
-  }
-
-  // The tips of chains whose dominant positions outside the small parts span at least
-  // kLimbFraction of the character's middle bounding-box extent (bind pose); limb_[p] is p's
-  // joint when that joint is such a tip.
-  void mark_limbs() {
-    const uint32_t positions = mesh_.position_count();
-    uint32_t joints = 0;
-    for (uint16_t j : mesh_.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
-    std::vector<glm::dvec3> lo(joints, glm::dvec3(1e300)), hi(joints, glm::dvec3(-1e300));
-    glm::dvec3 all_lo(1e300), all_hi(-1e300);
-    for (uint32_t p = 0; p < positions; ++p) {
-      if (incident_[p].empty()) continue;
-      all_lo = glm::min(all_lo, at(0, p)), all_hi = glm::max(all_hi, at(0, p));
-      if (small_part_[p]) continue;
-      const uint16_t j = mesh_.dominant_joint[p];
-      lo[j] = glm::min(lo[j], at(0, p)), hi[j] = glm::max(hi[j], at(0, p));
-    }
-    const double limit = kLimbFraction * middle_extent(all_hi - all_lo);
-    const std::vector<char> tips = limb_tips(mesh_.joint_parent, lo, hi, limit);
-    limb_.assign(positions, kNoLimb);
-    limb_positions_.assign(joints, 0);
-    for (uint32_t p = 0; p < positions; ++p) {
-      const uint16_t j = mesh_.dominant_joint[p];
-      if (incident_[p].empty() || small_part_[p] || !tips[j]) continue;
-      limb_[p] = j;
-      ++limb_positions_[j];
-    }
-  }
-
   double bind_area(uint32_t t) const {
     const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)),
                      c = at(0, position(t, 2));
@@ -837,8 +748,7 @@ class Collapser {
   std::vector<char> triangle_alive_;
   std::vector<std::vector<uint32_t>> incident_;  // position -> its live triangles
   std::vector<char> position_alive_;
-  std::vector<char> small_part_;  // position lies on a part that may vanish
-  static constexpr uint16_t kNoLimb = 0xffff;
+  std::vector<char> small_part_;          // position lies on a part that may vanish
   std::vector<uint16_t> limb_;            // per position: its limb joint, or kNoLimb
   std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb
   std::vector<uint32_t> star_;            // per position: bumped when its incident faces change
