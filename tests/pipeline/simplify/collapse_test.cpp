@@ -331,24 +331,9 @@ std::map<int, uint32_t> triangles_per_part(const ProgressiveMesh& pm, const std:
 }
 
 TEST(CollapseSmallParts, SmallNearPartsVanishLargeAndFarPartsStay) {
-  std::vector<glm::vec3> p;
-  std::vector<uint32_t> i;
-  std::vector<int> part;
-  auto add_sphere = [&](glm::vec3 centre, float radius, int id) {
-    std::vector<glm::vec3> q;
-    std::vector<uint32_t> j;
-    test::sphere(6, 8, q, j);
-    const uint32_t base = static_cast<uint32_t>(p.size());
-    for (const glm::vec3& v : q) p.push_back(centre + radius * v), part.push_back(id);
-    for (uint32_t k : j) i.push_back(base + k);
-  };
-  add_sphere({0, 1, 0}, 1.0f, 0);  // the body
-  // note: 0.01 off the body; at 1.05 its lowest corner and the body's were one position
-  // within float rounding, which the weld joins.
-  add_sphere({0, 1, 1.06f}, 0.05f, 1);  // an eye on it: small and near
-  add_sphere({0, 3.2f, 0}, 0.2f, 2);    // a head above it: 0.4 across, a fifth of the whole
-  add_sphere({2.5f, 0, 0}, 0.05f, 3);   // a pebble far away: small but apart
-  const SkinnedAsset a = test::bending_character(p, i);
+  const test::FourParts f;
+  const std::vector<int>& part = f.part;
+  const SkinnedAsset a = test::bending_character(f.positions, f.indices);
   const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
   EXPECT_EQ(check_progressive_mesh(pm).message(), "");
   const std::map<int, uint32_t> kept = triangles_per_part(pm, part, pm.min_vertices);

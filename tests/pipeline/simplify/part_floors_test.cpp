@@ -11,32 +11,9 @@
 namespace crowdbake {
 namespace {
 
-// A body with an eye on it (small, near), a head above it and a pebble far away; part[v] says
-// which of the four vertex v is on.
-struct FourParts {
-  std::vector<glm::vec3> p;
-  std::vector<uint32_t> i;
-  std::vector<int> part;
-
-  FourParts() {
-    add({0, 1, 0}, 1.0f, 0);
-    add({0, 1, 1.06f}, 0.05f, 1);
-    add({0, 3.2f, 0}, 0.2f, 2);
-    add({2.5f, 0, 0}, 0.05f, 3);
-  }
-  void add(glm::vec3 centre, float radius, int id) {
-    std::vector<glm::vec3> q;
-    std::vector<uint32_t> j;
-    test::sphere(6, 8, q, j);
-    const uint32_t base = static_cast<uint32_t>(p.size());
-    for (const glm::vec3& v : q) p.push_back(centre + radius * v), part.push_back(id);
-    for (uint32_t k : j) i.push_back(base + k);
-  }
-};
-
 TEST(PartFloors, SmallPartsAreTheSmallOnesNearTheRest) {
-  const FourParts f;
-  const SkinnedAsset a = test::bending_character(f.p, f.i);
+  const test::FourParts f;
+  const SkinnedAsset a = test::bending_character(f.positions, f.indices);
   const SimplifyMesh mesh = build_simplify_mesh(a);
   const std::vector<glm::dvec3> bind =
       posed_positions(a, mesh, {std::vector<glm::dmat4>(2, glm::dmat4(1.0))}, 1);

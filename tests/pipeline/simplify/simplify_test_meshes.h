@@ -90,6 +90,31 @@ inline void sphere(int rings, int segments, std::vector<glm::vec3>& positions,
                                    static_cast<uint32_t>(at(rings - 1, s))});
 }
 
+// Four closed parts (spheres): a body (part 0), an eye on it, small and near (1), a head above
+// it, a fifth of the whole (2), and a pebble far away, small but apart (3). part[v]: vertex v's.
+struct FourParts {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  std::vector<int> part;
+
+  FourParts() {
+    add({0, 1, 0}, 1.0f, 0);
+    // note: 0.01 off the body; at 1.05 its lowest corner and the body's were one position
+    // within float rounding, which the weld joins.
+    add({0, 1, 1.06f}, 0.05f, 1);
+    add({0, 3.2f, 0}, 0.2f, 2);
+    add({2.5f, 0, 0}, 0.05f, 3);
+  }
+  void add(glm::vec3 centre, float radius, int id) {
+    std::vector<glm::vec3> q;
+    std::vector<uint32_t> j;
+    sphere(6, 8, q, j);
+    const uint32_t base = static_cast<uint32_t>(positions.size());
+    for (const glm::vec3& v : q) positions.push_back(centre + radius * v), part.push_back(id);
+    for (uint32_t k : j) indices.push_back(base + k);
+  }
+};
+
 // A closed n x n x n box with corner `origin` and edge `size`, six grids facing out.
 inline void box(glm::vec3 origin, float size, int n, std::vector<glm::vec3>& p,
                 std::vector<uint32_t>& i) {
