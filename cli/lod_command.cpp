@@ -1,19 +1,55 @@
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "cli/commands.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/gltf_export.h"
 #include "crowdbake/pipeline/import.h"
+#include "crowdbake/pipeline/progressive_mesh.h"
 #include "crowdbake/pipeline/simplify.h"
 
 namespace crowdbake::cli {
 
 namespace {
 
+std::string joint_name(const SkinnedAsset& asset, int joint) {
+  return joint >= 0 && static_cast<size_t>(joint) < asset.skeleton.joints.size()
+             ? "'" + asset.skeleton.joints[static_cast<size_t>(joint)].name + "'"
+             : "(none)";
+}
+
+// Where the part a level lacks went: the original vertex nearest the farthest point, the
+// vertex standing for it in the level, and the collapse on the way that took it off its joint.
+void print_loss(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_t used,
+                const AnimatedError& e) {
+  const VertexFate fate = vertex_fate(pm, e.max_vertex, used);
+  const auto source = [&](size_t k) { return pm.vertex_source[fate.chain[k]]; };
+  const auto joint = [&](size_t k) { return original.dominant_joint(source(k)); };
+  const size_t last = fate.chain.size() - 1;
+  const double away = glm::length(glm::dvec3(original.position(source(0))) -
+                                  glm::dvec3(original.position(source(last))));
+  std::printf(
+      "  lost       vertex %u (joint %s), in the levels down to %u vertices; here vertex %u "
+      "(joint %s) stands for it, %.1f%% of the diagonal away in the bind pose\n",
+      e.max_vertex, joint_name(original, joint(0)).c_str(), fate.coarsest_level[0], source(last),
+      joint_name(original, joint(last)).c_str(),
+      e.diagonal > 0.0 ? 100.0 * away / e.diagonal : 0.0);
+  for (size_t k = 0; k < last; ++k)
+    if (joint(k + 1) != joint(0)) {
+      std::printf(
+          "  moved off  below %u vertices: vertex %u (joint %s) collapses onto vertex %u (joint "
+          "%s)\n",
+          fate.coarsest_level[k], source(k), joint_name(original, joint(k)).c_str(), source(k + 1),
+          joint_name(original, joint(k + 1)).c_str());
+      return;
+    }
+}
+
 // The level's animated error (docs/accuracy.md, "What is measured") and where its max is.
-void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, double fps) {
+void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, const ProgressiveMesh& pm,
+                 uint32_t used, double fps) {
   AnimatedErrorOptions options;
   options.fps = fps;
   options.bind_pose = false;
@@ -30,6 +66,7 @@ void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, double f
   std::printf("  max at     joint '%s', %s: %s\n", joint.c_str(), when,
               e.max_on_lod ? "the level strays from the original's surface"
                            : "part of the original is missing from the level");
+  if (!e.max_on_lod) print_loss(original, pm, used, e);
 }
 
 }  // namespace
@@ -108,7 +145,7 @@ int run_lod(const LodSettings& settings) {
                   report.stopped_at_cost_ceiling
                       ? " (the next collapse costs more than --max-collapse-cost)"
                       : "");
-    if (settings.measure_fps > 0.0) print_error(asset, lod, settings.measure_fps);
+    if (settings.measure_fps > 0.0) print_error(asset, lod, pm, used, settings.measure_fps);
     for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
   }
   return 0;

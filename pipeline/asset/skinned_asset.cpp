@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "crowdbake/formats/pack_format.h"
@@ -52,6 +53,29 @@ size_t SkinnedAsset::triangle_count() const {
   size_t n = 0;
   for (const Primitive& p : primitives) n += p.triangle_count();
   return n;
+}
+
+int SkinnedAsset::dominant_joint(size_t vertex) const {
+  for (const Primitive& p : primitives) {
+    if (vertex < p.positions.size()) {
+      if (vertex >= p.joints.size() || vertex >= p.weights.size()) return -1;
+      int best = 0;
+      for (int k = 1; k < 4; ++k)
+        if (p.weights[vertex][k] > p.weights[vertex][best]) best = k;
+      return p.joints[vertex][best];
+    }
+    vertex -= p.positions.size();
+  }
+  return -1;
+}
+
+glm::vec3 SkinnedAsset::position(size_t vertex) const {
+  for (const Primitive& p : primitives) {
+    if (vertex < p.positions.size()) return p.positions[vertex];
+    vertex -= p.positions.size();
+  }
+  throw std::out_of_range("SkinnedAsset::position: vertex " + std::to_string(vertex) +
+                          " past the last primitive");
 }
 
 namespace {

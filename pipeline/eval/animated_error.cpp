@@ -129,25 +129,9 @@ struct Frame {
   double t;
 };
 
-// The joint with the largest weight at a vertex of the surface's concatenated primitives
-// (the first on ties); -1 when out of range.
-int dominant_joint(const Surface& s, uint32_t vertex) {
-  for (const Primitive& p : s.asset->primitives) {
-    if (vertex < p.positions.size()) {
-      if (vertex >= p.joints.size() || vertex >= p.weights.size()) return -1;
-      int best = 0;
-      for (int k = 1; k < 4; ++k)
-        if (p.weights[vertex][k] > p.weights[vertex][best]) best = k;
-      return p.joints[vertex][best];
-    }
-    vertex -= static_cast<uint32_t>(p.positions.size());
-  }
-  return -1;
-}
-
 int max_joint(const Surface& original, const Surface& lod, const SurfaceError& e) {
   if (e.max_vertex == UINT32_MAX) return -1;
-  return dominant_joint(e.max_on_b ? lod : original, e.max_vertex);
+  return (e.max_on_b ? lod : original).asset->dominant_joint(e.max_vertex);
 }
 
 }  // namespace
@@ -225,6 +209,7 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
       unique[l].bind_max = unique[l].max = bind[l].max * scale;
       if (bind[l].max * scale > kRounding) {
         unique[l].max_joint = max_joint(base, surfaces[l], bind[l]);
+        unique[l].max_vertex = bind[l].max_vertex;
         unique[l].max_on_lod = bind[l].max_on_b;
       }
     }
@@ -275,11 +260,13 @@ std::vector<AnimatedError> animated_error(const SkinnedAsset& original,
     // note: a LoD equal to the original has no place where it is furthest.
     if (max * scale > kRounding) {
       unique[l].max_joint = max_joint(base, surfaces[l], per_frame[worst][l]);
+      unique[l].max_vertex = per_frame[worst][l].max_vertex;
       unique[l].max_clip = static_cast<int>(frames[worst].clip - original.clips.data());
       unique[l].max_time = frames[worst].t;
       unique[l].max_on_lod = per_frame[worst][l].max_on_b;
     } else {
       unique[l].max_joint = unique[l].max_clip = -1;
+      unique[l].max_vertex = UINT32_MAX;
       unique[l].max_time = 0.0;
       unique[l].max_on_lod = false;
     }

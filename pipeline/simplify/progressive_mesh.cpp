@@ -3,6 +3,7 @@
 // the thesis §2.2.1.2, extended with collapse groups (one record = one position).
 #include "crowdbake/pipeline/progressive_mesh.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <limits>
@@ -196,6 +197,24 @@ ProgressiveMesh build_progressive_mesh(uint32_t vertex_count,
     pm.triangle_primitive[p] = triangle_primitive[t];
   }
   return pm;
+}
+
+VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint32_t n) {
+  const auto it = std::find(pm.vertex_source.begin(), pm.vertex_source.end(), original_vertex);
+  if (it == pm.vertex_source.end())
+    throw std::out_of_range("vertex_fate: no vertex came from original vertex " +
+                            std::to_string(original_vertex));
+  VertexFate fate;
+  const uint32_t used = pm.usable_vertices(n);
+  for (uint32_t v = static_cast<uint32_t>(it - pm.vertex_source.begin());; v = pm.collapse_to[v]) {
+    // note: a level holds the vertices below its usable count, and counts round down to a
+    // collapse group's start, so the coarsest level holding a vertex is its group's end.
+    uint32_t level = std::max(v + 1, pm.min_vertices);
+    while (pm.usable_vertices(level) <= v) ++level;
+    fate.chain.push_back(v);
+    fate.coarsest_level.push_back(level);
+    if (v < used) return fate;
+  }
 }
 
 ProgressiveView ProgressiveMesh::view() const {

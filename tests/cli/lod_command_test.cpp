@@ -5,6 +5,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 
+#include "asset_paths.h"
 #include "cli/cli_runner.h"
 #include "gltf_test_builder.h"
 
@@ -108,9 +109,41 @@ TEST(LodCommand, MeasureSaysTheErrorAndWhereItsMaxIs) {
   EXPECT_NE(r.out.find("of the bind-pose diagonal ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("max at     joint '"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("at 5 fps"), std::string::npos) << r.out;
+  // note: a missing part is traced to the vertex nearest it and what stands for it.
+  EXPECT_EQ(r.out.find("part of the original is missing") != std::string::npos,
+            r.out.find("  lost       vertex ") != std::string::npos)
+      << r.out;
   const test::CommandResult quiet = test::run_crowdbake(
       {"lod", input.string(), "--ratio", "0.1", "-o", (dir / "y.glb").string()});
   EXPECT_EQ(quiet.out.find("max at"), std::string::npos) << "measured only when asked";
+}
+
+// On the shared characters at 2%, a max where part of the original is missing is traced to
+// the vertex nearest it, whose joint is the one the max names.
+TEST(LodCommand, MeasureTracesAMissingPartOnTheSharedCharacters) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  const nlohmann::json m =
+      nlohmann::json::parse(test::slurp(test::shared_assets() / "MANIFEST.json"));
+  test::TempDir dir;
+  int traced = 0;
+  for (const nlohmann::json& asset : m["assets"]) {
+    const std::string path = (test::shared_assets() / asset["path"].get<std::string>()).string();
+    const test::CommandResult r = test::run_crowdbake(
+        {"lod", path, "--ratio", "0.02", "--measure", "2", "-o", (dir / "x.glb").string()});
+    ASSERT_EQ(r.exit_code, 0) << path << "\n" << r.err;
+    const size_t at = r.out.find("max at     joint '");
+    if (at == std::string::npos ||
+        r.out.find("part of the original is missing") == std::string::npos)
+      continue;
+    ++traced;
+    const size_t name = at + std::string("max at     joint ").size();
+    const std::string joint = r.out.substr(name, r.out.find('\'', name + 1) - name + 1);
+    EXPECT_NE(r.out.find("  lost       vertex "), std::string::npos) << path << "\n" << r.out;
+    EXPECT_NE(r.out.find("(joint " + joint + "), in the levels down to "), std::string::npos)
+        << path << "\n"
+        << r.out;
+  }
+  EXPECT_GT(traced, 0) << "no shared character lost a part at 2%";
 }
 
 TEST(LodCommand, FullResolutionIsTheImportedCharacterWhateverTheSimplifierSettings) {

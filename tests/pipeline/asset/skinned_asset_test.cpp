@@ -58,6 +58,26 @@ TEST(SkinnedAsset, SkeletonQueries) {
   EXPECT_EQ(a.triangle_count(), 1u);
 }
 
+// Vertices are numbered across the primitives in order; ties go to the first joint.
+TEST(SkinnedAsset, DominantJointAndPositionAcrossPrimitives) {
+  SkinnedAsset a = valid();
+  Primitive second = a.primitives[0];
+  second.positions = {{5, 0, 0}, {6, 0, 0}, {7, 0, 0}};
+  second.weights = {{0.2f, 0.8f, 0, 0}, {1, 0, 0, 0}, {0, 0, 0, 0}};
+  second.joints = {{0, 3, 0, 0}, {2, 0, 0, 0}, {1, 2, 0, 0}};
+  a.primitives.push_back(second);
+  EXPECT_EQ(a.dominant_joint(1), 1);
+  EXPECT_EQ(a.dominant_joint(2), 2) << "a tie: the first joint";
+  EXPECT_EQ(a.dominant_joint(3), 3);
+  EXPECT_EQ(a.dominant_joint(4), 2);
+  EXPECT_EQ(a.dominant_joint(5), 1) << "no weight at all: the first joint";
+  EXPECT_EQ(a.dominant_joint(6), -1) << "past the last primitive";
+  EXPECT_EQ(a.position(4), glm::vec3(6, 0, 0));
+  EXPECT_THROW(a.position(6), std::out_of_range);
+  a.primitives[1].weights.clear();
+  EXPECT_EQ(a.dominant_joint(4), -1) << "no weights";
+}
+
 TEST(SkinnedAsset, ValidAssetPasses) {
   EXPECT_EQ(failure([](SkinnedAsset&) {}), "valid");
 }

@@ -330,10 +330,13 @@ TEST(AnimatedError, SaysWhereItsMaxIs) {
   EXPECT_TRUE(e.max_on_lod);
   EXPECT_EQ(e.max_joint, 1);
   EXPECT_EQ(e.max_clip, 0);
+  EXPECT_TRUE(e.max_vertex == 16 || e.max_vertex == 17) << e.max_vertex;
   // The same standing off in the original instead: the max is on the original.
   const AnimatedError swapped = animated_error(lod, original);
   EXPECT_FALSE(swapped.max_on_lod);
   EXPECT_EQ(swapped.max_joint, 1);
+  EXPECT_TRUE(swapped.max_vertex == 16 || swapped.max_vertex == 17) << swapped.max_vertex;
+  EXPECT_EQ(animated_error(original, original).max_vertex, UINT32_MAX) << "no place is furthest";
 }
 
 TEST(AnimatedError, RigidMotionKeepsTheDisplacement) {

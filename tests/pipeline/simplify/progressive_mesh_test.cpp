@@ -245,6 +245,27 @@ TEST(ProgressiveMesh, BudgetClampsToMinAndMax) {
   for (uint32_t n = 0; n < 5; ++n) EXPECT_EQ(pm.triangle_count[n], pm.triangle_count[5]);
 }
 
+// The fan's vertex 1 collapses onto 0 (first record), 0 onto 4 (last record), and 4 stays.
+TEST(ProgressiveMesh, VertexFateFollowsTheCollapses) {
+  const ProgressiveMesh pm = build(fan(), fan_collapses());
+  const auto originals = [&](const VertexFate& f) {
+    std::vector<uint32_t> out;
+    for (uint32_t v : f.chain) out.push_back(pm.vertex_source[v]);
+    return out;
+  };
+  const VertexFate coarsest = vertex_fate(pm, 1, 0);
+  EXPECT_EQ(originals(coarsest), (std::vector<uint32_t>{1, 0, 4}));
+  EXPECT_EQ(coarsest.coarsest_level, (std::vector<uint32_t>{7, 4, 3}));
+  EXPECT_EQ(originals(vertex_fate(pm, 1, 5)), (std::vector<uint32_t>{1, 0})) << "0 is still there";
+  EXPECT_EQ(originals(vertex_fate(pm, 1, 7)), (std::vector<uint32_t>{1})) << "the full level";
+  EXPECT_EQ(vertex_fate(pm, 4, 0).coarsest_level, (std::vector<uint32_t>{3})) << "never removed";
+  EXPECT_THROW(vertex_fate(pm, 7, 0), std::out_of_range);
+  // A seam group leaves as one: the coarsest level holding its first wedge is the group's end.
+  const ProgressiveMesh seamed = build(seam(), seam_collapses());
+  EXPECT_EQ(vertex_fate(seamed, 8, 6).coarsest_level, (std::vector<uint32_t>{12, 6}));
+  EXPECT_EQ(vertex_fate(seamed, 3, 8).coarsest_level, (std::vector<uint32_t>{9, 6}));
+}
+
 TEST(ProgressiveMesh, NeverRemovedKeepOriginalOrder) {
   for (const auto& [mesh, records] :
        {std::pair{fan(), fan_collapses()}, std::pair{strip(), strip_collapses()},

@@ -77,6 +77,9 @@ struct AnimatedError {
   // The farthest sample is on the LoD (its surface strays from the original's) rather than
   // on the original (a part of the original the LoD lacks).
   bool max_on_lod = false;
+  // The vertex nearest the farthest sample: an index into the primitives' vertices, taken in
+  // order, of the LoD when max_on_lod, else of the original; UINT32_MAX when max_joint is -1.
+  uint32_t max_vertex = UINT32_MAX;
 };
 
 // Measures every LoD against the original. Each LoD must use the original's skeleton

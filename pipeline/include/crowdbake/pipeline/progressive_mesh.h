@@ -79,6 +79,19 @@ ProgressiveMesh build_progressive_mesh(uint32_t vertex_count,
                                        const std::vector<uint16_t>& triangle_primitive,
                                        const std::vector<CollapseRecord>& collapses);
 
+// Where one original vertex goes as the levels coarsen, seen from the level with
+// usable_vertices(n) vertices: for telling what a level lost (crowdbake lod --measure).
+struct VertexFate {
+  // Progressive indices: the vertex, then each vertex a collapse moved the one before onto,
+  // ending at the one standing for it in the level (only the vertex when the level holds it).
+  std::vector<uint32_t> chain;
+  // Per chain entry, the smallest usable vertex count whose level still holds it.
+  std::vector<uint32_t> coarsest_level;
+};
+
+// Throws std::out_of_range when no vertex of pm came from `original_vertex`.
+VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint32_t n);
+
 // Checks every invariant for every n in [min, max]: formats' rules of the levels
 // (check_progressive), vertex_source a permutation, one primitive per triangle, and every
 // level rebuilt with in-range, non-degenerate triangles. kInvalidArgument names the first

@@ -133,6 +133,11 @@ struct SkinnedAsset {
 
   size_t vertex_count() const;
   size_t triangle_count() const;
+  // The joint with the largest weight at `vertex` (an index into the primitives'
+  // vertices taken in order; the first joint on ties), or -1 when out of range or unskinned.
+  int dominant_joint(size_t vertex) const;
+  // The bind-pose position of `vertex`, indexed as above (which must be in range).
+  glm::vec3 position(size_t vertex) const;
 };
 
 // kInvalidInput naming the first broken rule.
