@@ -9,7 +9,7 @@
 #include <memory>
 #include <random>
 
-#include "allocation_tracker.h"
+#include "allocation_probe.h"
 #include "crowdbake/formats/pack.h"
 #include "pack_bytes.h"
 #include "pack_compare.h"
@@ -26,9 +26,9 @@ using test::RawChunk;
 // Largest single allocation made while reading `bytes`.
 size_t largest_allocation_reading(const std::vector<uint8_t>& bytes, Status& status) {
   PackContents out;
-  test::start_tracking_allocations();
+  test::start_watching_allocations();
   status = read_pack(bytes.data(), bytes.size(), out);
-  return test::stop_tracking_allocations();
+  return test::stop_watching_allocations().largest;
 }
 
 Status read_copy(const uint8_t* data, size_t size) {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "allocation_counter.h"
+#include "allocation_probe.h"
 #include "crowdbake/runtime/crowd/behaviour_fsm.h"
 #include "crowdbake/runtime/crowd/spectator_scene.h"
 #include "spectator_sim.h"
@@ -283,9 +283,9 @@ TEST(SpectatorUpdateJob, IndependentOfTheFrameRate) {
 TEST(SpectatorUpdateJob, RunNeverAllocates) {
   Sim sim(Stadium());
   sim.RunTo(0.5);
-  test::StartCountingAllocations();
+  crowdbake::test::start_watching_allocations();
   for (double t = 0.5; t <= 20.0; t += 1.0 / 30.0) ASSERT_TRUE(sim.job(t).Run());
-  EXPECT_EQ(test::StopCountingAllocations(), 0u);
+  EXPECT_EQ(crowdbake::test::stop_watching_allocations().count, 0u);
 }
 
 TEST(SpectatorUpdateJob, JobValidity) {
