@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -47,6 +48,28 @@ void print_loss(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_
     }
 }
 
+// The joints with vertices of their own (largest weight) in the original and none in the level,
+// each with the coarsest level that still has one: the parts a level no longer draws with
+// their own joint.
+void print_joints_without_vertices(const SkinnedAsset& original, const ProgressiveMesh& pm,
+                                   uint32_t used) {
+  std::vector<uint32_t> first(original.skeleton.joints.size(), UINT32_MAX);
+  for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+    const int j = original.dominant_joint(pm.vertex_source[i]);
+    if (j >= 0 && static_cast<size_t>(j) < first.size()) first[j] = std::min(first[j], i);
+  }
+  std::string list;
+  size_t count = 0;
+  for (size_t j = 0; j < first.size(); ++j) {
+    if (first[j] == UINT32_MAX || first[j] < used) continue;
+    list += (count++ ? ", '" : "'") + original.skeleton.joints[j].name + "' (" +
+            std::to_string(coarsest_level_holding(pm, first[j])) + ")";
+  }
+  if (count > 0)
+    std::printf("  no vertex  of %zu joint%s here (the coarsest level with one): %s\n", count,
+                count == 1 ? "" : "s", list.c_str());
+}
+
 // The level's animated error (docs/accuracy.md, "What is measured") and where its max is.
 void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, const ProgressiveMesh& pm,
                  uint32_t used, double fps) {
@@ -67,6 +90,7 @@ void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, const Pr
               e.max_on_lod ? "the level strays from the original's surface"
                            : "part of the original is missing from the level");
   if (!e.max_on_lod) print_loss(original, pm, used, e);
+  print_joints_without_vertices(original, pm, used);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <nlohmann/json.hpp>
 
@@ -125,12 +126,20 @@ TEST(LodCommand, MeasureTracesAMissingPartOnTheSharedCharacters) {
   const nlohmann::json m =
       nlohmann::json::parse(test::slurp(test::shared_assets() / "MANIFEST.json"));
   test::TempDir dir;
-  int traced = 0;
+  int traced = 0, listed = 0;
   for (const nlohmann::json& asset : m["assets"]) {
     const std::string path = (test::shared_assets() / asset["path"].get<std::string>()).string();
     const test::CommandResult r = test::run_crowdbake(
         {"lod", path, "--ratio", "0.02", "--measure", "2", "-o", (dir / "x.glb").string()});
     ASSERT_EQ(r.exit_code, 0) << path << "\n" << r.err;
+    // note: "no vertex  of N joints here ...: 'a' (L), 'b' (L)": N names follow.
+    const size_t none = r.out.find("  no vertex  of ");
+    if (none != std::string::npos) {
+      ++listed;
+      const std::string line = r.out.substr(none, r.out.find('\n', none) - none);
+      const size_t names = std::count(line.begin(), line.end(), '\'') / 2;
+      EXPECT_EQ(line.find("of " + std::to_string(names) + " joint"), size_t{13}) << line;
+    }
     const size_t at = r.out.find("max at     joint '");
     if (at == std::string::npos ||
         r.out.find("part of the original is missing") == std::string::npos)
@@ -144,6 +153,7 @@ TEST(LodCommand, MeasureTracesAMissingPartOnTheSharedCharacters) {
         << r.out;
   }
   EXPECT_GT(traced, 0) << "no shared character lost a part at 2%";
+  EXPECT_GT(listed, 0) << "every joint of every shared character kept a vertex at 2%";
 }
 
 TEST(LodCommand, FullResolutionIsTheImportedCharacterWhateverTheSimplifierSettings) {

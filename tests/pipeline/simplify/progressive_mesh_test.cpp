@@ -266,6 +266,21 @@ TEST(ProgressiveMesh, VertexFateFollowsTheCollapses) {
   EXPECT_EQ(vertex_fate(seamed, 3, 8).coarsest_level, (std::vector<uint32_t>{9, 6}));
 }
 
+// Groups [10, 11], [9], [7, 8], [6]; 0..5 are never removed (min_vertices 6).
+TEST(ProgressiveMesh, CoarsestLevelHoldingIsTheGroupsEnd) {
+  const ProgressiveMesh pm = build(seam(), seam_collapses());
+  const std::vector<uint32_t> expected = {6, 6, 6, 6, 6, 6, 7, 9, 9, 10, 12, 12};
+  for (uint32_t v = 0; v < pm.vertex_count(); ++v) {
+    EXPECT_EQ(coarsest_level_holding(pm, v), expected[v]) << "vertex " << v;
+    // The level holds it; the next coarser usable level does not.
+    const uint32_t level = expected[v];
+    EXPECT_LT(v, pm.usable_vertices(level));
+    if (level > pm.min_vertices) {
+      EXPECT_GE(v, pm.usable_vertices(level - 1));
+    }
+  }
+}
+
 TEST(ProgressiveMesh, NeverRemovedKeepOriginalOrder) {
   for (const auto& [mesh, records] :
        {std::pair{fan(), fan_collapses()}, std::pair{strip(), strip_collapses()},
