@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/missing_joints.h"
 #include "crowdbake/formats/pack.h"
 #include "crowdbake/pipeline/bake.h"
 #include "crowdbake/pipeline/error.h"
@@ -97,6 +98,10 @@ int run_bake(const BakeCommandSettings& s) {
     throw_if_failed(write_file_atomically(s.depfile, depfile_text(s.output, files)));
   }
   if (!s.report.empty()) {
+    // note: the joints are told from the weights as the pack stores them (quantized), which
+    // is what `inspect` and the runtime read; the bake's own floats can break ties otherwise.
+    PackContents stored;
+    const bool readable = read_pack(bytes.data(), bytes.size(), stored).ok();
     nlohmann::ordered_json j;
     j["input"] = {{"file", s.input},
                   {"joints", asset.skeleton.joints.size()},
@@ -117,7 +122,8 @@ int run_bake(const BakeCommandSettings& s) {
                 {"unpriced_collapses", report.simplify.unpriced_collapses},
                 {"collapses_before_stand_off", report.simplify.collapses_before_stand_off},
                 {"max_vertices", pack.geometry.vertex_count()},
-                {"max_triangles", pack.geometry.triangle_count()}};
+                {"max_triangles", pack.geometry.triangle_count()},
+                {"joints_missing_at_min", joints_missing_at_min_json(readable ? stored : pack)}};
     j["chunks"] = nlohmann::json::array();
     for (const PackChunk& c : chunks)
       j["chunks"].push_back({{"tag", tag_name(c.tag)}, {"bytes", c.size}});

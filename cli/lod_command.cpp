@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -53,17 +52,19 @@ void print_loss(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_
 // their own joint.
 void print_joints_without_vertices(const SkinnedAsset& original, const ProgressiveMesh& pm,
                                    uint32_t used) {
-  std::vector<uint32_t> first(original.skeleton.joints.size(), UINT32_MAX);
+  std::vector<uint16_t> heaviest(pm.vertex_count(), UINT16_MAX);
   for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
     const int j = original.dominant_joint(pm.vertex_source[i]);
-    if (j >= 0 && static_cast<size_t>(j) < first.size()) first[j] = std::min(first[j], i);
+    if (j >= 0) heaviest[i] = static_cast<uint16_t>(j);
   }
+  const std::vector<uint32_t> levels =
+      coarsest_levels_by_joint(pm.view(), heaviest, original.skeleton.joints.size());
   std::string list;
   size_t count = 0;
-  for (size_t j = 0; j < first.size(); ++j) {
-    if (first[j] == UINT32_MAX || first[j] < used) continue;
+  for (size_t j = 0; j < levels.size(); ++j) {
+    if (levels[j] <= used) continue;  // note: 0, no vertex of its own, is left out too
     list += (count++ ? ", '" : "'") + original.skeleton.joints[j].name + "' (" +
-            std::to_string(coarsest_level_holding(pm, first[j])) + ")";
+            std::to_string(levels[j]) + ")";
   }
   if (count > 0)
     std::printf("  no vertex  of %zu joint%s here (the coarsest level with one): %s\n", count,

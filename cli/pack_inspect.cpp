@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/material_listing.h"
+#include "cli/missing_joints.h"
 #include "cli/pack_file.h"
 #include "crowdbake/formats/animation_codec.h"
 #include "crowdbake/formats/pack_format.h"
@@ -99,7 +100,8 @@ ordered_json to_json(const PackFile& pack) {
   j["lod"] = {{"min_vertices", lod.min_vertices},
               {"max_vertices", lod.max_vertices},
               {"min_triangles", lod.min_triangles},
-              {"max_triangles", lod.max_triangles}};
+              {"max_triangles", lod.max_triangles},
+              {"joints_missing_at_min", joints_missing_at_min_json(c)}};
   const PackLevelErrors& e = c.level_errors;
   j["level_errors"] = ordered_json::array();
   for (size_t k = 0; k < e.vertices.size(); ++k)
@@ -191,6 +193,11 @@ void print_text(const PackFile& pack) {
   const LodRange lod = lod_range(c);
   std::printf("  lod        %u..%u vertices, %u..%u triangles\n", lod.min_vertices,
               lod.max_vertices, lod.min_triangles, lod.max_triangles);
+  // note: the parts the coarsest level no longer draws with their own joint.
+  const std::vector<MissingJoint> missing = joints_missing_at_min(c);
+  for (size_t k = 0; k < missing.size(); ++k)
+    std::printf("  %-10s '%s' has no vertex below %u vertices\n", k == 0 ? "joints" : "",
+                missing[k].name.c_str(), missing[k].coarsest_level);
   // note: the error table error-driven LoD reads (model units), or why there is none.
   const PackLevelErrors& e = c.level_errors;
   if (e.vertices.empty())

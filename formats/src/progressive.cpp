@@ -1,6 +1,8 @@
 // The progressive mesh's levels and their rules (progressive.h).
 #include "crowdbake/formats/progressive.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <sstream>
 
 namespace crowdbake {
@@ -92,6 +94,40 @@ uint32_t usable_vertices(const ProgressiveView& mesh, uint32_t n) {
   // note: vertex n is the first one left out; if it shares a collapse group with n - 1 the
   // whole group goes. min() keeps hostile arrays in range (valid arrays have start <= n).
   return mesh.group_start[n] < n ? mesh.group_start[n] : n;
+}
+
+uint32_t coarsest_level_holding(const ProgressiveView& mesh, uint32_t v) {
+  if (mesh.collapse_to.empty()) return mesh.vertex_count;
+  // note: a level holds the vertices below its usable count.
+  uint32_t level = std::max(v + 1, mesh.min_vertices);
+  while (level < mesh.vertex_count && usable_vertices(mesh, level) <= v) ++level;
+  return level;
+}
+
+std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
+                                               Span<const uint16_t> vertex_joint,
+                                               size_t joint_count) {
+  // note: the vertex a level keeps longest is the lowest index, so one per joint decides.
+  std::vector<uint32_t> first(joint_count, UINT32_MAX);
+  const size_t n = std::min<size_t>(vertex_joint.size(), mesh.vertex_count);
+  for (size_t v = 0; v < n; ++v)
+    if (vertex_joint[v] < joint_count && first[vertex_joint[v]] == UINT32_MAX)
+      first[vertex_joint[v]] = static_cast<uint32_t>(v);
+  std::vector<uint32_t> out(joint_count, 0);
+  for (size_t j = 0; j < joint_count; ++j)
+    if (first[j] != UINT32_MAX) out[j] = coarsest_level_holding(mesh, first[j]);
+  return out;
+}
+
+std::vector<uint16_t> heaviest_joints(const PackGeometry& geometry) {
+  std::vector<uint16_t> out(std::min(geometry.joints.size(), geometry.weights.size()) / 4);
+  for (size_t v = 0; v < out.size(); ++v) {
+    int best = 0;
+    for (int k = 1; k < 4; ++k)
+      if (geometry.weights[4 * v + k] > geometry.weights[4 * v + best]) best = k;
+    out[v] = geometry.joints[4 * v + best];
+  }
+  return out;
 }
 
 uint32_t lod_triangle_count(const ProgressiveView& mesh, uint32_t n) {

@@ -208,16 +208,9 @@ VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint
   const uint32_t used = pm.usable_vertices(n);
   for (uint32_t v = static_cast<uint32_t>(it - pm.vertex_source.begin());; v = pm.collapse_to[v]) {
     fate.chain.push_back(v);
-    fate.coarsest_level.push_back(coarsest_level_holding(pm, v));
+    fate.coarsest_level.push_back(coarsest_level_holding(pm.view(), v));
     if (v < used) return fate;
   }
-}
-
-uint32_t coarsest_level_holding(const ProgressiveMesh& pm, uint32_t permuted) {
-  // note: a level holds the vertices below its usable count.
-  uint32_t level = std::max(permuted + 1, pm.min_vertices);
-  while (pm.usable_vertices(level) <= permuted) ++level;
-  return level;
 }
 
 ProgressiveView ProgressiveMesh::view() const {

@@ -106,6 +106,7 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   // Collapsing the lone triangle would remove the whole surface: the cost ceiling keeps it.
   EXPECT_EQ(j["lod"]["stopped_at_cost_ceiling"], true);
   EXPECT_EQ(j["lod"]["min_vertices"], 3);
+  EXPECT_TRUE(j["lod"]["joints_missing_at_min"].empty()) << "the coarsest level is the mesh";
   bool geometry = false;
   for (const auto& c : j["chunks"]) geometry |= c["tag"] == "GEOM";
   EXPECT_TRUE(geometry);

@@ -203,6 +203,24 @@ TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
   EXPECT_EQ(j["lod"]["max_vertices"], 64);
   EXPECT_EQ(j["lod"]["min_triangles"], c.progressive.triangle_count[c.progressive.min_vertices]);
   EXPECT_EQ(j["lod"]["max_triangles"], 112);
+  // A joint is listed as missing at the coarsest level exactly when it is the heaviest of some
+  // vertex and of none the coarsest level keeps.
+  std::vector<int> kept(c.joints.size(), 0), any(c.joints.size(), 0);
+  for (uint32_t v = 0; v < c.geometry.vertex_count(); ++v) {
+    const float* w = &c.geometry.weights[4 * v];
+    const int k = static_cast<int>(std::max_element(w, w + 4) - w);
+    const uint16_t joint = c.geometry.joints[4 * v + k];
+    any[joint] = 1;
+    if (v < c.progressive.min_vertices) kept[joint] = 1;
+  }
+  std::vector<std::string> expected, listed;
+  for (size_t k = 0; k < c.joints.size(); ++k)
+    if (any[k] && !kept[k]) expected.push_back(c.joints[k].name);
+  for (const json& m : j["lod"]["joints_missing_at_min"]) {
+    listed.push_back(m["joint"]);
+    EXPECT_GT(m["coarsest_level"], c.progressive.min_vertices);
+  }
+  EXPECT_EQ(listed, expected);
   // The level errors error-driven LoD reads, sample by sample.
   ASSERT_GE(c.level_errors.vertices.size(), 2u);
   ASSERT_EQ(j["level_errors"].size(), c.level_errors.vertices.size());

@@ -51,6 +51,29 @@ TEST(Progressive, LevelsRebuildByWalkingTheCollapses) {
   EXPECT_EQ(usable, 4u);
 }
 
+// Vertex 3 leaves below 4 vertices, vertex 4 below 5; 0..2 are never removed.
+TEST(Progressive, CoarsestLevelsOfVerticesAndJoints) {
+  Strip s;
+  const std::vector<uint32_t> expected = {3, 3, 3, 4, 5};
+  for (uint32_t v = 0; v < 5; ++v) EXPECT_EQ(coarsest_level_holding(s.view(), v), expected[v]);
+  // Joint 0 has vertices 0 and 4, joint 1 only 3, joint 2 only 4, joint 3 none; 9 is out of
+  // range and ignored.
+  const std::vector<uint16_t> joint = {0, 9, 9, 1, 2};
+  EXPECT_EQ(coarsest_levels_by_joint(s.view(), joint, 4), (std::vector<uint32_t>{3, 4, 5, 0}));
+  s.group_start = {0, 1, 2, 3, 3};  // vertices 3 and 4 leave together
+  s.triangle_count = {1, 1, 1, 1, 1, 3};
+  EXPECT_EQ(coarsest_level_holding(s.view(), 3), 5u);
+  EXPECT_EQ(coarsest_levels_by_joint(s.view(), joint, 4), (std::vector<uint32_t>{3, 5, 5, 0}));
+  ProgressiveView none = s.view();
+  none.collapse_to = {};
+  EXPECT_EQ(coarsest_level_holding(none, 1), 5u) << "without progressive data, one level";
+
+  PackGeometry g;
+  g.joints = {3, 1, 2, 0, /**/ 3, 1, 2, 0};
+  g.weights = {0.25f, 0.5f, 0.25f, 0.0f, /**/ 0.5f, 0.0f, 0.0f, 0.5f};
+  EXPECT_EQ(heaviest_joints(g), (std::vector<uint16_t>{1, 3})) << "the first on ties";
+}
+
 TEST(Progressive, AGroupGoesAsAWhole) {
   Strip s;
   s.group_start = {0, 1, 2, 3, 3};  // vertices 3 and 4 are one position's wedges

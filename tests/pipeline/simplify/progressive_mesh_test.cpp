@@ -271,7 +271,7 @@ TEST(ProgressiveMesh, CoarsestLevelHoldingIsTheGroupsEnd) {
   const ProgressiveMesh pm = build(seam(), seam_collapses());
   const std::vector<uint32_t> expected = {6, 6, 6, 6, 6, 6, 7, 9, 9, 10, 12, 12};
   for (uint32_t v = 0; v < pm.vertex_count(); ++v) {
-    EXPECT_EQ(coarsest_level_holding(pm, v), expected[v]) << "vertex " << v;
+    EXPECT_EQ(coarsest_level_holding(pm.view(), v), expected[v]) << "vertex " << v;
     // The level holds it; the next coarser usable level does not.
     const uint32_t level = expected[v];
     EXPECT_LT(v, pm.usable_vertices(level));

@@ -42,6 +42,22 @@ uint32_t usable_vertices(const ProgressiveView& mesh, uint32_t n);
 // triangles without progressive data).
 uint32_t lod_triangle_count(const ProgressiveView& mesh, uint32_t n);
 
+// The smallest usable vertex count whose level holds vertex v (< vertex_count): the end of v's
+// collapse group, min_vertices for a vertex never removed, vertex_count without progressive
+// data.
+uint32_t coarsest_level_holding(const ProgressiveView& mesh, uint32_t v);
+
+// Per joint below joint_count, the coarsest level that holds a vertex whose heaviest joint it
+// is (vertex_joint: one per vertex, in progressive order; values from joint_count up are
+// ignored); 0 for a joint that is no vertex's heaviest. A joint whose level is above a level's
+// vertex count has no vertex of its own there.
+std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
+                                               Span<const uint16_t> vertex_joint,
+                                               size_t joint_count);
+
+// Each vertex's heaviest joint (the first of its four on ties).
+std::vector<uint16_t> heaviest_joints(const PackGeometry& geometry);
+
 // The rules, cheapest first, each broken one named with its index: the arrays are all empty
 // or sized vertex_count / vertex_count + 1 / vertex_count; min_vertices <= vertex_count; a
 // kept vertex (below min_vertices) collapses to itself and starts its own group; a removed

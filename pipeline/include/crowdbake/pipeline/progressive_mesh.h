@@ -92,11 +92,6 @@ struct VertexFate {
 // Throws std::out_of_range when no vertex of pm came from `original_vertex`.
 VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint32_t n);
 
-// The smallest usable vertex count whose level holds the vertex at progressive index
-// `permuted` (min_vertices for one never removed). Counts round down to a collapse group's
-// start, so this is the end of the vertex's group.
-uint32_t coarsest_level_holding(const ProgressiveMesh& pm, uint32_t permuted);
-
 // Checks every invariant for every n in [min, max]: formats' rules of the levels
 // (check_progressive), vertex_source a permutation, one primitive per triangle, and every
 // level rebuilt with in-range, non-degenerate triangles. kInvalidArgument names the first

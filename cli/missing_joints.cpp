@@ -1,0 +1,26 @@
+#include "cli/missing_joints.h"
+
+#include "crowdbake/formats/progressive.h"
+
+namespace crowdbake::cli {
+
+std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack) {
+  const ProgressiveView view = progressive_view(pack);
+  const std::vector<uint16_t> heaviest = heaviest_joints(pack.geometry);
+  const std::vector<uint32_t> levels = coarsest_levels_by_joint(view, heaviest, pack.joints.size());
+  // note: without progressive arrays the coarsest level is the full mesh.
+  const uint32_t coarsest = usable_vertices(view, 0);
+  std::vector<MissingJoint> out;
+  for (size_t j = 0; j < levels.size(); ++j)
+    if (levels[j] > coarsest) out.push_back({pack.joints[j].name, levels[j]});
+  return out;
+}
+
+nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const MissingJoint& m : joints_missing_at_min(pack))
+    out.push_back({{"joint", m.name}, {"coarsest_level", m.coarsest_level}});
+  return out;
+}
+
+}  // namespace crowdbake::cli

@@ -1,0 +1,25 @@
+// The joints a pack's coarsest level has no vertex of (by largest weight), for `bake --report`
+// and `inspect`: the parts the lowest levels draw with other joints' vertices, if at all.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "crowdbake/formats/pack.h"
+
+namespace crowdbake::cli {
+
+struct MissingJoint {
+  std::string name;
+  uint32_t coarsest_level = 0;  // the coarsest level that still has one of its vertices
+};
+
+// In joint order; empty for a pack with one level.
+std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack);
+
+// [{"joint": name, "coarsest_level": n}, ...]
+nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack);
+
+}  // namespace crowdbake::cli
