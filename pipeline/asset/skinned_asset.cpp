@@ -70,12 +70,13 @@ int SkinnedAsset::dominant_joint(size_t vertex) const {
 }
 
 glm::vec3 SkinnedAsset::position(size_t vertex) const {
+  size_t local = vertex;
   for (const Primitive& p : primitives) {
-    if (vertex < p.positions.size()) return p.positions[vertex];
-    vertex -= p.positions.size();
+    if (local < p.positions.size()) return p.positions[local];
+    local -= p.positions.size();
   }
-  throw std::out_of_range("SkinnedAsset::position: vertex " + std::to_string(vertex) +
-                          " past the last primitive");
+  throw std::out_of_range("SkinnedAsset::position: vertex " + std::to_string(vertex) + " of " +
+                          std::to_string(vertex_count()));
 }
 
 namespace {
