@@ -100,8 +100,7 @@ int run_bake(const BakeCommandSettings& s) {
   if (!s.report.empty()) {
     // note: the joints are told from the weights as the pack stores them (quantized), which
     // is what `inspect` and the runtime read; the bake's own floats can break ties otherwise.
-    PackContents stored;
-    const bool readable = read_pack(bytes.data(), bytes.size(), stored).ok();
+    const std::vector<float> weights = stored_weights(pack.geometry, settings.pack);
     nlohmann::ordered_json j;
     j["input"] = {{"file", s.input},
                   {"joints", asset.skeleton.joints.size()},
@@ -123,7 +122,7 @@ int run_bake(const BakeCommandSettings& s) {
                 {"collapses_before_stand_off", report.simplify.collapses_before_stand_off},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()},
-                {"joints_missing_at_min", joints_missing_at_min_json(readable ? stored : pack)}};
+                {"joints_missing_at_min", joints_missing_at_min_json(pack, weights)}};
     j["chunks"] = nlohmann::json::array();
     for (const PackChunk& c : chunks)
       j["chunks"].push_back({{"tag", tag_name(c.tag)}, {"bytes", c.size}});

@@ -4,9 +4,10 @@
 
 namespace crowdbake::cli {
 
-std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack) {
+std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack,
+                                                const std::vector<float>& weights) {
   const ProgressiveView view = progressive_view(pack);
-  const std::vector<uint16_t> heaviest = heaviest_joints(pack.geometry);
+  const std::vector<uint16_t> heaviest = heaviest_joints(pack.geometry.joints, weights);
   const std::vector<uint32_t> levels = coarsest_levels_by_joint(view, heaviest, pack.joints.size());
   // note: without progressive arrays the coarsest level is the full mesh.
   const uint32_t coarsest = usable_vertices(view, 0);
@@ -16,9 +17,10 @@ std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack) {
   return out;
 }
 
-nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack) {
+nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack,
+                                                  const std::vector<float>& weights) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const MissingJoint& m : joints_missing_at_min(pack))
+  for (const MissingJoint& m : joints_missing_at_min(pack, weights))
     out.push_back({{"joint", m.name}, {"coarsest_level", m.coarsest_level}});
   return out;
 }

@@ -16,10 +16,13 @@ struct MissingJoint {
   uint32_t coarsest_level = 0;  // the coarsest level that still has one of its vertices
 };
 
-// In joint order; empty for a pack with one level.
-std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack);
+// In joint order; empty for a pack with one level. `weights`: the geometry's, as the pack
+// stores them (4 a vertex; stored_weights() for contents not yet written).
+std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack,
+                                                const std::vector<float>& weights);
 
 // [{"joint": name, "coarsest_level": n}, ...]
-nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack);
+nlohmann::ordered_json joints_missing_at_min_json(const PackContents& pack,
+                                                  const std::vector<float>& weights);
 
 }  // namespace crowdbake::cli

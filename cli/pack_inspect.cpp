@@ -101,7 +101,7 @@ ordered_json to_json(const PackFile& pack) {
               {"max_vertices", lod.max_vertices},
               {"min_triangles", lod.min_triangles},
               {"max_triangles", lod.max_triangles},
-              {"joints_missing_at_min", joints_missing_at_min_json(c)}};
+              {"joints_missing_at_min", joints_missing_at_min_json(c, c.geometry.weights)}};
   const PackLevelErrors& e = c.level_errors;
   j["level_errors"] = ordered_json::array();
   for (size_t k = 0; k < e.vertices.size(); ++k)
@@ -194,7 +194,7 @@ void print_text(const PackFile& pack) {
   std::printf("  lod        %u..%u vertices, %u..%u triangles\n", lod.min_vertices,
               lod.max_vertices, lod.min_triangles, lod.max_triangles);
   // note: the parts the coarsest level no longer draws with their own joint.
-  const std::vector<MissingJoint> missing = joints_missing_at_min(c);
+  const std::vector<MissingJoint> missing = joints_missing_at_min(c, c.geometry.weights);
   for (size_t k = 0; k < missing.size(); ++k)
     std::printf("  %-10s '%s' has no vertex below %u vertices\n", k == 0 ? "joints" : "",
                 missing[k].name.c_str(), missing[k].coarsest_level);

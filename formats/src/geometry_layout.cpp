@@ -114,3 +114,14 @@ std::vector<float> dequantize_weights(const std::vector<uint16_t>& levels, int b
 }
 
 }  // namespace crowdbake::pack_io
+
+namespace crowdbake {
+
+std::vector<float> stored_weights(const PackGeometry& geometry, const PackWriteOptions& options) {
+  const pack_io::GeometryLayout layout = pack_io::make_geometry_layout(geometry, options);
+  if (layout.weight_bits == 0) return geometry.weights;
+  return pack_io::dequantize_weights(
+      pack_io::quantize_weights(geometry.weights, layout.weight_bits), layout.weight_bits);
+}
+
+}  // namespace crowdbake

@@ -119,13 +119,13 @@ std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
   return out;
 }
 
-std::vector<uint16_t> heaviest_joints(const PackGeometry& geometry) {
-  std::vector<uint16_t> out(std::min(geometry.joints.size(), geometry.weights.size()) / 4);
+std::vector<uint16_t> heaviest_joints(Span<const uint16_t> joints, Span<const float> weights) {
+  std::vector<uint16_t> out(std::min(joints.size(), weights.size()) / 4);
   for (size_t v = 0; v < out.size(); ++v) {
     int best = 0;
     for (int k = 1; k < 4; ++k)
-      if (geometry.weights[4 * v + k] > geometry.weights[4 * v + best]) best = k;
-    out[v] = geometry.joints[4 * v + best];
+      if (weights[4 * v + k] > weights[4 * v + best]) best = k;
+    out[v] = joints[4 * v + best];
   }
   return out;
 }

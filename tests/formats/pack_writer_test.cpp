@@ -126,6 +126,18 @@ TEST_P(RoundTrip, QuantisedWeightsSumToOneWithinTheirBound) {
     }
     EXPECT_LE(worst, 2.5 * step + 1e-7);
     EXPECT_GT(worst, 0.0) << "these weights are not on the grid";
+    // What the writer will store is known without writing.
+    EXPECT_EQ(stored_weights(in.geometry, options), out.geometry.weights);
+  }
+}
+
+TEST_P(RoundTrip, StoredWeightsAreWhatTheReaderGivesBack) {
+  const PackContents in = make_test_contents(9, 12);
+  for (const int bits : {0, 8, 12}) {
+    SCOPED_TRACE("weight bits " + std::to_string(bits));
+    PackWriteOptions options{GetParam()};
+    options.weight_bits = bits;
+    EXPECT_EQ(stored_weights(in.geometry, options), round_trip(in, options).geometry.weights);
   }
 }
 

@@ -270,6 +270,10 @@ struct StoredAnimation {
 Status stored_animation(const PackContents& contents, const PackWriteOptions& options,
                         StoredAnimation& out);
 
+// The skin weights read_pack() gives back for `geometry` written with `options` (quantized
+// to the layout's weight bits, or as they are), without coding the geometry.
+std::vector<float> stored_weights(const PackGeometry& geometry, const PackWriteOptions& options);
+
 // write_pack() with the animation's storage already chosen: `animation` must be what
 // stored_animation(contents, options) returned. The same bytes, without coding the animation
 // a second time (the coding measures every vertex at every row: seconds on a large character).

@@ -55,8 +55,9 @@ std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
                                                Span<const uint16_t> vertex_joint,
                                                size_t joint_count);
 
-// Each vertex's heaviest joint (the first of its four on ties).
-std::vector<uint16_t> heaviest_joints(const PackGeometry& geometry);
+// Each vertex's heaviest joint (the first of its four on ties), from 4 joints and 4 weights a
+// vertex.
+std::vector<uint16_t> heaviest_joints(Span<const uint16_t> joints, Span<const float> weights);
 
 // The rules, cheapest first, each broken one named with its index: the arrays are all empty
 // or sized vertex_count / vertex_count + 1 / vertex_count; min_vertices <= vertex_count; a
