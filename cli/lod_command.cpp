@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/missing_joints.h"
 #include "crowdbake/pipeline/animated_error.h"
 #include "crowdbake/pipeline/error.h"
 #include "crowdbake/pipeline/gltf_export.h"
@@ -57,18 +58,16 @@ void print_joints_without_vertices(const SkinnedAsset& original, const Progressi
     const int j = original.dominant_joint(pm.vertex_source[i]);
     if (j >= 0) heaviest[i] = static_cast<uint16_t>(j);
   }
-  const std::vector<uint32_t> levels =
-      coarsest_levels_by_joint(pm.view(), heaviest, original.skeleton.joints.size());
+  std::vector<std::string> names;
+  for (const Joint& j : original.skeleton.joints) names.push_back(j.name);
+  const std::vector<MissingJoint> missing = joints_missing_below(
+      coarsest_levels_by_joint(pm.view(), heaviest, names.size()), names, used);
   std::string list;
-  size_t count = 0;
-  for (size_t j = 0; j < levels.size(); ++j) {
-    if (levels[j] <= used) continue;  // note: 0, no vertex of its own, is left out too
-    list += (count++ ? ", '" : "'") + original.skeleton.joints[j].name + "' (" +
-            std::to_string(levels[j]) + ")";
-  }
-  if (count > 0)
-    std::printf("  no vertex  of %zu joint%s here (the coarsest level with one): %s\n", count,
-                count == 1 ? "" : "s", list.c_str());
+  for (const MissingJoint& m : missing)
+    list += (list.empty() ? "'" : ", '") + m.name + "' (" + std::to_string(m.coarsest_level) + ")";
+  if (!missing.empty())
+    std::printf("  no vertex  of %zu joint%s here (the coarsest level with one): %s\n",
+                missing.size(), missing.size() == 1 ? "" : "s", list.c_str());
 }
 
 // The level's animated error (docs/accuracy.md, "What is measured") and where its max is.

@@ -9,11 +9,18 @@ std::vector<MissingJoint> joints_missing_at_min(const PackContents& pack,
   const ProgressiveView view = progressive_view(pack);
   const std::vector<uint16_t> heaviest = heaviest_joints(pack.geometry.joints, weights);
   const std::vector<uint32_t> levels = coarsest_levels_by_joint(view, heaviest, pack.joints.size());
+  std::vector<std::string> names;
+  for (const PackJoint& j : pack.joints) names.push_back(j.name);
   // note: without progressive arrays the coarsest level is the full mesh.
-  const uint32_t coarsest = usable_vertices(view, 0);
+  return joints_missing_below(levels, names, usable_vertices(view, 0));
+}
+
+std::vector<MissingJoint> joints_missing_below(const std::vector<uint32_t>& coarsest_levels,
+                                               const std::vector<std::string>& names,
+                                               uint32_t level) {
   std::vector<MissingJoint> out;
-  for (size_t j = 0; j < levels.size(); ++j)
-    if (levels[j] > coarsest) out.push_back({pack.joints[j].name, levels[j]});
+  for (size_t j = 0; j < coarsest_levels.size() && j < names.size(); ++j)
+    if (coarsest_levels[j] > level) out.push_back({names[j], coarsest_levels[j]});
   return out;
 }
 

@@ -119,14 +119,17 @@ std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
   return out;
 }
 
+int heaviest_influence(const float weights[4]) {
+  int best = 0;
+  for (int k = 1; k < 4; ++k)
+    if (weights[k] > weights[best]) best = k;
+  return best;
+}
+
 std::vector<uint16_t> heaviest_joints(Span<const uint16_t> joints, Span<const float> weights) {
   std::vector<uint16_t> out(std::min(joints.size(), weights.size()) / 4);
-  for (size_t v = 0; v < out.size(); ++v) {
-    int best = 0;
-    for (int k = 1; k < 4; ++k)
-      if (weights[4 * v + k] > weights[4 * v + best]) best = k;
-    out[v] = joints[4 * v + best];
-  }
+  for (size_t v = 0; v < out.size(); ++v)
+    out[v] = joints[4 * v + heaviest_influence(&weights[4 * v])];
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "crowdbake/formats/pack_format.h"
+#include "crowdbake/formats/progressive.h"
 #include "crowdbake/pipeline/error.h"
 
 namespace crowdbake {
@@ -59,10 +60,7 @@ int SkinnedAsset::dominant_joint(size_t vertex) const {
   for (const Primitive& p : primitives) {
     if (vertex < p.positions.size()) {
       if (vertex >= p.joints.size() || vertex >= p.weights.size()) return -1;
-      int best = 0;
-      for (int k = 1; k < 4; ++k)
-        if (p.weights[vertex][k] > p.weights[vertex][best]) best = k;
-      return p.joints[vertex][best];
+      return p.joints[vertex][heaviest_influence(p.weights[vertex].data())];
     }
     vertex -= p.positions.size();
   }

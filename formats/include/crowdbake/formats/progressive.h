@@ -55,6 +55,9 @@ std::vector<uint32_t> coarsest_levels_by_joint(const ProgressiveView& mesh,
                                                Span<const uint16_t> vertex_joint,
                                                size_t joint_count);
 
+// Which of one vertex's four influences weighs most (the first on ties).
+int heaviest_influence(const float weights[4]);
+
 // Each vertex's heaviest joint (the first of its four on ties), from 4 joints and 4 weights a
 // vertex.
 std::vector<uint16_t> heaviest_joints(Span<const uint16_t> joints, Span<const float> weights);
