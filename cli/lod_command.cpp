@@ -48,6 +48,39 @@ void print_loss(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_
     }
 }
 
+// Where a level that strays got its shape: the level's vertex nearest the farthest point, how
+// many original vertices it stands for, and the farthest of them in the bind pose with the
+// collapse that brought it there. A vertex standing for another joint's vertices far away is
+// a face stretched across the two (a web).
+void print_stray(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_t used,
+                 const std::vector<uint32_t>& progressive_index, const AnimatedError& e) {
+  if (e.max_vertex >= progressive_index.size()) return;
+  const uint32_t near = progressive_index[e.max_vertex];
+  const std::vector<uint32_t> stand_in = level_stand_ins(pm, used);
+  const glm::dvec3 at(original.position(pm.vertex_source[near]));
+  uint32_t count = 0, farthest = near;
+  double away = 0.0;
+  for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+    if (stand_in[i] != near) continue;
+    ++count;
+    const double d = glm::length(glm::dvec3(original.position(pm.vertex_source[i])) - at);
+    if (d > away) away = d, farthest = i;
+  }
+  const uint32_t source = pm.vertex_source[near];
+  std::printf("  near       vertex %u (joint %s), standing for %u original vert%s here\n", source,
+              joint_name(original, original.dominant_joint(source)).c_str(), count,
+              count == 1 ? "ex" : "ices");
+  if (farthest == near) return;
+  const VertexFate fate = vertex_fate(pm, pm.vertex_source[farthest], used);
+  std::printf(
+      "  farthest   of them: vertex %u (joint %s), %.1f%% of the diagonal away in the bind pose, "
+      "reached it below %u vertices\n",
+      pm.vertex_source[farthest],
+      joint_name(original, original.dominant_joint(pm.vertex_source[farthest])).c_str(),
+      e.diagonal > 0.0 ? 100.0 * away / e.diagonal : 0.0,
+      fate.coarsest_level[fate.chain.size() - 2]);
+}
+
 // The joints with vertices of their own (largest weight) in the original and none in the level,
 // each with the coarsest level that still has one: the parts a level no longer draws with
 // their own joint.
@@ -72,7 +105,7 @@ void print_joints_without_vertices(const SkinnedAsset& original, const Progressi
 
 // The level's animated error (docs/accuracy.md, "What is measured") and where its max is.
 void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, const ProgressiveMesh& pm,
-                 uint32_t used, double fps) {
+                 uint32_t used, const std::vector<uint32_t>& progressive_index, double fps) {
   AnimatedErrorOptions options;
   options.fps = fps;
   options.bind_pose = false;
@@ -89,7 +122,10 @@ void print_error(const SkinnedAsset& original, const SkinnedAsset& lod, const Pr
   std::printf("  max at     joint '%s', %s: %s\n", joint.c_str(), when,
               e.max_on_lod ? "the level strays from the original's surface"
                            : "part of the original is missing from the level");
-  if (!e.max_on_lod) print_loss(original, pm, used, e);
+  if (e.max_on_lod)
+    print_stray(original, pm, used, progressive_index, e);
+  else
+    print_loss(original, pm, used, e);
   print_joints_without_vertices(original, pm, used);
 }
 
@@ -146,7 +182,8 @@ int run_lod(const LodSettings& settings) {
     while (pm.usable_vertices(n) != n) ++n;
     used = n;
   }
-  const SkinnedAsset lod = extract_lod(asset, pm, used);
+  std::vector<uint32_t> progressive_index;
+  const SkinnedAsset lod = extract_lod(asset, pm, used, &progressive_index);
   throw_if_failed(export_glb(lod, settings.output));
 
   if (!settings.quiet) {
@@ -169,7 +206,8 @@ int run_lod(const LodSettings& settings) {
                   report.stopped_at_cost_ceiling
                       ? " (the next collapse costs more than --max-collapse-cost)"
                       : "");
-    if (settings.measure_fps > 0.0) print_error(asset, lod, pm, used, settings.measure_fps);
+    if (settings.measure_fps > 0.0)
+      print_error(asset, lod, pm, used, progressive_index, settings.measure_fps);
     for (const std::string& w : report.warnings) std::printf("  warning    %s\n", w.c_str());
   }
   return 0;

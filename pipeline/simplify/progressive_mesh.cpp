@@ -213,6 +213,18 @@ VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint
   }
 }
 
+std::vector<uint32_t> level_stand_ins(const ProgressiveMesh& pm, uint32_t n) {
+  const uint32_t used = pm.usable_vertices(n);
+  std::vector<uint32_t> out(pm.vertex_count());
+  for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+    // note: a chain reaching an index already done ends where that one's does.
+    uint32_t v = i;
+    while (v >= used) v = v < i ? out[v] : pm.collapse_to[v];
+    out[i] = v;
+  }
+  return out;
+}
+
 ProgressiveView ProgressiveMesh::view() const {
   ProgressiveView v;
   v.triangles = triangles;

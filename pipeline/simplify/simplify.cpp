@@ -86,7 +86,8 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
   return pm;
 }
 
-SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n) {
+SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n,
+                         std::vector<uint32_t>* progressive_index) {
   const uint32_t used = pm.usable_vertices(n);
   const std::vector<uint32_t> triangles = pm.reconstruct(used);
 
@@ -107,11 +108,13 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
     lod.primitives.back().name = p.name, lod.primitives.back().material = p.material;
   }
   std::vector<uint32_t> local(used);
+  std::vector<std::vector<uint32_t>> kept(asset.primitives.size());
   for (uint32_t i = 0; i < used; ++i) {
     const auto [prim, v] = origin[pm.vertex_source[i]];
     const Primitive& src = asset.primitives[prim];
     Primitive& dst = lod.primitives[prim];
     local[i] = static_cast<uint32_t>(dst.positions.size());
+    if (progressive_index) kept[prim].push_back(i);
     dst.positions.push_back(src.positions[v]);
     if (!src.normals.empty()) dst.normals.push_back(src.normals[v]);
     if (!src.uvs.empty()) dst.uvs.push_back(src.uvs[v]);
@@ -129,6 +132,12 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
         throw std::logic_error("extract_lod: a triangle's corner left its primitive");
       lod.primitives[prim].indices.push_back(local[i]);
     }
+  }
+  if (progressive_index) {
+    progressive_index->clear();
+    for (size_t p = 0; p < kept.size(); ++p)
+      if (!lod.primitives[p].indices.empty())
+        progressive_index->insert(progressive_index->end(), kept[p].begin(), kept[p].end());
   }
   // note: a primitive whose faces all collapsed away is dropped; empty ones are invalid glTF.
   lod.primitives.erase(std::remove_if(lod.primitives.begin(), lod.primitives.end(),

@@ -266,6 +266,37 @@ TEST(ProgressiveMesh, VertexFateFollowsTheCollapses) {
   EXPECT_EQ(vertex_fate(seamed, 3, 8).coarsest_level, (std::vector<uint32_t>{9, 6}));
 }
 
+// Every vertex's stand-in in every level is where its fate chain ends, and a vertex the level
+// holds stands for itself.
+TEST(ProgressiveMesh, LevelStandInsAreWhereTheFatesEnd) {
+  for (const ProgressiveMesh& pm :
+       {build(fan(), fan_collapses()), build(seam(), seam_collapses())}) {
+    for (uint32_t n = 0; n <= pm.vertex_count(); ++n) {
+      const uint32_t used = pm.usable_vertices(n);
+      const std::vector<uint32_t> stand_in = level_stand_ins(pm, n);
+      ASSERT_EQ(stand_in.size(), pm.vertex_count());
+      for (uint32_t i = 0; i < pm.vertex_count(); ++i) {
+        EXPECT_LT(stand_in[i], used) << "n " << n << ", vertex " << i;
+        if (i < used) {
+          EXPECT_EQ(stand_in[i], i);
+        }
+        EXPECT_EQ(stand_in[i], vertex_fate(pm, pm.vertex_source[i], n).chain.back())
+            << "n " << n << ", vertex " << i;
+      }
+    }
+  }
+  // The fan at its coarsest: 1 went onto 0, and 0 onto 4 (original ids).
+  const ProgressiveMesh pm = build(fan(), fan_collapses());
+  const std::vector<uint32_t> stand_in = level_stand_ins(pm, 0);
+  const auto index_of = [&](uint32_t original) {
+    return static_cast<uint32_t>(
+        std::find(pm.vertex_source.begin(), pm.vertex_source.end(), original) -
+        pm.vertex_source.begin());
+  };
+  EXPECT_EQ(pm.vertex_source[stand_in[index_of(1)]], 4u);
+  EXPECT_EQ(pm.vertex_source[stand_in[index_of(0)]], 4u);
+}
+
 // Groups [10, 11], [9], [7, 8], [6]; 0..5 are never removed (min_vertices 6).
 TEST(ProgressiveMesh, CoarsestLevelHoldingIsTheGroupsEnd) {
   const ProgressiveMesh pm = build(seam(), seam_collapses());

@@ -397,6 +397,35 @@ TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) {
   expect_valid(a);
 }
 
+// extract_lod names each of a level's vertices' progressive index, in the order of the level's
+// primitives (those left with faces) and their vertices.
+TEST(SimplifyLevels, ProgressiveIndexOfEveryLevelVertex) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(6, 6, p, i, 0.05f);
+  SkinnedAsset a = from(p, i);
+  Primitive second = a.primitives[0];
+  second.indices.assign(a.primitives[0].indices.begin() + 36, a.primitives[0].indices.end());
+  a.primitives[0].indices.resize(36);
+  a.primitives.push_back(second);
+  const ProgressiveMesh pm = test::simplify_or_throw(a, {});
+  for (uint32_t n = pm.min_vertices; n <= pm.vertex_count(); ++n) {
+    std::vector<uint32_t> index;
+    const SkinnedAsset lod = extract_lod(a, pm, n, &index);
+    ASSERT_EQ(index.size(), lod.vertex_count()) << "n " << n;
+    std::vector<char> seen(pm.vertex_count(), 0);
+    size_t k = 0;
+    for (const Primitive& prim : lod.primitives)
+      for (const glm::vec3& at : prim.positions) {
+        ASSERT_LT(index[k], pm.usable_vertices(n)) << "n " << n;
+        EXPECT_FALSE(seen[index[k]]) << "n " << n << ": vertex " << index[k] << " twice";
+        seen[index[k]] = 1;
+        EXPECT_EQ(at, a.position(pm.vertex_source[index[k]])) << "n " << n << ", vertex " << k;
+        ++k;
+      }
+  }
+}
+
 TEST(SimplifyHardCases, LevelsKeepTheMaterialsAndTheirImages) {
   std::vector<glm::vec3> p;
   std::vector<uint32_t> i;

@@ -92,6 +92,10 @@ struct VertexFate {
 // Throws std::out_of_range when no vertex of pm came from `original_vertex`.
 VertexFate vertex_fate(const ProgressiveMesh& pm, uint32_t original_vertex, uint32_t n);
 
+// Per progressive index, the vertex of the level with usable_vertices(n) vertices that stands
+// for it there (where its vertex_fate chain ends): itself when the level holds it.
+std::vector<uint32_t> level_stand_ins(const ProgressiveMesh& pm, uint32_t n);
+
 // Checks every invariant for every n in [min, max]: formats' rules of the levels
 // (check_progressive), vertex_source a permutation, one primitive per triangle, and every
 // level rebuilt with in-range, non-degenerate triangles. kInvalidArgument names the first

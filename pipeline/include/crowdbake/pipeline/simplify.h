@@ -100,6 +100,9 @@ struct SimplifyReport {
 
 // The character at LoD n (usable_vertices(n) vertices): same skeleton, clips and
 // materials, primitives holding only the kept vertices and the reconstructed triangles.
-SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n);
+// progressive_index, when given, receives each of the level's vertices' progressive index,
+// in the order of the level's primitives and their vertices.
+SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, uint32_t n,
+                         std::vector<uint32_t>* progressive_index = nullptr);
 
 }  // namespace crowdbake
