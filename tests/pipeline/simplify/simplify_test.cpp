@@ -384,30 +384,26 @@ TEST(SimplifyHardCases, SingleFrameClipsAndNoClips) {
   EXPECT_EQ(check_progressive_mesh(test::simplify_or_throw(a, o)).message(), "");
 }
 
-TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) {
+// A 6 × 6 grid whose faces are split into two primitives sharing boundary positions (distinct
+// vertices).
+SkinnedAsset two_primitive_grid() {
   std::vector<glm::vec3> p;
   std::vector<uint32_t> i;
   test::grid(6, 6, p, i, 0.05f);
   SkinnedAsset a = from(p, i);
-  // Split faces into two primitives sharing boundary positions (distinct vertices).
   Primitive second = a.primitives[0];
   second.indices.assign(a.primitives[0].indices.begin() + 36, a.primitives[0].indices.end());
   a.primitives[0].indices.resize(36);
   a.primitives.push_back(second);
-  expect_valid(a);
+  return a;
 }
+
+TEST(SimplifyHardCases, SeveralPrimitivesKeepTheirFaces) { expect_valid(two_primitive_grid()); }
 
 // extract_lod names each of a level's vertices' progressive index, in the order of the level's
 // primitives (those left with faces) and their vertices.
 TEST(SimplifyLevels, ProgressiveIndexOfEveryLevelVertex) {
-  std::vector<glm::vec3> p;
-  std::vector<uint32_t> i;
-  test::grid(6, 6, p, i, 0.05f);
-  SkinnedAsset a = from(p, i);
-  Primitive second = a.primitives[0];
-  second.indices.assign(a.primitives[0].indices.begin() + 36, a.primitives[0].indices.end());
-  a.primitives[0].indices.resize(36);
-  a.primitives.push_back(second);
+  const SkinnedAsset a = two_primitive_grid();
   const ProgressiveMesh pm = test::simplify_or_throw(a, {});
   for (uint32_t n = pm.min_vertices; n <= pm.vertex_count(); ++n) {
     std::vector<uint32_t> index;
