@@ -50,7 +50,7 @@ void print_loss(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_
 
 // Where a level that strays got its shape: the level's vertex nearest the farthest point, how
 // many original vertices it stands for, and the farthest of them in the bind pose with the
-// collapse that brought it there. A vertex standing for another joint's vertices far away is
+// level below which it got there. A vertex standing for another joint's vertices far away is
 // a face stretched across the two (a web).
 void print_stray(const SkinnedAsset& original, const ProgressiveMesh& pm, uint32_t used,
                  const std::vector<uint32_t>& progressive_index, const AnimatedError& e) {
