@@ -120,6 +120,7 @@ int run_bake(const BakeCommandSettings& s) {
                 {"stopped_at_cost_ceiling", report.simplify.stopped_at_cost_ceiling},
                 {"unpriced_collapses", report.simplify.unpriced_collapses},
                 {"collapses_before_stand_off", report.simplify.collapses_before_stand_off},
+                {"split_collapses", report.simplify.split_collapses},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()},
                 {"joints_missing_at_min", joints_missing_at_min_json(pack, weights)}};

@@ -78,10 +78,11 @@ class ConfigReader {
       json_reader::fail("simplify.relax_when_stuck",
                         "is no longer an option: the simplifier keeps one set of rules down to "
                         "its minimum (docs/simplification.md); remove the key");
-    json_reader::check_object(body, "simplify",
-                              {"samples", "seed", "stratified", "form", "pose_source",
-                               "check_flips_in_all_poses", "max_pose_priced_positions",
-                               "max_stand_off_priced_positions", "max_collapse_cost", "ranges"});
+    json_reader::check_object(
+        body, "simplify",
+        {"samples", "seed", "stratified", "form", "pose_source", "check_flips_in_all_poses",
+         "max_pose_priced_positions", "max_stand_off_priced_positions", "split_positions",
+         "max_collapse_cost", "ranges"});
     if (const Json* p = find(body, "samples"))
       s.samples = static_cast<int>(json_reader::integer(*p, "simplify.samples", 1, 4096));
     if (const Json* p = find(body, "seed"))
@@ -101,6 +102,9 @@ class ConfigReader {
     if (const Json* p = find(body, "max_stand_off_priced_positions"))
       s.max_stand_off_priced_positions = static_cast<uint32_t>(json_reader::integer(
           *p, "simplify.max_stand_off_priced_positions", 0, int64_t{UINT32_MAX}));
+    if (const Json* p = find(body, "split_positions"))
+      s.split_positions = static_cast<uint32_t>(
+          json_reader::integer(*p, "simplify.split_positions", 0, int64_t{UINT32_MAX}));
     if (const Json* p = find(body, "max_collapse_cost"))
       s.max_collapse_cost = number(*p, "simplify.max_collapse_cost", 0.0, 1e9);
     if (const Json* p = find(body, "ranges"))
@@ -243,6 +247,8 @@ std::string bake_settings_json(const BakeSettings& s) {
     j["simplify"]["max_pose_priced_positions"] = s.simplify.max_pose_priced_positions;
   if (s.simplify.max_stand_off_priced_positions != SimplifyOptions{}.max_stand_off_priced_positions)
     j["simplify"]["max_stand_off_priced_positions"] = s.simplify.max_stand_off_priced_positions;
+  if (s.simplify.split_positions != SimplifyOptions{}.split_positions)
+    j["simplify"]["split_positions"] = s.simplify.split_positions;
   // note: always written: packs baked before the key existed had no ceiling.
   j["simplify"]["max_collapse_cost"] = s.simplify.max_collapse_cost;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();

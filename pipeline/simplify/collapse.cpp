@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <iterator>
 #include <limits>
 #include <thread>
 
 #include "crowdbake/base/parallel.h"
 #include "eval/closest_point.h"
 #include "simplify/handover_slot.h"
+#include "simplify/mesh_halves.h"
 #include "simplify/part_floors.h"
 #include "simplify/position_queue.h"
 
@@ -53,49 +56,99 @@ struct Scratch {
 
 enum class Kind { kInterior, kBorder, kFin, kLocked };
 
+// The mesh as the collapses leave it, shared by the lanes that collapse it (see Lane).
+struct CollapseState {
+  CollapseState(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses)
+      : corner(mesh.triangles),
+        triangle_alive(mesh.triangle_count(), 1),
+        incident(mesh.position_count()),
+        position_alive(mesh.position_count(), 1),
+        small_part(small_parts(mesh, posed, poses, kSmallPartFraction)),
+        limb(limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
+        star(mesh.position_count(), 0),
+        refused(mesh.position_count()),
+        leaving(mesh.position_count()) {
+    for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+      for (int k = 0; k < 3; ++k) incident[mesh.position_of[corner[3 * t + k]]].push_back(t);
+  }
+
+  std::vector<uint32_t> corner;  // current vertex of every triangle corner
+  std::vector<char> triangle_alive;
+  std::vector<std::vector<uint32_t>> incident;  // position -> its live triangles
+  std::vector<char> position_alive;
+  std::vector<char> small_part;  // position lies on a part that may vanish
+  std::vector<uint16_t> limb;    // per position: its limb joint, or kNoLimb
+  std::vector<uint32_t> star;    // per position: bumped when its incident faces change
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
+  std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates
+};
+
+// A collapse a lane made: its cost, and whether it crossed a seam.
+struct Done {
+  double cost;
+  bool crossed;
+};
+
+// Which part of the mesh one collapse loop works on. A hero mesh is cut in two halves that
+// are simplified side by side (collapse_all): a lane collapses only positions of its own
+// half (`half` == `id`) onto positions of its own half and leaves the positions on the cut as
+// they are, so the two lanes never read or write the same position's faces, lists or
+// quadric. Its prices start, and it stops, at its share of the whole mesh's limits.
+struct Lane {
+  const std::vector<uint8_t>* half = nullptr;  // mesh_halves(); null: the whole mesh
+  uint8_t id = 0;
+  uint32_t stop_at = 0;  // live positions of the lane at which it stops (0: never)
+  uint32_t priced_positions = 0, stand_off_positions = 0;
+  bool lookahead = false;
+  bool count_locked = true;
+};
+
 class Collapser {
  public:
   Collapser(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
-            const SimplifyOptions& options, DqemCost& cost, CollapseStats& stats)
+            const SimplifyOptions& options, const Lane& lane, CollapseState& state, DqemCost& cost,
+            CollapseStats& stats)
       : mesh_(mesh),
         posed_(posed),
         poses_(poses),
         all_poses_(options.check_flips_in_all_poses),
-        priced_positions_(options.max_pose_priced_positions),
-        stand_off_positions_(options.max_stand_off_priced_positions),
+        priced_positions_(lane.priced_positions),
+        stand_off_positions_(lane.stand_off_positions),
         max_cost_(options.max_collapse_cost > 0.0 ? options.max_collapse_cost
                                                   : std::numeric_limits<double>::infinity()),
         cost_(cost),
         stats_(stats),
+        half_(lane.half),
+        lane_id_(lane.id),
+        stop_at_(lane.stop_at),
+        count_locked_(lane.count_locked),
+        corner_(state.corner),
+        triangle_alive_(state.triangle_alive),
+        incident_(state.incident),
+        position_alive_(state.position_alive),
+        small_part_(state.small_part),
+        limb_(state.limb),
+        star_(state.star),
+        refused_(state.refused),
+        leaving_(state.leaving),
         queue_(mesh.position_count()),
-        lookahead_(thread_count(options.threads, 2) > 1 && options.lookahead_positions > 0 &&
-                   mesh.position_count() >= options.lookahead_positions) {
-    const uint32_t positions = mesh.position_count();
-    corner_ = mesh.triangles;
-    triangle_alive_.assign(mesh.triangle_count(), 1);
-    incident_.resize(positions);
-    for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
-      for (int k = 0; k < 3; ++k) incident_[position(t, k)].push_back(t);
-    position_alive_.assign(positions, 1);
-    star_.assign(positions, 0);
-    leaving_.resize(positions);
-    refused_.resize(positions);
-    small_part_ = small_parts(mesh, posed, poses, kSmallPartFraction);
-    limb_ = limb_joints(mesh, posed, poses, small_part_, kLimbFraction);
+        lookahead_(lane.lookahead) {
     uint32_t joints = 0;
     for (uint16_t j : mesh.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
     limb_positions_.assign(joints, 0);
-    for (uint16_t j : limb_)
-      if (j != kNoLimb) ++limb_positions_[j];
+    for (uint32_t p = 0; p < mesh.position_count(); ++p)
+      if (limb_[p] != kNoLimb && position_alive_[p] && mine(p)) ++limb_positions_[limb_[p]];
   }
 
   ~Collapser() { stop_worker(); }
 
-  std::vector<CollapseRecord> run() {
+  // The lane's collapses in order; `done`, when given, gets each one's cost and seam crossing.
+  std::vector<CollapseRecord> run(std::vector<Done>* done = nullptr) {
+    done_ = done;
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
       if (incident_[p].empty()) continue;
-      ++live_;
-      if (kind(p, scratch_.edges) == Kind::kLocked) ++stats_.locked_positions;
+      if (count_locked_ && kind(p, scratch_.edges) == Kind::kLocked) ++stats_.locked_positions;
+      live_ += mine(p);
     }
     std::vector<CollapseRecord> records;
     push_all();
@@ -105,15 +158,20 @@ class Collapser {
   }
 
  private:
+  // A position this lane may collapse or collapse onto.
+  bool mine(uint32_t p) const { return !half_ || (*half_)[p] == lane_id_; }
+
   void push_all() {
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
-      for (uint32_t x : neighbours(p, ring_)) leaving_[p].push_back(fresh(p, x));
+      if (!mine(p)) continue;
+      for (uint32_t x : neighbours(p, ring_))
+        if (mine(x)) leaving_[p].push_back(fresh(p, x));
       update(p);
     }
   }
 
   void drain(std::vector<CollapseRecord>& records) {
-    while (!queue_.empty()) {
+    while (!queue_.empty() && live_ > stop_at_) {
       const uint32_t from = queue_.top().from;
       const Candidate c = take_best(from);
       // note: a retried refusal may name a position that has since collapsed elsewhere.
@@ -123,6 +181,7 @@ class Collapser {
                                                           : try_collapse(from, c, record);
       if (outcome == Outcome::kDone) {
         records.push_back(std::move(record));
+        if (done_) done_->push_back({last_cost_, last_crossed_});
       } else if (outcome == Outcome::kCeiling) {
         stats_.stopped_at_ceiling = true;
         break;
@@ -387,7 +446,9 @@ class Collapser {
     // the sequence rather than being skipped: what is left costs as much or more, and the
     // levels stay a prefix of the sequence without a ceiling (docs/simplification.md, "Cost
     // ceiling").
-    if ((e.priced ? candidate.cost : e.base + e.penalty) > max_cost_) return Outcome::kCeiling;
+    last_cost_ = e.priced ? candidate.cost : e.base + e.penalty;
+    last_crossed_ = e.crossed_area > 0.0;
+    if (last_cost_ > max_cost_) return Outcome::kCeiling;
     if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
       stats_.collapses_before_crossing = collapses_;
     if (!pose_priced()) ++stats_.unpriced_collapses;
@@ -565,10 +626,12 @@ class Collapser {
     ++star_[to];
     const std::vector<uint32_t>& ring = neighbours(to, ring_);
     leaving_[to].clear();
-    for (uint32_t x : ring) leaving_[to].push_back(fresh(to, x));
+    for (uint32_t x : ring)
+      if (mine(x)) leaving_[to].push_back(fresh(to, x));
     update(to);
     for (uint32_t x : ring) {
       ++star_[x];
+      if (!mine(x)) continue;
       forget(x, from, to);
       leaving_[x].push_back(fresh(x, to));
       update(x);
@@ -578,6 +641,7 @@ class Collapser {
       for (uint32_t x : *before)
         if (x != from && x != to && !std::binary_search(ring.begin(), ring.end(), x)) {
           ++star_[x];  // note: it lost the removed face, so its prices are stale
+          if (!mine(x)) continue;
           forget(x, from, to);
           update(x);
         }
@@ -600,7 +664,8 @@ class Collapser {
     // note: a pair no longer joined by an edge can only be joined again by a collapse onto one
     // of its ends, which offers that end's edges afresh.
     for (const auto& [a, b] : pairs)
-      if (position_alive_[a] && position_alive_[b] && a != to && b != to && adjacent(a, b))
+      if (position_alive_[a] && position_alive_[b] && a != to && b != to && mine(a) && mine(b) &&
+          adjacent(a, b))
         offer(a, fresh(a, b));
   }
 
@@ -744,16 +809,25 @@ class Collapser {
   DqemCost& cost_;
   CollapseStats& stats_;
 
-  std::vector<uint32_t> corner_;  // current vertex of every triangle corner
-  std::vector<char> triangle_alive_;
-  std::vector<std::vector<uint32_t>> incident_;  // position -> its live triangles
-  std::vector<char> position_alive_;
-  std::vector<char> small_part_;          // position lies on a part that may vanish
-  std::vector<uint16_t> limb_;            // per position: its limb joint, or kNoLimb
-  std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb
-  std::vector<uint32_t> star_;            // per position: bumped when its incident faces change
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused_;  // (from, to) waiting
-  std::vector<std::vector<Candidate>> leaving_;  // per position: its live candidates
+  const std::vector<uint8_t>* half_;
+  uint8_t lane_id_;
+  uint32_t stop_at_;
+  bool count_locked_;
+  std::vector<Done>* done_ = nullptr;
+  double last_cost_ = 0.0;
+  bool last_crossed_ = false;
+
+  // CollapseState's arrays (see there).
+  std::vector<uint32_t>& corner_;
+  std::vector<char>& triangle_alive_;
+  std::vector<std::vector<uint32_t>>& incident_;
+  std::vector<char>& position_alive_;
+  const std::vector<char>& small_part_;
+  const std::vector<uint16_t>& limb_;
+  std::vector<uint32_t>& star_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& refused_;
+  std::vector<std::vector<Candidate>>& leaving_;
+  std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb in the lane
   // Scratch of the attempts and their helpers, kept so the loop does not allocate.
   Scratch scratch_;
   std::vector<uint32_t> ring_;
@@ -779,7 +853,120 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          const SimplifyOptions& options, DqemCost& cost,
                                          CollapseStats& stats) {
-  return Collapser(mesh, posed, poses, options, cost, stats).run();
+  CollapseState state(mesh, posed, poses);
+  Lane whole;
+  whole.priced_positions = options.max_pose_priced_positions;
+  whole.stand_off_positions = options.max_stand_off_priced_positions;
+  whole.lookahead = thread_count(options.threads, 2) > 1 && options.lookahead_positions > 0 &&
+                    mesh.position_count() >= options.lookahead_positions;
+  if (options.split_positions == 0 || mesh.position_count() < options.split_positions)
+    return Collapser(mesh, posed, poses, options, whole, state, cost, stats).run();
+
+  const uint32_t positions = mesh.position_count();
+  std::vector<glm::dvec3> bind(positions);
+  std::vector<char> used(positions);
+  for (uint32_t p = 0; p < positions; ++p)
+    bind[p] = posed[size_t{p} * poses], used[p] = !state.incident[p].empty();
+  const std::vector<uint8_t> half = mesh_halves(mesh, bind, used);
+  uint32_t live = 0, on_cut = 0, in_half[2] = {0, 0};
+  for (uint32_t p = 0; p < positions; ++p) {
+    if (!used[p]) continue;
+    ++live;
+    if (half[p] == kOnCut)
+      ++on_cut;
+    else
+      ++in_half[half[p]];
+  }
+  // note: the cut's positions stay until the halves stop, so the halves stop while the cut is
+  // still a small share of what is left.
+  const uint32_t stop = std::max(options.split_stop_positions, kSplitStopPerCutPosition * on_cut);
+  Lane lanes[2];
+  CollapseStats lane_stats[2];
+  std::vector<CollapseRecord> lane_records[2];
+  std::vector<Done> lane_done[2];
+  for (int l = 0; l < 2; ++l) {
+    const auto share = [&](uint32_t limit) {
+      return static_cast<uint32_t>(uint64_t{limit} * in_half[l] / live);
+    };
+    lanes[l].half = &half;
+    lanes[l].id = static_cast<uint8_t>(l);
+    lanes[l].stop_at = std::max(share(stop), 1u);
+    // note: a limit of 0 means "always", so a share is never rounded down to it.
+    lanes[l].priced_positions = options.max_pose_priced_positions
+                                    ? std::max(share(options.max_pose_priced_positions), 1u)
+                                    : 0;
+    lanes[l].stand_off_positions = options.max_stand_off_priced_positions
+                                       ? std::max(share(options.max_stand_off_priced_positions), 1u)
+                                       : 0;
+    lanes[l].count_locked = l == 0;
+  }
+  const auto run_lane = [&](int l) {
+    lane_records[l] = Collapser(mesh, posed, poses, options, lanes[l], state, cost, lane_stats[l])
+                          .run(&lane_done[l]);
+  };
+  if (thread_count(options.threads, 2) > 1) {
+    // note: an exception on the second thread is carried over and thrown here.
+    std::exception_ptr failed;
+    std::thread second([&] {
+      try {
+        run_lane(1);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      run_lane(0);
+    } catch (...) {
+      second.join();
+      throw;
+    }
+    second.join();
+    if (failed) std::rethrow_exception(failed);
+  } else {
+    run_lane(0);
+    run_lane(1);
+  }
+
+  // The halves' collapses touch disjoint faces, so any interleaving of the two sequences is a
+  // valid one: they are merged in cost order, as one loop would have made them.
+  std::vector<CollapseRecord> records;
+  records.reserve(lane_records[0].size() + lane_records[1].size());
+  size_t i = 0, j = 0;
+  bool crossed = false;
+  while (i < lane_records[0].size() || j < lane_records[1].size()) {
+    const bool first = j == lane_records[1].size() ||
+                       (i < lane_records[0].size() && lane_done[0][i].cost <= lane_done[1][j].cost);
+    const Done& d = first ? lane_done[0][i] : lane_done[1][j];
+    if (d.crossed && !crossed)
+      crossed = true, stats.collapses_before_crossing = static_cast<uint32_t>(records.size());
+    records.push_back(std::move(first ? lane_records[0][i++] : lane_records[1][j++]));
+  }
+
+  // The rest in one loop over the whole mesh, its candidates made afresh.
+  for (std::vector<Candidate>& list : state.leaving) list.clear();
+  for (auto& list : state.refused) list.clear();
+  Lane rest = whole;
+  rest.count_locked = false;
+  CollapseStats rest_stats;
+  std::vector<CollapseRecord> tail =
+      Collapser(mesh, posed, poses, options, rest, state, cost, rest_stats).run();
+  const uint32_t made = static_cast<uint32_t>(records.size());
+  records.insert(records.end(), std::make_move_iterator(tail.begin()),
+                 std::make_move_iterator(tail.end()));
+  stats = lane_stats[0];
+  for (const CollapseStats* s : {&lane_stats[1], &rest_stats}) {
+    stats.rejected_flips += s->rejected_flips;
+    stats.rejected_topology += s->rejected_topology;
+    stats.rejected_limbs += s->rejected_limbs;
+    stats.priced_flips += s->priced_flips;
+    stats.unpriced_collapses += s->unpriced_collapses;
+    stats.collapses_before_stand_off += s->collapses_before_stand_off;
+    stats.seam_crossings += s->seam_crossings;
+  }
+  if (!crossed) stats.collapses_before_crossing = made + rest_stats.collapses_before_crossing;
+  stats.stopped_at_ceiling = rest_stats.stopped_at_ceiling;
+  stats.split_collapses = made;
+  return records;
 }
 
 }  // namespace crowdbake

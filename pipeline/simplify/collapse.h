@@ -28,6 +28,8 @@ struct CollapseStats {
   uint32_t collapses_before_crossing = 0;
   // The sequence ended at the cost ceiling (legal collapses were left), not at topology.
   bool stopped_at_ceiling = false;
+  // Collapses made by the two halves side by side (options.split_positions), before the rest.
+  uint32_t split_collapses = 0;
 };
 
 // Penalties added to a candidate's DQEM cost, in the quadrics' units (area × squared
@@ -55,6 +57,10 @@ constexpr double kSmallPartFraction = 0.1;
 // positions) is never collapsed onto another joint's, so a limb, head or tail thins to a
 // spike reaching its tip at the lowest levels instead of vanishing.
 constexpr double kLimbFraction = 0.2;
+// A mesh split in two halves (SimplifyOptions::split_positions) is simplified half by half
+// until SimplifyOptions::split_stop_positions are left, or this many per position on the cut
+// between them if that is more; one loop over the whole mesh makes the rest.
+constexpr uint32_t kSplitStopPerCutPosition = 8;
 
 // posed: every position in every pose (posed_positions' layout), pose 0 the bind pose. Returns the
 // collapses in cost order, under one set of rules all the way down: topology (link
@@ -64,8 +70,9 @@ constexpr double kLimbFraction = 0.2;
 // most options.max_pose_priced_positions positions are left, the stand-off price once at most
 // options.max_stand_off_priced_positions are (0: always). The sequence ends
 // before the first collapse costing more than options.max_collapse_cost (0: no ceiling).
-// options.threads and options.lookahead_positions set how the work is shared; the records
-// depend on neither.
+// A mesh of options.split_positions positions or more is first simplified as two halves side
+// by side (mesh_halves), down to options.split_stop_positions. options.threads and
+// options.lookahead_positions set how the work is shared; the records depend on neither.
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          const SimplifyOptions& options, DqemCost& cost,

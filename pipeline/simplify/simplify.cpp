@@ -72,6 +72,7 @@ static ProgressiveMesh simplify_or_throw(const SkinnedAsset& asset, const Simpli
   r.stopped_at_cost_ceiling = stats.stopped_at_ceiling;
   r.priced_flips = stats.priced_flips;
   r.unpriced_collapses = stats.unpriced_collapses;
+  r.split_collapses = stats.split_collapses;
   r.collapses_before_stand_off = stats.collapses_before_stand_off;
 
   r.locked_vertices = stats.locked_positions;

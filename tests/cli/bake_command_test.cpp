@@ -218,7 +218,8 @@ TEST(BakeCommand, PricingLimitKeysAreRecordedOnlyWhenNotTheDefault) {
   // note: the defaults of SimplifyOptions (docs/bake-config.md).
   for (const auto& [key, default_value] :
        {std::pair<std::string, std::string>{"max_pose_priced_positions", "100000"},
-        {"max_stand_off_priced_positions", "5000"}}) {
+        {"max_stand_off_priced_positions", "5000"},
+        {"split_positions", "100000"}}) {
     const auto config = [&](const std::string& value) {
       return R"({"simplify": {")" + key + R"(": )" + value + "}}";
     };
