@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <tuple>
@@ -225,22 +226,28 @@ TEST(CollapseFolds, SharedCharactersFlipNoFaceInTheBindPose) {
   }
 }
 
+// The spectator, and those of the shared characters at `paths` when they are there.
+std::vector<std::pair<std::string, SkinnedAsset>> spectator_and(
+    std::initializer_list<const char*> paths) {
+  std::vector<std::pair<std::string, SkinnedAsset>> characters;
+  characters.emplace_back("spectator", samples::make_spectator_character());
+  if (test::have_shared_assets())
+    for (const char* path : paths)
+      characters.emplace_back(path, test::import_or_throw((test::shared_assets() / path).string()));
+  return characters;
+}
+
 // The lookahead on at every size (lookahead_positions 1) on characters with seams, several
 // materials, limbs and closed parts: each evaluation kept across a collapse must be one the
 // collapse could not change (collapse.cpp, forget_ahead_near), or the arrays would differ
 // from one thread's.
 TEST(CollapseLookahead, ChangesNothingOnSeamedCharacters) {
-  std::vector<std::pair<std::string, SkinnedAsset>> characters;
-  characters.emplace_back("spectator", samples::make_spectator_character());
-  if (test::have_shared_assets())
-    // note: with the rule weakened (an evaluation kept when only from's former ring was
-    // touched) Male_Casual, animation_with_skeleton and Rat come out different.
-    for (const char* path :
-         {"Quaternius_Zombie/Zombie.fbx", "Quaternius_MaleCasual/Male_Casual.fbx",
-          "Assimp_AnimationWithSkeleton/animation_with_skeleton.fbx", "Quaternius_Rat/Rat.fbx",
-          "Fox/Fox.glb"})
-      characters.emplace_back(path, test::import_or_throw((test::shared_assets() / path).string()));
-  for (const auto& [name, a] : characters) {
+  // note: with the rule weakened (an evaluation kept when only from's former ring was
+  // touched) Male_Casual, animation_with_skeleton and Rat come out different.
+  for (const auto& [name, a] :
+       spectator_and({"Quaternius_Zombie/Zombie.fbx", "Quaternius_MaleCasual/Male_Casual.fbx",
+                      "Assimp_AnimationWithSkeleton/animation_with_skeleton.fbx",
+                      "Quaternius_Rat/Rat.fbx", "Fox/Fox.glb"})) {
     SCOPED_TRACE(name);
     SimplifyOptions one, ahead;
     one.threads = 1;
@@ -256,13 +263,8 @@ TEST(CollapseLookahead, ChangesNothingOnSeamedCharacters) {
 // arrays on one thread as on two (the halves never touch one position), a valid progressive
 // mesh with no crack at any level, and a sequence that differs from one loop's (the cut waits).
 TEST(CollapseSplit, TwoHalvesOnSeamedCharacters) {
-  std::vector<std::pair<std::string, SkinnedAsset>> characters;
-  characters.emplace_back("spectator", samples::make_spectator_character());
-  if (test::have_shared_assets())
-    for (const char* path :
-         {"Quaternius_MaleCasual/Male_Casual.fbx", "Quaternius_Rat/Rat.fbx", "Fox/Fox.glb"})
-      characters.emplace_back(path, test::import_or_throw((test::shared_assets() / path).string()));
-  for (const auto& [name, a] : characters) {
+  for (const auto& [name, a] : spectator_and(
+           {"Quaternius_MaleCasual/Male_Casual.fbx", "Quaternius_Rat/Rat.fbx", "Fox/Fox.glb"})) {
     SCOPED_TRACE(name);
     SimplifyOptions one, two;
     one.threads = 1;
