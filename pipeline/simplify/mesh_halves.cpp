@@ -1,6 +1,7 @@
 #include "simplify/mesh_halves.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace crowdbake {
@@ -14,8 +15,10 @@ std::vector<uint8_t> mesh_halves(const SimplifyMesh& mesh, const std::vector<glm
   const glm::dvec3 extent = high - low;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
   std::vector<double> along;
+  // note: a non-finite coordinate (never from the importers) would break the median's order;
+  // such a position goes to the second half.
   for (uint32_t p = 0; p < positions; ++p)
-    if (used[p]) along.push_back(bind[p][axis]);
+    if (used[p] && std::isfinite(bind[p][axis])) along.push_back(bind[p][axis]);
   std::vector<uint8_t> half(positions, 0);
   if (along.empty()) return half;
   std::nth_element(along.begin(), along.begin() + along.size() / 2, along.end());

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "simplify_test_meshes.h"
 
 namespace crowdbake {
@@ -34,6 +36,26 @@ TEST(MeshHalves, HalvesOfAGridNeverTouch) {
   for (uint32_t v = 0; v < mesh.vertex_count; ++v)
     if (half[mesh.position_of[v]] != kOnCut)
       EXPECT_EQ(half[mesh.position_of[v]], p[v].x >= 2.0f ? 1 : 0);
+}
+
+// A non-finite coordinate (which the importers reject) does not spoil the median: the other
+// positions are cut as before, and it goes to the second half or the cut.
+TEST(MeshHalves, ANonFiniteCoordinateGoesToTheSecondHalf) {
+  std::vector<glm::vec3> p;
+  std::vector<uint32_t> i;
+  test::grid(10, 2, p, i);
+  const SimplifyMesh mesh = build_simplify_mesh(test::bending_character(p, i));
+  std::vector<glm::dvec3> bind(mesh.position_count());
+  for (uint32_t v = 0; v < mesh.vertex_count; ++v) bind[mesh.position_of[v]] = p[v];
+  const std::vector<uint8_t> before =
+      mesh_halves(mesh, bind, std::vector<char>(mesh.position_count(), 1));
+  bind[mesh.position_of[0]].x = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<uint8_t> after =
+      mesh_halves(mesh, bind, std::vector<char>(mesh.position_count(), 1));
+  EXPECT_NE(after[mesh.position_of[0]], 0);
+  int moved = 0;
+  for (size_t q = 0; q < after.size(); ++q) moved += after[q] != before[q];
+  EXPECT_LE(moved, 4) << "the NaN moved the cut";
 }
 
 // A mesh with no used position has nothing to cut.
