@@ -103,6 +103,7 @@ TEST(BakeCommand, ReportHasStatsTimingsSettingsLodAndChunks) {
   EXPECT_EQ(j["lod"]["max_vertices"], 3);
   EXPECT_EQ(j["lod"]["unpriced_collapses"], 0) << "a small character is priced throughout";
   EXPECT_EQ(j["lod"]["collapses_before_stand_off"], 0);
+  EXPECT_EQ(j["lod"]["split_collapses"], 0) << "a small character is not split";
   // Collapsing the lone triangle would remove the whole surface: the cost ceiling keeps it.
   EXPECT_EQ(j["lod"]["stopped_at_cost_ceiling"], true);
   EXPECT_EQ(j["lod"]["min_vertices"], 3);
