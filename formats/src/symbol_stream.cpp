@@ -21,6 +21,8 @@ void put_symbols(ByteWriter& out, const std::vector<uint32_t>& symbols, int comp
   // note: Draco picks raw (a table per symbol value) or tagged (bit lengths, then the bits)
   // from an estimate that leaves out the raw table's own size, which dominates for sparse
   // 16-bit residuals; both are tried and the smaller kept (the stream says which).
+  // note: raw coding refuses a stream of more than 2^18 distinct values (a hero mesh's
+  // triangle streams reach that from about 2M triangles); tagged coding takes any.
   draco::EncoderBuffer best;
   for (const draco::SymbolCodingMethod method :
        {draco::SYMBOL_CODING_TAGGED, draco::SYMBOL_CODING_RAW}) {
@@ -30,9 +32,12 @@ void put_symbols(ByteWriter& out, const std::vector<uint32_t>& symbols, int comp
     draco::EncoderBuffer buffer;
     if (!draco::EncodeSymbols(symbols.data(), static_cast<int>(symbols.size()), components,
                               &options, &buffer))
-      throw std::runtime_error("Draco's symbol coder failed");
+      continue;
     if (best.size() == 0 || buffer.size() < best.size()) best = std::move(buffer);
   }
+  if (best.size() == 0)
+    throw std::runtime_error("Draco's symbol coder failed on " + std::to_string(symbols.size()) +
+                             " symbols");
   out.u32(static_cast<uint32_t>(best.size()));
   out.raw(best.data(), best.size());
   out.zero_pad(4);
