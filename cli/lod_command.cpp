@@ -198,6 +198,11 @@ int run_lod(const LodSettings& settings) {
     if (used < report.seamless_min_vertices)
       std::printf("  note       levels below %u vertices cross UV seams or material borders\n",
                   report.seamless_min_vertices);
+    if (report.split_collapses > 0)
+      std::printf(
+          "  note       a hero mesh: its first %u collapses were made in two halves side by side; "
+          "the levels they make keep the positions where the halves meet\n",
+          report.split_collapses);
     if (empty)
       std::printf("  note       levels below %u vertices have no triangle left\n", used);
     else if (wanted < pm.min_vertices)

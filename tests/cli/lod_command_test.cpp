@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.h"
@@ -75,6 +76,26 @@ TEST(LodCommand, WritesTheRequestedLevel) {
 
 // The full level is the character as imported: the simplifier's settings (which reorder the
 // progressive mesh's vertices) do not change a byte of it.
+// A hero mesh (a generated chain of about 105,000 positions, over split_positions) is simplified
+// in two halves side by side first, and `lod` says so; a small character is not.
+TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
+  test::TempDir dir;
+  const auto chain = dir / "chain.glb";
+  ASSERT_EQ(std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 210000 -o " +
+                         test::shell_quote(chain.string()) + " >/dev/null")
+                            .c_str()),
+            0);
+  const test::CommandResult hero = test::run_crowdbake(
+      {"lod", chain.string(), "--ratio", "0.01", "-o", (dir / "x.glb").string()});
+  EXPECT_EQ(hero.exit_code, 0) << hero.err;
+  EXPECT_NE(hero.out.find("were made in two halves side by side"), std::string::npos) << hero.out;
+  const test::CommandResult small =
+      test::run_crowdbake({"lod", write_grid_character(dir).string(), "--ratio", "0.5", "-o",
+                           (dir / "y.glb").string()});
+  EXPECT_EQ(small.exit_code, 0) << small.err;
+  EXPECT_EQ(small.out.find("two halves"), std::string::npos) << small.out;
+}
+
 // --max-collapse-cost ends the sequence; the note on the coarsest level says why it ends there.
 // Without a ceiling (0) the grid, an open sheet, collapses to no triangle at all: the
 // coarsest level that keeps one is written, and the note says so.
