@@ -63,8 +63,9 @@ struct SimplifyOptions {
   // A mesh with at least this many positions is cut in two halves at the median of its
   // longest extent, simplified side by side (one thread each) while the positions on the cut
   // wait, until about 6,000 positions are left; one loop makes the rest. On the 1M-triangle
-  // limb chain the bake takes 0.8 of the time, with its levels' errors within the chain's
-  // noise (docs/simplification.md, "Two halves side by side"). The result depends on this
+  // limb chain the bake takes 0.8 of the time; the levels the halves make lose a little (its 2%
+  // level: RMS +7%, max +24%, under 0.05% of the diagonal; docs/simplification.md, "Two halves
+  // side by side"). The result depends on this
   // (the cut waits), never on the thread count. 0 = never.
   uint32_t split_positions = 100000;
   // Where the halves stop: this many positions left, or 8 per position on the cut if that is
