@@ -877,6 +877,7 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
     else
       ++in_half[half[p]];
   }
+  if (live == 0) return Collapser(mesh, posed, poses, options, whole, state, cost, stats).run();
   // note: the cut's positions stay until the halves stop, so the halves stop while the cut is
   // still a small share of what is left.
   const uint32_t stop = std::max(options.split_stop_positions, kSplitStopPerCutPosition * on_cut);
@@ -932,13 +933,13 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
   std::vector<CollapseRecord> records;
   records.reserve(lane_records[0].size() + lane_records[1].size());
   size_t i = 0, j = 0;
-  bool crossed = false;
+  uint32_t first_crossing = UINT32_MAX;
   while (i < lane_records[0].size() || j < lane_records[1].size()) {
     const bool first = j == lane_records[1].size() ||
                        (i < lane_records[0].size() && lane_done[0][i].cost <= lane_done[1][j].cost);
     const Done& d = first ? lane_done[0][i] : lane_done[1][j];
-    if (d.crossed && !crossed)
-      crossed = true, stats.collapses_before_crossing = static_cast<uint32_t>(records.size());
+    if (d.crossed && first_crossing == UINT32_MAX)
+      first_crossing = static_cast<uint32_t>(records.size());
     records.push_back(std::move(first ? lane_records[0][i++] : lane_records[1][j++]));
   }
 
@@ -963,7 +964,8 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
     stats.collapses_before_stand_off += s->collapses_before_stand_off;
     stats.seam_crossings += s->seam_crossings;
   }
-  if (!crossed) stats.collapses_before_crossing = made + rest_stats.collapses_before_crossing;
+  stats.collapses_before_crossing =
+      first_crossing != UINT32_MAX ? first_crossing : made + rest_stats.collapses_before_crossing;
   stats.stopped_at_ceiling = rest_stats.stopped_at_ceiling;
   stats.split_collapses = made;
   return records;
