@@ -847,6 +847,36 @@ class Collapser {
   uint32_t live_ = 0;  // positions with faces
 };
 
+// The halves' collapses touch disjoint faces, so any interleaving of the two sequences is a
+// valid one: they are merged in cost order, as one loop would have made them. first_crossing:
+// the merged index of the first collapse that crossed a seam (left as it is when none did).
+std::vector<CollapseRecord> merge_in_cost_order(std::vector<CollapseRecord> (&records)[2],
+                                                const std::vector<Done> (&done)[2],
+                                                uint32_t& first_crossing) {
+  std::vector<CollapseRecord> out;
+  out.reserve(records[0].size() + records[1].size());
+  size_t i = 0, j = 0;
+  while (i < records[0].size() || j < records[1].size()) {
+    const bool first =
+        j == records[1].size() || (i < records[0].size() && done[0][i].cost <= done[1][j].cost);
+    if ((first ? done[0][i] : done[1][j]).crossed && first_crossing == UINT32_MAX)
+      first_crossing = static_cast<uint32_t>(out.size());
+    out.push_back(std::move(first ? records[0][i++] : records[1][j++]));
+  }
+  return out;
+}
+
+// Adds the counts of one loop's stats to another's.
+void add_counts(CollapseStats& to, const CollapseStats& from) {
+  to.rejected_flips += from.rejected_flips;
+  to.rejected_topology += from.rejected_topology;
+  to.rejected_limbs += from.rejected_limbs;
+  to.priced_flips += from.priced_flips;
+  to.unpriced_collapses += from.unpriced_collapses;
+  to.collapses_before_stand_off += from.collapses_before_stand_off;
+  to.seam_crossings += from.seam_crossings;
+}
+
 }  // namespace
 
 std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
@@ -928,20 +958,9 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
     run_lane(1);
   }
 
-  // The halves' collapses touch disjoint faces, so any interleaving of the two sequences is a
-  // valid one: they are merged in cost order, as one loop would have made them.
-  std::vector<CollapseRecord> records;
-  records.reserve(lane_records[0].size() + lane_records[1].size());
-  size_t i = 0, j = 0;
   uint32_t first_crossing = UINT32_MAX;
-  while (i < lane_records[0].size() || j < lane_records[1].size()) {
-    const bool first = j == lane_records[1].size() ||
-                       (i < lane_records[0].size() && lane_done[0][i].cost <= lane_done[1][j].cost);
-    const Done& d = first ? lane_done[0][i] : lane_done[1][j];
-    if (d.crossed && first_crossing == UINT32_MAX)
-      first_crossing = static_cast<uint32_t>(records.size());
-    records.push_back(std::move(first ? lane_records[0][i++] : lane_records[1][j++]));
-  }
+  std::vector<CollapseRecord> records =
+      merge_in_cost_order(lane_records, lane_done, first_crossing);
 
   // The rest in one loop over the whole mesh, its candidates made afresh.
   for (std::vector<Candidate>& list : state.leaving) list.clear();
@@ -955,15 +974,8 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
   records.insert(records.end(), std::make_move_iterator(tail.begin()),
                  std::make_move_iterator(tail.end()));
   stats = lane_stats[0];
-  for (const CollapseStats* s : {&lane_stats[1], &rest_stats}) {
-    stats.rejected_flips += s->rejected_flips;
-    stats.rejected_topology += s->rejected_topology;
-    stats.rejected_limbs += s->rejected_limbs;
-    stats.priced_flips += s->priced_flips;
-    stats.unpriced_collapses += s->unpriced_collapses;
-    stats.collapses_before_stand_off += s->collapses_before_stand_off;
-    stats.seam_crossings += s->seam_crossings;
-  }
+  add_counts(stats, lane_stats[1]);
+  add_counts(stats, rest_stats);
   stats.collapses_before_crossing =
       first_crossing != UINT32_MAX ? first_crossing : made + rest_stats.collapses_before_crossing;
   stats.stopped_at_ceiling = rest_stats.stopped_at_ceiling;
