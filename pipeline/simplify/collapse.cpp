@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <iterator>
 #include <limits>
 #include <thread>
@@ -889,8 +888,11 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
   whole.stand_off_positions = options.max_stand_off_priced_positions;
   whole.lookahead = thread_count(options.threads, 2) > 1 && options.lookahead_positions > 0 &&
                     mesh.position_count() >= options.lookahead_positions;
-  if (options.split_positions == 0 || mesh.position_count() < options.split_positions)
+  const auto one_loop = [&] {
     return Collapser(mesh, posed, poses, options, whole, state, cost, stats).run();
+  };
+  if (options.split_positions == 0 || mesh.position_count() < options.split_positions)
+    return one_loop();
 
   const uint32_t positions = mesh.position_count();
   std::vector<glm::dvec3> bind(positions);
@@ -907,7 +909,7 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
     else
       ++in_half[half[p]];
   }
-  if (live == 0) return Collapser(mesh, posed, poses, options, whole, state, cost, stats).run();
+  if (live == 0) return one_loop();
   // note: the cut's positions stay until the halves stop, so the halves stop while the cut is
   // still a small share of what is left.
   const uint32_t stop = std::max(options.split_stop_positions, kSplitStopPerCutPosition * on_cut);
@@ -935,28 +937,7 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
     lane_records[l] = Collapser(mesh, posed, poses, options, lanes[l], state, cost, lane_stats[l])
                           .run(&lane_done[l]);
   };
-  if (thread_count(options.threads, 2) > 1) {
-    // note: an exception on the second thread is carried over and thrown here.
-    std::exception_ptr failed;
-    std::thread second([&] {
-      try {
-        run_lane(1);
-      } catch (...) {
-        failed = std::current_exception();
-      }
-    });
-    try {
-      run_lane(0);
-    } catch (...) {
-      second.join();
-      throw;
-    }
-    second.join();
-    if (failed) std::rethrow_exception(failed);
-  } else {
-    run_lane(0);
-    run_lane(1);
-  }
+  parallel_for(2, options.threads, [&](size_t l) { run_lane(static_cast<int>(l)); });
 
   uint32_t first_crossing = UINT32_MAX;
   std::vector<CollapseRecord> records =
