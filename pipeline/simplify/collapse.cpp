@@ -9,6 +9,7 @@
 #include "crowdbake/base/parallel.h"
 #include "eval/closest_point.h"
 #include "simplify/handover_slot.h"
+#include "simplify/lane_merge.h"
 #include "simplify/mesh_halves.h"
 #include "simplify/part_floors.h"
 #include "simplify/position_queue.h"
@@ -80,12 +81,6 @@ struct CollapseState {
   std::vector<uint32_t> star;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates
-};
-
-// A collapse a lane made: its cost, and whether it crossed a seam.
-struct Done {
-  double cost;
-  bool crossed;
 };
 
 // Which part of the mesh one collapse loop works on. A hero mesh is cut in two halves that
@@ -845,25 +840,6 @@ class Collapser {
   uint32_t collapses_ = 0;
   uint32_t live_ = 0;  // positions with faces
 };
-
-// The halves' collapses touch disjoint faces, so any interleaving of the two sequences is a
-// valid one: they are merged in cost order, as one loop would have made them. first_crossing:
-// the merged index of the first collapse that crossed a seam (left as it is when none did).
-std::vector<CollapseRecord> merge_in_cost_order(std::vector<CollapseRecord> (&records)[2],
-                                                const std::vector<Done> (&done)[2],
-                                                uint32_t& first_crossing) {
-  std::vector<CollapseRecord> out;
-  out.reserve(records[0].size() + records[1].size());
-  size_t i = 0, j = 0;
-  while (i < records[0].size() || j < records[1].size()) {
-    const bool first =
-        j == records[1].size() || (i < records[0].size() && done[0][i].cost <= done[1][j].cost);
-    if ((first ? done[0][i] : done[1][j]).crossed && first_crossing == UINT32_MAX)
-      first_crossing = static_cast<uint32_t>(out.size());
-    out.push_back(std::move(first ? records[0][i++] : records[1][j++]));
-  }
-  return out;
-}
 
 // Adds the counts of one loop's stats to another's.
 void add_counts(CollapseStats& to, const CollapseStats& from) {
