@@ -7,55 +7,49 @@
 namespace crowdbake {
 namespace {
 
-// A record that names itself by its one removed vertex.
-CollapseRecord record(uint32_t id) {
-  CollapseRecord r;
-  r.wedges.push_back({id, 0});
-  return r;
-}
+struct Merged {
+  std::vector<uint32_t> ids;  // 10 × (lane + 1) + index in the lane, in merged order
+  uint32_t first_crossing = 0;
+};
 
-std::vector<uint32_t> ids(const std::vector<CollapseRecord>& records) {
-  std::vector<uint32_t> out;
-  for (const CollapseRecord& r : records) out.push_back(r.wedges.front().first);
+// Merges two lanes whose records name themselves by their one removed vertex.
+Merged merge(const std::vector<Done> (&done)[2]) {
+  std::vector<CollapseRecord> records[2];
+  for (uint32_t l = 0; l < 2; ++l)
+    for (uint32_t i = 0; i < done[l].size(); ++i) {
+      records[l].emplace_back();
+      records[l].back().wedges.push_back({10 * (l + 1) + i, 0});
+    }
+  Merged out;
+  out.first_crossing = 7;  // overwritten either way
+  for (const CollapseRecord& r : merge_in_cost_order(records, done, out.first_crossing))
+    out.ids.push_back(r.wedges.front().first);
   return out;
 }
 
 TEST(LaneMerge, CostOrderWithTheFirstLaneFirstOnTies) {
-  std::vector<CollapseRecord> records[2] = {{record(10), record(11), record(12)},
-                                            {record(20), record(21)}};
-  const std::vector<Done> done[2] = {{{1.0, false}, {2.0, false}, {4.0, false}},
-                                     {{2.0, false}, {3.0, false}}};
-  uint32_t first_crossing = 7;
-  const std::vector<CollapseRecord> merged = merge_in_cost_order(records, done, first_crossing);
-  EXPECT_EQ(ids(merged), (std::vector<uint32_t>{10, 11, 20, 21, 12}));
-  EXPECT_EQ(first_crossing, UINT32_MAX) << "nothing crossed a seam";
+  const Merged m =
+      merge({{{1.0, false}, {2.0, false}, {4.0, false}}, {{2.0, false}, {3.0, false}}});
+  EXPECT_EQ(m.ids, (std::vector<uint32_t>{10, 11, 20, 21, 12}));
+  EXPECT_EQ(m.first_crossing, UINT32_MAX) << "nothing crossed a seam";
 }
 
 // The second half's first collapse crosses a seam: first in its own sequence, third in the
 // merged one (an earlier fix: the report had taken the half's own index).
 TEST(LaneMerge, FirstCrossingIsItsIndexInTheMergedSequence) {
-  std::vector<CollapseRecord> records[2] = {{record(10), record(11), record(12)},
-                                            {record(20), record(21)}};
-  const std::vector<Done> done[2] = {{{1.0, false}, {2.0, false}, {5.0, true}},
-                                     {{3.0, true}, {4.0, false}}};
-  uint32_t first_crossing = 0;
-  const std::vector<CollapseRecord> merged = merge_in_cost_order(records, done, first_crossing);
-  EXPECT_EQ(ids(merged), (std::vector<uint32_t>{10, 11, 20, 21, 12}));
-  EXPECT_EQ(first_crossing, 2u);
+  const Merged m = merge({{{1.0, false}, {2.0, false}, {5.0, true}}, {{3.0, true}, {4.0, false}}});
+  EXPECT_EQ(m.ids, (std::vector<uint32_t>{10, 11, 20, 21, 12}));
+  EXPECT_EQ(m.first_crossing, 2u);
 }
 
+// A lane's costs need not rise (a price paid late); with the other lane empty its order stays.
 TEST(LaneMerge, OneEmptyLaneLeavesTheOtherAsItIs) {
-  for (int empty = 0; empty < 2; ++empty) {
-    SCOPED_TRACE(empty);
-    std::vector<CollapseRecord> records[2];
-    std::vector<Done> done[2];
-    records[1 - empty] = {record(1), record(2)};
-    done[1 - empty] = {{0.5, false}, {0.25, true}};  // a lane's costs need not rise
-    uint32_t first_crossing = 0;
-    const std::vector<CollapseRecord> merged = merge_in_cost_order(records, done, first_crossing);
-    EXPECT_EQ(ids(merged), (std::vector<uint32_t>{1, 2}));
-    EXPECT_EQ(first_crossing, 1u);
-  }
+  const Merged first = merge({{{0.5, false}, {0.25, true}}, {}});
+  EXPECT_EQ(first.ids, (std::vector<uint32_t>{10, 11}));
+  EXPECT_EQ(first.first_crossing, 1u);
+  const Merged second = merge({{}, {{0.5, false}, {0.25, true}}});
+  EXPECT_EQ(second.ids, (std::vector<uint32_t>{20, 21}));
+  EXPECT_EQ(second.first_crossing, 1u);
 }
 
 }  // namespace
