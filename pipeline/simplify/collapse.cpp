@@ -58,13 +58,15 @@ enum class Kind { kInterior, kBorder, kFin, kLocked };
 
 // The mesh as the collapses leave it, shared by the lanes that collapse it (see Lane).
 struct CollapseState {
-  CollapseState(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses)
+  CollapseState(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
+                bool keep_every_joint)
       : corner(mesh.triangles),
         triangle_alive(mesh.triangle_count(), 1),
         incident(mesh.position_count()),
         position_alive(mesh.position_count(), 1),
         small_part(small_parts(mesh, posed, poses, kSmallPartFraction)),
-        limb(limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
+        limb(keep_every_joint ? every_joint(mesh, small_part)
+                              : limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
         star(mesh.position_count(), 0),
         refused(mesh.position_count()),
         leaving(mesh.position_count()) {
@@ -77,7 +79,7 @@ struct CollapseState {
   std::vector<std::vector<uint32_t>> incident;  // position -> its live triangles
   std::vector<char> position_alive;
   std::vector<char> small_part;  // position lies on a part that may vanish
-  std::vector<uint16_t> limb;    // per position: its limb joint, or kNoLimb
+  std::vector<uint16_t> limb;    // per position: the joint it holds a floor of, or kNoLimb
   std::vector<uint32_t> star;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates
@@ -858,7 +860,7 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          const SimplifyOptions& options, DqemCost& cost,
                                          CollapseStats& stats) {
-  CollapseState state(mesh, posed, poses);
+  CollapseState state(mesh, posed, poses, options.keep_every_joint);
   Lane whole;
   whole.priced_positions = options.max_pose_priced_positions;
   whole.stand_off_positions = options.max_stand_off_priced_positions;

@@ -120,4 +120,11 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
   return out;
 }
 
+std::vector<uint16_t> every_joint(const SimplifyMesh& mesh, const std::vector<char>& small_part) {
+  std::vector<uint16_t> out(mesh.position_count(), kNoLimb);
+  for (uint32_t p = 0; p < mesh.position_count(); ++p)
+    if (!small_part[p]) out[p] = mesh.dominant_joint[p];
+  return out;
+}
+
 }  // namespace crowdbake

@@ -30,4 +30,8 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
                                   uint32_t poses, const std::vector<char>& small_part,
                                   double fraction);
 
+// Per position: its dominant joint, or kNoLimb on a small part (SimplifyOptions::
+// keep_every_joint: every joint keeps a position, as a limb's tip does).
+std::vector<uint16_t> every_joint(const SimplifyMesh& mesh, const std::vector<char>& small_part);
+
 }  // namespace crowdbake

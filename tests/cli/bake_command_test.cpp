@@ -255,6 +255,28 @@ TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
   }
 }
 
+// keep_every_joint is a config key, named in the settings text only when on (packs from
+// before it keep their bytes); a bad value names the key.
+TEST(BakeCommand, KeepEveryJointIsAConfigKeyNamedWhenOn) {
+  test::TempDir dir;
+  const auto bake = [&](const std::string& config, const std::string& name) {
+    const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::filesystem::rename(dir / "x.crowdpack", dir / name);
+    return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+  };
+  const std::string plain = bake("{}", "plain.crowdpack");
+  bake(R"({"simplify": {"keep_every_joint": false}})", "off.crowdpack");
+  const std::string on = bake(R"({"simplify": {"keep_every_joint": true}})", "on.crowdpack");
+  EXPECT_EQ(plain.find("keep_every_joint"), std::string::npos) << plain;
+  EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "off.crowdpack"));
+  EXPECT_NE(on.find("keep_every_joint=true"), std::string::npos) << on;
+  EXPECT_NE(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "on.crowdpack"));
+  const test::CommandResult bad = bake_with_config(dir, R"({"simplify": {"keep_every_joint": 1}})");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("simplify.keep_every_joint"), std::string::npos) << bad.err;
+}
+
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
   test::TempDir dir;
   const auto input = write_character(dir);

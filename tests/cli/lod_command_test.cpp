@@ -96,6 +96,30 @@ TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
   EXPECT_EQ(small.out.find("two halves"), std::string::npos) << small.out;
 }
 
+// --keep-every-joint: at the coarsest level of an eight-joint chain every joint still has a
+// vertex of its own, where by default `--measure` lists the joints that have none.
+TEST(LodCommand, KeepEveryJointLeavesNoJointWithoutAVertex) {
+  test::TempDir dir;
+  const auto chain = dir / "chain.glb";
+  ASSERT_EQ(
+      std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 4000 --joints 8 -o " +
+                   test::shell_quote(chain.string()) + " >/dev/null")
+                      .c_str()),
+      0);
+  const auto coarsest = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args{
+        "lod", chain.string(), "--vertices", "1", "--measure", "1", "-o", (dir / "x.glb").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::CommandResult r = test::run_crowdbake(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  const std::string plain = coarsest({});
+  EXPECT_NE(plain.find("no vertex  of"), std::string::npos) << plain;
+  const std::string every = coarsest({"--keep-every-joint"});
+  EXPECT_EQ(every.find("no vertex"), std::string::npos) << every;
+}
+
 // --max-collapse-cost ends the sequence; the note on the coarsest level says why it ends there.
 // Without a ceiling (0) the grid, an open sheet, collapses to no triangle at all: the
 // coarsest level that keeps one is written, and the note says so.

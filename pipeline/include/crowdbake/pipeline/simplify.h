@@ -78,6 +78,12 @@ struct SimplifyOptions {
   // 20 measured characters and leaves the sample spectator's minimum as it was
   // (docs/simplification.md, "Cost ceiling"). 0 = simplify as far as the refusals allow.
   double max_collapse_cost = 0.005;
+  // Every joint that weighs most on some position (outside the small parts that may vanish)
+  // keeps one of those positions at every level: no foot, head, hand or tail joint is left
+  // without a vertex of its own. Off by default: it raises the minimums (the KnightCharacter's
+  // from 16 to 68 triangles) and, at equal triangle counts, the referee's mean-RMS against
+  // gltfpack at 5% and 2% from 0.71 to 0.81 and 0.83 (docs/simplification.md, "Every joint").
+  bool keep_every_joint = false;
 };
 
 struct SimplifyReport {
