@@ -59,14 +59,14 @@ enum class Kind { kInterior, kBorder, kFin, kLocked };
 // The mesh as the collapses leave it, shared by the lanes that collapse it (see Lane).
 struct CollapseState {
   CollapseState(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed, uint32_t poses,
-                bool keep_every_joint)
+                bool keep_joint_ends)
       : corner(mesh.triangles),
         triangle_alive(mesh.triangle_count(), 1),
         incident(mesh.position_count()),
         position_alive(mesh.position_count(), 1),
         small_part(small_parts(mesh, posed, poses, kSmallPartFraction)),
-        limb(keep_every_joint ? every_joint(mesh, small_part)
-                              : limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
+        limb(keep_joint_ends ? joint_ends(mesh, small_part)
+                             : limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
         star(mesh.position_count(), 0),
         refused(mesh.position_count()),
         leaving(mesh.position_count()) {
@@ -860,7 +860,7 @@ std::vector<CollapseRecord> collapse_all(const SimplifyMesh& mesh,
                                          const std::vector<glm::dvec3>& posed, uint32_t poses,
                                          const SimplifyOptions& options, DqemCost& cost,
                                          CollapseStats& stats) {
-  CollapseState state(mesh, posed, poses, options.keep_every_joint);
+  CollapseState state(mesh, posed, poses, options.keep_joint_ends);
   Lane whole;
   whole.priced_positions = options.max_pose_priced_positions;
   whole.stand_off_positions = options.max_stand_off_priced_positions;

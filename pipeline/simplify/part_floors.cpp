@@ -120,10 +120,15 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
   return out;
 }
 
-std::vector<uint16_t> every_joint(const SimplifyMesh& mesh, const std::vector<char>& small_part) {
+std::vector<uint16_t> joint_ends(const SimplifyMesh& mesh, const std::vector<char>& small_part) {
+  std::vector<char> above(mesh.joint_parent.size(), 0);  // a joint below it holds a position
+  for (uint32_t p = 0; p < mesh.position_count(); ++p)
+    if (!small_part[p])
+      for (int j = mesh.joint_parent[mesh.dominant_joint[p]]; j >= 0; j = mesh.joint_parent[j])
+        above[j] = 1;
   std::vector<uint16_t> out(mesh.position_count(), kNoLimb);
   for (uint32_t p = 0; p < mesh.position_count(); ++p)
-    if (!small_part[p]) out[p] = mesh.dominant_joint[p];
+    if (!small_part[p] && !above[mesh.dominant_joint[p]]) out[p] = mesh.dominant_joint[p];
   return out;
 }
 

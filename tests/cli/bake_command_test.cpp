@@ -255,9 +255,9 @@ TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
   }
 }
 
-// keep_every_joint is a config key, named in the settings text only when on (packs from
+// keep_joint_ends is a config key, named in the settings text only when on (packs from
 // before it keep their bytes); a bad value names the key.
-TEST(BakeCommand, KeepEveryJointIsAConfigKeyNamedWhenOn) {
+TEST(BakeCommand, KeepJointEndsIsAConfigKeyNamedWhenOn) {
   test::TempDir dir;
   const auto bake = [&](const std::string& config, const std::string& name) {
     const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
@@ -266,15 +266,15 @@ TEST(BakeCommand, KeepEveryJointIsAConfigKeyNamedWhenOn) {
     return test::run_crowdbake({"inspect", (dir / name).string()}).out;
   };
   const std::string plain = bake("{}", "plain.crowdpack");
-  bake(R"({"simplify": {"keep_every_joint": false}})", "off.crowdpack");
-  const std::string on = bake(R"({"simplify": {"keep_every_joint": true}})", "on.crowdpack");
-  EXPECT_EQ(plain.find("keep_every_joint"), std::string::npos) << plain;
+  bake(R"({"simplify": {"keep_joint_ends": false}})", "off.crowdpack");
+  const std::string on = bake(R"({"simplify": {"keep_joint_ends": true}})", "on.crowdpack");
+  EXPECT_EQ(plain.find("keep_joint_ends"), std::string::npos) << plain;
   EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "off.crowdpack"));
-  EXPECT_NE(on.find("keep_every_joint=true"), std::string::npos) << on;
+  EXPECT_NE(on.find("keep_joint_ends=true"), std::string::npos) << on;
   EXPECT_NE(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "on.crowdpack"));
-  const test::CommandResult bad = bake_with_config(dir, R"({"simplify": {"keep_every_joint": 1}})");
+  const test::CommandResult bad = bake_with_config(dir, R"({"simplify": {"keep_joint_ends": 1}})");
   EXPECT_EQ(bad.exit_code, 1);
-  EXPECT_NE(bad.err.find("simplify.keep_every_joint"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("simplify.keep_joint_ends"), std::string::npos) << bad.err;
 }
 
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {

@@ -96,28 +96,31 @@ TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
   EXPECT_EQ(small.out.find("two halves"), std::string::npos) << small.out;
 }
 
-// --keep-every-joint: at the coarsest level of an eight-joint chain every joint still has a
-// vertex of its own, where by default `--measure` lists the joints that have none.
-TEST(LodCommand, KeepEveryJointLeavesNoJointWithoutAVertex) {
+// --keep-joint-ends: the KnightCharacter's feet hang from the root, outside the legs' chains,
+// and by default its left foot has no vertex at 5% (docs/accuracy.md); with the flag it keeps
+// one, and the level is larger.
+TEST(LodCommand, KeepJointEndsKeepsTheFeet) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
   test::TempDir dir;
-  const auto chain = dir / "chain.glb";
-  ASSERT_EQ(
-      std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 4000 --joints 8 -o " +
-                   test::shell_quote(chain.string()) + " >/dev/null")
-                      .c_str()),
-      0);
-  const auto coarsest = [&](const std::vector<std::string>& extra) {
-    std::vector<std::string> args{
-        "lod", chain.string(), "--vertices", "1", "--measure", "1", "-o", (dir / "x.glb").string()};
+  const std::string knight =
+      (test::shared_assets() / "Quaternius_Knight/KnightCharacter.fbx").string();
+  const auto level = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"lod",       knight, "--ratio", "0.05",
+                                  "--measure", "1",    "-o",      (dir / "x.glb").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::CommandResult r = test::run_crowdbake(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return r.out;
   };
-  const std::string plain = coarsest({});
-  EXPECT_NE(plain.find("no vertex  of"), std::string::npos) << plain;
-  const std::string every = coarsest({"--keep-every-joint"});
-  EXPECT_EQ(every.find("no vertex"), std::string::npos) << every;
+  const auto missing = [](const std::string& out) {
+    const size_t line = out.find("no vertex  of");
+    return line == std::string::npos ? std::string()
+                                     : out.substr(line, out.find('\n', line) - line);
+  };
+  const std::string plain = level({});
+  EXPECT_NE(missing(plain).find("'Foot.L'"), std::string::npos) << plain;
+  const std::string ends = level({"--keep-joint-ends"});
+  EXPECT_EQ(missing(ends).find("Foot"), std::string::npos) << ends;
 }
 
 // --max-collapse-cost ends the sequence; the note on the coarsest level says why it ends there.

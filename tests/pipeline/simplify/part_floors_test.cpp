@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
+#include <utility>
 
 #include "simplify/collapse.h"
 #include "simplify_test_meshes.h"
@@ -11,20 +13,23 @@
 namespace crowdbake {
 namespace {
 
-// A body with an eye (a small part near it), a head and a far small part
-// (test::FourParts), in its bind pose.
-struct FourPartsInBindPose {
-  test::FourParts f;
-  SkinnedAsset a = test::bending_character(f.positions, f.indices);
-  SimplifyMesh mesh = build_simplify_mesh(a);
-  std::vector<glm::dvec3> bind =
-      posed_positions(a, mesh, {std::vector<glm::dmat4>(2, glm::dmat4(1.0))}, 1);
-  std::vector<char> small = small_parts(mesh, bind, 1, kSmallPartFraction);
+// A character in its bind pose, with its small parts.
+struct InBindPose {
+  explicit InBindPose(SkinnedAsset character)
+      : a(std::move(character)),
+        mesh(build_simplify_mesh(a)),
+        bind(posed_positions(
+            a, mesh, {std::vector<glm::dmat4>(a.skeleton.joints.size(), glm::dmat4(1.0))}, 1)),
+        small(small_parts(mesh, bind, 1, kSmallPartFraction)) {}
+  SkinnedAsset a;
+  SimplifyMesh mesh;
+  std::vector<glm::dvec3> bind;
+  std::vector<char> small;
 };
 
 TEST(PartFloors, SmallPartsAreTheSmallOnesNearTheRest) {
-  const FourPartsInBindPose four;
-  const test::FourParts& f = four.f;
+  const test::FourParts f;
+  const InBindPose four(test::bending_character(f.positions, f.indices));
   const SimplifyMesh& mesh = four.mesh;
   const std::vector<glm::dvec3>& bind = four.bind;
   const std::vector<char>& small = four.small;
@@ -46,11 +51,10 @@ TEST(PartFloors, SmallPartsAreTheSmallOnesNearTheRest) {
 // The spectator's limbs (two arms, two legs, the head) each have a tip joint; limb positions
 // are on those joints only, never on a small part.
 TEST(PartFloors, SpectatorHasATipOnEveryLimb) {
-  const SkinnedAsset a = samples::make_spectator_character();
-  const SimplifyMesh mesh = build_simplify_mesh(a);
-  const std::vector<glm::dvec3> bind = posed_positions(
-      a, mesh, {std::vector<glm::dmat4>(a.skeleton.joints.size(), glm::dmat4(1.0))}, 1);
-  const std::vector<char> small = small_parts(mesh, bind, 1, kSmallPartFraction);
+  const InBindPose spectator(samples::make_spectator_character());
+  const SimplifyMesh& mesh = spectator.mesh;
+  const std::vector<glm::dvec3>& bind = spectator.bind;
+  const std::vector<char>& small = spectator.small;
   const std::vector<uint16_t> limb = limb_joints(mesh, bind, 1, small, kLimbFraction);
   std::set<uint16_t> tips;
   for (uint32_t q = 0; q < mesh.position_count(); ++q) {
@@ -64,24 +68,38 @@ TEST(PartFloors, SpectatorHasATipOnEveryLimb) {
   for (uint16_t j : none) EXPECT_EQ(j, kNoLimb) << "no chain spans ten times the body";
 }
 
-// keep_every_joint's floor: every position holds its own dominant joint's, but those on small
-// parts (which may vanish), so a small part's joint keeps nothing there.
-TEST(PartFloors, EveryJointButOnSmallParts) {
-  const FourPartsInBindPose four;
-  const SimplifyMesh& mesh = four.mesh;
-  const std::vector<char>& small = four.small;
-  const std::vector<uint16_t> floor = every_joint(mesh, small);
-  int held = 0;
+// keep_joint_ends' floor on the spectator: the positions it holds are those of the joints that
+// end a branch of the skeleton (no joint below them holds a position), never on a small part;
+// every joint that holds a position is one of them or above one, so the floor reaches it.
+TEST(PartFloors, JointEndsReachEveryJointThatHoldsAPosition) {
+  const InBindPose spectator(samples::make_spectator_character());
+  const SkinnedAsset& a = spectator.a;
+  const SimplifyMesh& mesh = spectator.mesh;
+  const std::vector<char>& small = spectator.small;
+  const std::vector<uint16_t> floor = joint_ends(mesh, small);
+  std::set<int> holding, ends;
   for (uint32_t q = 0; q < mesh.position_count(); ++q) {
-    if (small[q]) {
-      EXPECT_EQ(floor[q], kNoLimb) << "position " << q << " is on a small part";
-    } else {
-      EXPECT_EQ(floor[q], mesh.dominant_joint[q]) << "position " << q;
-      ++held;
-    }
+    if (!small[q]) holding.insert(mesh.dominant_joint[q]);
+    if (floor[q] == kNoLimb) continue;
+    EXPECT_EQ(floor[q], mesh.dominant_joint[q]) << "position " << q;
+    EXPECT_EQ(small[q], 0) << "position " << q;
+    ends.insert(floor[q]);
   }
-  EXPECT_GT(held, 0);
-  EXPECT_LT(held, static_cast<int>(mesh.position_count())) << "the eye is a small part";
+  const auto below = [&](int j, int above) {
+    for (j = mesh.joint_parent[j]; j >= 0; j = mesh.joint_parent[j])
+      if (j == above) return true;
+    return false;
+  };
+  for (int end : ends)
+    for (int j : holding)
+      EXPECT_FALSE(below(j, end)) << a.skeleton.joints[j].name << " holds a position below "
+                                  << a.skeleton.joints[end].name << ", which is no end";
+  for (int j : holding)
+    EXPECT_TRUE(ends.count(j) ||
+                std::any_of(ends.begin(), ends.end(), [&](int end) { return below(end, j); }))
+        << a.skeleton.joints[j].name << " is not reached by the floor";
+  EXPECT_GE(ends.size(), 5u) << "hands, feet and the head";
+  EXPECT_LT(ends.size(), holding.size());
 }
 
 }  // namespace
