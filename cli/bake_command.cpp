@@ -123,7 +123,8 @@ int run_bake(const BakeCommandSettings& s) {
                 {"split_collapses", report.simplify.split_collapses},
                 {"max_vertices", pack.geometry.vertex_count()},
                 {"max_triangles", pack.geometry.triangle_count()},
-                {"joints_missing_at_min", joints_missing_at_min_json(pack, weights)}};
+                {"joints_missing_at_min", joints_missing_at_min_json(pack, weights)},
+                {"joints_unreached_at_min", joints_unreached_at_min_json(pack, weights)}};
     j["chunks"] = nlohmann::json::array();
     for (const PackChunk& c : chunks)
       j["chunks"].push_back({{"tag", tag_name(c.tag)}, {"bytes", c.size}});

@@ -92,15 +92,28 @@ void print_joints_without_vertices(const SkinnedAsset& original, const Progressi
     if (j >= 0) heaviest[i] = static_cast<uint16_t>(j);
   }
   std::vector<std::string> names;
-  for (const Joint& j : original.skeleton.joints) names.push_back(j.name);
-  const std::vector<MissingJoint> missing = joints_missing_below(
-      coarsest_levels_by_joint(pm.view(), heaviest, names.size()), names, used);
-  std::string list;
-  for (const MissingJoint& m : missing)
-    list += (list.empty() ? "'" : ", '") + m.name + "' (" + std::to_string(m.coarsest_level) + ")";
+  std::vector<int> parents;
+  for (const Joint& j : original.skeleton.joints)
+    names.push_back(j.name), parents.push_back(j.parent);
+  const std::vector<uint32_t> levels = coarsest_levels_by_joint(pm.view(), heaviest, names.size());
+  const auto list = [](const std::vector<MissingJoint>& joints) {
+    std::string out;
+    for (const MissingJoint& m : joints)
+      out += (out.empty() ? "'" : ", '") + m.name + "' (" + std::to_string(m.coarsest_level) + ")";
+    return out;
+  };
+  const std::vector<MissingJoint> missing = joints_missing_below(levels, names, used);
   if (!missing.empty())
     std::printf("  no vertex  of %zu joint%s here (the coarsest level with one): %s\n",
-                missing.size(), missing.size() == 1 ? "" : "s", list.c_str());
+                missing.size(), missing.size() == 1 ? "" : "s", list(missing).c_str());
+  // note: a joint whose own vertices are gone is still drawn when a joint below it keeps one
+  // (a foot by its toe); the ones that are not are parts the level has lost.
+  const std::vector<MissingJoint> unreached = joints_unreached_below(levels, parents, names, used);
+  if (!unreached.empty())
+    std::printf(
+        "  unreached  %zu of them, no joint below with a vertex either (the coarsest level "
+        "reaching one): %s\n",
+        unreached.size(), list(unreached).c_str());
 }
 
 // The level's animated error (docs/accuracy.md, "What is measured") and where its max is.

@@ -101,7 +101,8 @@ ordered_json to_json(const PackFile& pack) {
               {"max_vertices", lod.max_vertices},
               {"min_triangles", lod.min_triangles},
               {"max_triangles", lod.max_triangles},
-              {"joints_missing_at_min", joints_missing_at_min_json(c, c.geometry.weights)}};
+              {"joints_missing_at_min", joints_missing_at_min_json(c, c.geometry.weights)},
+              {"joints_unreached_at_min", joints_unreached_at_min_json(c, c.geometry.weights)}};
   const PackLevelErrors& e = c.level_errors;
   j["level_errors"] = ordered_json::array();
   for (size_t k = 0; k < e.vertices.size(); ++k)
@@ -198,6 +199,10 @@ void print_text(const PackFile& pack) {
   for (size_t k = 0; k < missing.size(); ++k)
     std::printf("  %-10s '%s' has no vertex below %u vertices\n", k == 0 ? "joints" : "",
                 missing[k].name.c_str(), missing[k].coarsest_level);
+  const std::vector<MissingJoint> unreached = joints_unreached_at_min(c, c.geometry.weights);
+  for (size_t k = 0; k < unreached.size(); ++k)
+    std::printf("  %-10s '%s' nor a joint below it has a vertex below %u vertices\n",
+                k == 0 ? "unreached" : "", unreached[k].name.c_str(), unreached[k].coarsest_level);
   // note: the error table error-driven LoD reads (model units), or why there is none.
   const PackLevelErrors& e = c.level_errors;
   if (e.vertices.empty())

@@ -96,9 +96,27 @@ TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
   EXPECT_EQ(small.out.find("two halves"), std::string::npos) << small.out;
 }
 
+// `--measure` lists the joints a level has no vertex of, and of those the ones no joint below
+// them has one of either (parts the level lost). An eight-joint chain's coarsest level keeps
+// its tip, so its inner joints without a vertex are all reached through it.
+TEST(LodCommand, MeasureSaysWhichJointsNoJointBelowReaches) {
+  test::TempDir dir;
+  const auto chain = dir / "chain.glb";
+  ASSERT_EQ(
+      std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 4000 --joints 8 -o " +
+                   test::shell_quote(chain.string()) + " >/dev/null")
+                      .c_str()),
+      0);
+  const test::CommandResult r = test::run_crowdbake(
+      {"lod", chain.string(), "--vertices", "1", "--measure", "1", "-o", (dir / "x.glb").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("no vertex  of"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("unreached"), std::string::npos) << r.out;
+}
+
 // --keep-joint-ends: the KnightCharacter's feet hang from the root, outside the legs' chains,
-// and by default its left foot has no vertex at 5% (docs/accuracy.md); with the flag it keeps
-// one, and the level is larger.
+// and by default its left foot is unreached at 5% (docs/accuracy.md); with the flag every joint
+// is reached.
 TEST(LodCommand, KeepJointEndsKeepsTheFeet) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   test::TempDir dir;
@@ -112,15 +130,13 @@ TEST(LodCommand, KeepJointEndsKeepsTheFeet) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return r.out;
   };
-  const auto missing = [](const std::string& out) {
-    const size_t line = out.find("no vertex  of");
-    return line == std::string::npos ? std::string()
-                                     : out.substr(line, out.find('\n', line) - line);
-  };
   const std::string plain = level({});
-  EXPECT_NE(missing(plain).find("'Foot.L'"), std::string::npos) << plain;
+  const size_t line = plain.find("unreached");
+  ASSERT_NE(line, std::string::npos) << plain;
+  EXPECT_NE(plain.substr(line, plain.find('\n', line) - line).find("'Foot.L'"), std::string::npos)
+      << plain;
   const std::string ends = level({"--keep-joint-ends"});
-  EXPECT_EQ(missing(ends).find("Foot"), std::string::npos) << ends;
+  EXPECT_EQ(ends.find("unreached"), std::string::npos) << ends;
 }
 
 // --max-collapse-cost ends the sequence; the note on the coarsest level says why it ends there.

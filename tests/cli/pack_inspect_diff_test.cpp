@@ -221,6 +221,24 @@ TEST_F(PackCommands, InspectJsonAgreesWithTheReader) {
     EXPECT_GT(m["coarsest_level"], c.progressive.min_vertices);
   }
   EXPECT_EQ(listed, expected);
+  // Of those, unreached are the ones no joint below them (by the pack's parents) keeps a vertex of.
+  const auto below = [&](size_t joint, size_t above) {
+    for (int p = c.joints[joint].parent; p >= 0; p = c.joints[p].parent)
+      if (static_cast<size_t>(p) == above) return true;
+    return false;
+  };
+  std::vector<std::string> unreached_expected, unreached_listed;
+  for (size_t k = 0; k < c.joints.size(); ++k) {
+    if (!any[k] || kept[k]) continue;
+    bool reached = false;
+    for (size_t d = 0; d < c.joints.size(); ++d) reached = reached || (kept[d] && below(d, k));
+    if (!reached) unreached_expected.push_back(c.joints[k].name);
+  }
+  for (const json& m : j["lod"]["joints_unreached_at_min"]) {
+    unreached_listed.push_back(m["joint"]);
+    EXPECT_GT(m["coarsest_level"], c.progressive.min_vertices);
+  }
+  EXPECT_EQ(unreached_listed, unreached_expected);
   // The level errors error-driven LoD reads, sample by sample.
   ASSERT_GE(c.level_errors.vertices.size(), 2u);
   ASSERT_EQ(j["level_errors"].size(), c.level_errors.vertices.size());
