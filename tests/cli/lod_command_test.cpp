@@ -44,6 +44,15 @@ std::filesystem::path write_grid_character(const test::TempDir& dir) {
   return b.write(dir / "grid.gltf");
 }
 
+// A limb chain made by samples/limb_chain with `args` (its size, its joints), in dir.
+std::filesystem::path write_limb_chain(const test::TempDir& dir, const std::string& args) {
+  const auto chain = dir / "chain.glb";
+  const std::string command = test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " " + args + " -o " +
+                              test::shell_quote(chain.string()) + " >/dev/null";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  return chain;
+}
+
 void expect_usage_error(const std::vector<std::string>& args, const std::string& fragment,
                         const std::filesystem::path& output, int code = 2) {
   const test::CommandResult r = test::run_crowdbake(args);
@@ -80,11 +89,7 @@ TEST(LodCommand, WritesTheRequestedLevel) {
 // in two halves side by side first, and `lod` says so; a small character is not.
 TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
   test::TempDir dir;
-  const auto chain = dir / "chain.glb";
-  ASSERT_EQ(std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 210000 -o " +
-                         test::shell_quote(chain.string()) + " >/dev/null")
-                            .c_str()),
-            0);
+  const auto chain = write_limb_chain(dir, "--triangles 210000");
   const test::CommandResult hero = test::run_crowdbake(
       {"lod", chain.string(), "--ratio", "0.01", "-o", (dir / "x.glb").string()});
   EXPECT_EQ(hero.exit_code, 0) << hero.err;
@@ -101,17 +106,22 @@ TEST(LodCommand, SaysWhenAHeroMeshWasSimplifiedInTwoHalves) {
 // its tip, so its inner joints without a vertex are all reached through it.
 TEST(LodCommand, MeasureSaysWhichJointsNoJointBelowReaches) {
   test::TempDir dir;
-  const auto chain = dir / "chain.glb";
-  ASSERT_EQ(
-      std::system((test::shell_quote(MAKE_LIMB_CHAIN_EXE) + " --triangles 4000 --joints 8 -o " +
-                   test::shell_quote(chain.string()) + " >/dev/null")
-                      .c_str()),
-      0);
+  const auto chain = write_limb_chain(dir, "--triangles 4000 --joints 8");
   const test::CommandResult r = test::run_crowdbake(
       {"lod", chain.string(), "--vertices", "1", "--measure", "1", "-o", (dir / "x.glb").string()});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("no vertex  of"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("unreached"), std::string::npos) << r.out;
+  // The pack's coarsest level, read back by `inspect` through the pack's own joint parents.
+  const auto pack = dir / "chain.crowdpack";
+  const test::CommandResult bake =
+      test::run_crowdbake({"bake", chain.string(), "-o", pack.string(), "--quiet"});
+  ASSERT_EQ(bake.exit_code, 0) << bake.err;
+  const test::CommandResult inspect = test::run_crowdbake({"inspect", pack.string(), "--json"});
+  ASSERT_EQ(inspect.exit_code, 0) << inspect.err;
+  const nlohmann::json lod = nlohmann::json::parse(inspect.out)["lod"];
+  EXPECT_FALSE(lod["joints_missing_at_min"].empty()) << lod;
+  EXPECT_TRUE(lod["joints_unreached_at_min"].empty()) << lod;
 }
 
 // --keep-joint-ends: the KnightCharacter's feet hang from the root, outside the legs' chains,
