@@ -7,6 +7,14 @@
 namespace crowdbake {
 namespace {
 
+// Per position: 1 when a face uses it. A position whose faces were all degenerate (dropped at
+// import) never collapses, so it must not stand in for a joint's last real position.
+std::vector<char> positions_with_faces(const SimplifyMesh& mesh) {
+  std::vector<char> used(mesh.position_count(), 0);
+  for (uint32_t corner : mesh.triangles) used[mesh.position_of[corner]] = 1;
+  return used;
+}
+
 // The full mesh's positions as the collapse loop sees them before its first collapse.
 struct Positions {
   const SimplifyMesh& mesh;
@@ -15,10 +23,7 @@ struct Positions {
   std::vector<char> used;  // the position has faces
 
   Positions(const SimplifyMesh& m, const std::vector<glm::dvec3>& p, uint32_t s)
-      : mesh(m), posed(p), poses(s), used(m.position_count(), 0) {
-    for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
-      for (int k = 0; k < 3; ++k) used[position(t, k)] = 1;
-  }
+      : mesh(m), posed(p), poses(s), used(positions_with_faces(m)) {}
   uint32_t count() const { return mesh.position_count(); }
   uint32_t position(uint32_t triangle, int k) const {
     return mesh.position_of[mesh.triangles[3 * triangle + k]];
@@ -121,14 +126,16 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
 }
 
 std::vector<uint16_t> joint_ends(const SimplifyMesh& mesh, const std::vector<char>& small_part) {
+  const std::vector<char> used = positions_with_faces(mesh);
+  const auto holds = [&](uint32_t p) { return used[p] && !small_part[p]; };
   std::vector<char> above(mesh.joint_parent.size(), 0);  // a joint below it holds a position
   for (uint32_t p = 0; p < mesh.position_count(); ++p)
-    if (!small_part[p])
+    if (holds(p))
       for (int j = mesh.joint_parent[mesh.dominant_joint[p]]; j >= 0; j = mesh.joint_parent[j])
         above[j] = 1;
   std::vector<uint16_t> out(mesh.position_count(), kNoLimb);
   for (uint32_t p = 0; p < mesh.position_count(); ++p)
-    if (!small_part[p] && !above[mesh.dominant_joint[p]]) out[p] = mesh.dominant_joint[p];
+    if (holds(p) && !above[mesh.dominant_joint[p]]) out[p] = mesh.dominant_joint[p];
   return out;
 }
 

@@ -31,9 +31,9 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
                                   double fraction);
 
 // Per position: its dominant joint when that joint ends a branch of the skeleton (no joint
-// below it is the dominant joint of a position), else kNoLimb; positions on small parts are
-// left out of both (SimplifyOptions::keep_joint_ends: each such joint keeps a position, as a
-// limb's tip does).
+// below it is the dominant joint of a position with faces), else kNoLimb; positions on small
+// parts and positions without faces are left out of both (SimplifyOptions::keep_joint_ends:
+// each such joint keeps a position, as a limb's tip does).
 std::vector<uint16_t> joint_ends(const SimplifyMesh& mesh, const std::vector<char>& small_part);
 
 }  // namespace crowdbake

@@ -102,5 +102,33 @@ TEST(PartFloors, JointEndsReachEveryJointThatHoldsAPosition) {
   EXPECT_LT(ends.size(), holding.size());
 }
 
+// A position left without faces (its triangles were degenerate, dropped at import) never
+// collapses: held by a joint below an end, it would take the end's floor away and stand for
+// the end's last real position forever.
+TEST(PartFloors, JointEndsIgnorePositionsWithoutFaces) {
+  InBindPose spectator(samples::make_spectator_character());
+  SimplifyMesh& mesh = spectator.mesh;
+  std::vector<char>& small = spectator.small;
+  const std::vector<uint16_t> before = joint_ends(mesh, small);
+  const auto end =
+      std::find_if(before.begin(), before.end(), [](uint16_t j) { return j != kNoLimb; });
+  ASSERT_NE(end, before.end());
+  const uint16_t end_joint = *end;
+
+  // A joint below that end, holding one position that no face uses.
+  const uint16_t below = static_cast<uint16_t>(mesh.joint_parent.size());
+  mesh.joint_parent.push_back(end_joint);
+  mesh.position_of.push_back(mesh.position_count());
+  mesh.representative.push_back(mesh.vertex_count++);
+  mesh.dominant_joint.push_back(below);
+  small.push_back(0);
+
+  const std::vector<uint16_t> after = joint_ends(mesh, small);
+  ASSERT_EQ(after.size(), before.size() + 1);
+  EXPECT_EQ(after.back(), kNoLimb) << "a position without faces holds no floor";
+  EXPECT_TRUE(std::equal(before.begin(), before.end(), after.begin()))
+      << "the end above it keeps its floor";
+}
+
 }  // namespace
 }  // namespace crowdbake
