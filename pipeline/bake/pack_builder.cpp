@@ -166,7 +166,11 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
     s.moved.resize(s.in_place.size());
     float motion[12], rows[12], with_motion[12];
     const float none[3] = {0.0f, 0.0f, 0.0f};
-    root_motion_matrix(clip.root_motion.empty() ? none : &clip.root_motion[3 * f], motion);
+    const float* root = clip.root_motion.empty() ? none : &clip.root_motion[3 * f];
+    root_motion_matrix(root, motion);
+    // note: with no root motion at this frame the moved rows are the in-place rows, value for
+    // value, so one skinning serves both.
+    const bool no_root_motion = root[0] == 0.0f && root[1] == 0.0f && root[2] == 0.0f;
     for (uint32_t j = 0; j < s.in_place.size(); ++j) {
       decode_joint(texture, clip.first_row + f, j, rows);
       compose_affine(motion, rows, with_motion);
@@ -182,11 +186,12 @@ void measure_animation(const SkinnedAsset& asset, const PackContents& pack,
         const size_t end = std::min(p.positions.size(), begin + kBlock);
         skin_positions(p, s.skinning, begin, end, s.exact);
         skin_positions(p, s.moved, begin, end, s.baked);
-        skin_positions(p, s.in_place, begin, end, s.still);
+        if (!no_root_motion) skin_positions(p, s.in_place, begin, end, s.still);
+        const std::vector<glm::dvec3>& still = no_root_motion ? s.baked : s.still;
         for (size_t v = 0; v < s.exact.size(); ++v) {
           const double d = glm::length(s.exact[v] - s.baked[v]);
           e.sum += d, e.worst = std::max(e.worst, d), ++e.count;
-          e.far = std::max(e.far, glm::length(s.still[v] - centre));
+          e.far = std::max(e.far, glm::length(still[v] - centre));
         }
       }
   });
