@@ -539,7 +539,7 @@ class Collapser {
       if (it == map.end())
         map.push_back({v, w});
       else if (it->second != w)
-        crossed_area += bind_area(t);
+        crossed_area += bind_area(t) * seam_share(w, it->second);
     }
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
@@ -552,10 +552,17 @@ class Collapser {
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
       // note: a substituted class is one no removed face pairs v with.
+      // note: the chart v's corner leaves is that of the class at `from` whose faces go to the
+      // class v now takes; the gap between the two at `from` is the seam's width there.
+      const int64_t target = target_class(v, map);
       bool paired = false;
-      for (uint32_t u : shared)
-        paired = paired || (klass(u, from) == v && klass(u, to) == target_class(v, map));
-      if (!paired) crossed_area += bind_area(t);
+      double share = 1.0;
+      for (uint32_t u : shared) {
+        if (klass(u, to) != target) continue;
+        paired = paired || klass(u, from) == v;
+        share = std::min(share, seam_share(v, klass(u, from)));
+      }
+      if (!paired) crossed_area += bind_area(t) * share;
     }
 
     return true;
@@ -678,6 +685,13 @@ class Collapser {
       if (best < 0 || distance < best_distance) best = w, best_distance = distance;
     }
     return best;
+  }
+
+  // The share of the full seam price for a corner moving between classes a and b at one
+  // position: their UV gap over kSeamUvGap, at most 1; 1 between materials.
+  double seam_share(uint32_t a, uint32_t b) const {
+    if (mesh_.primitive[a] != mesh_.primitive[b]) return 1.0;
+    return std::min(1.0, glm::length(glm::dvec2(mesh_.uv[a] - mesh_.uv[b])) / kSeamUvGap);
   }
 
   double bind_area(uint32_t t) const {

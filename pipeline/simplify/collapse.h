@@ -34,7 +34,8 @@ struct CollapseStats {
 
 // Penalties added to a candidate's DQEM cost, in the quadrics' units (area × squared
 // distance, normalised coordinates), with L the length of the collapsed edge:
-// - a corner that crosses a seam or material border: kSeamWeight × its face's area × L²;
+// - a corner that crosses a seam or material border: kSeamWeight × its face's area × L², times
+//   the UV gap between the seam's two sides at that position over kSeamUvGap when it is smaller;
 // - a face that flips in a sampled pose: kFlipWeight × its area × L² in that pose, / S;
 // - the surface leaving `from` behind: kLeftBehindWeight × the area around `from` × the
 //   squared distance from `from` to the new faces, averaged over the poses; where the
@@ -44,6 +45,11 @@ struct CollapseStats {
 //   area × the squared distance from its centroid to the faces around `from` and `to`
 //   before the collapse, averaged over the poses (docs/simplification.md, "Stand-off price").
 constexpr double kSeamWeight = 1.0;
+// A UV seam whose two sides lie this far apart in UV or more (about 20 texels of a 1024²
+// texture) is priced in full; a narrower one in proportion, so corners an exporter wrote a
+// hair apart, or the two edges of one unwrap's cut a few texels apart, are cheap to cross. A
+// border between materials is always priced in full (docs/simplification.md, "UV gaps").
+constexpr double kSeamUvGap = 0.02;
 constexpr double kFlipWeight = 1.0;
 constexpr double kLeftBehindWeight = 3.0;
 constexpr double kStandOffLeftBehindWeight = 6.0;

@@ -150,6 +150,67 @@ TEST(CollapseSeams, FlatShadedMultiMaterialCubeNeverCracks) {
   EXPECT_LE(pm.triangle_count[pm.min_vertices], 32u);
 }
 
+// A sphere unwrapped in two charts that meet along the meridians x = 0: the corners there are
+// two vertices each, and the second chart's UVs lie `gap` to the side of the first's.
+SkinnedAsset two_chart_sphere(float gap) {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  test::sphere(10, 20, positions, indices);
+  SkinnedAsset a = test::bending_character(positions, indices);
+  Primitive& p = a.primitives[0];
+  for (const glm::vec3& q : p.positions) p.uvs.push_back({0.5f + 0.25f * q.z, 0.5f + 0.25f * q.y});
+  std::vector<char> first(p.positions.size(), 0);
+  const auto in_second = [&](size_t t) {
+    return p.positions[p.indices[t]].x + p.positions[p.indices[t + 1]].x +
+               p.positions[p.indices[t + 2]].x <
+           0.0f;
+  };
+  for (size_t t = 0; t < p.indices.size(); t += 3)
+    if (!in_second(t))
+      for (int k = 0; k < 3; ++k) first[p.indices[t + k]] = 1;
+  std::vector<uint32_t> second(p.positions.size(), UINT32_MAX);
+  for (size_t t = 0; t < p.indices.size(); t += 3) {
+    if (!in_second(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      uint32_t& v = p.indices[t + k];
+      if (second[v] == UINT32_MAX) {
+        second[v] = v;
+        if (first[v]) {
+          second[v] = static_cast<uint32_t>(p.positions.size());
+          p.positions.push_back(p.positions[v]);
+          p.joints.push_back(p.joints[v]);
+          p.weights.push_back(p.weights[v]);
+          p.uvs.push_back(p.uvs[v]);
+        }
+        p.uvs[second[v]].x += gap;
+      }
+      v = second[v];
+    }
+  }
+  return a;
+}
+
+// A seam's price grows with its UV gap up to kSeamUvGap: the same sphere crosses its chart
+// border earlier when the two sides lie a hair apart than when they are far apart, and no
+// crack opens either way.
+TEST(CollapseSeams, NarrowUvGapsAreCheaperToCross) {
+  const auto first_crossing = [](float gap) {
+    SCOPED_TRACE(gap);
+    const SkinnedAsset sphere = two_chart_sphere(gap);
+    test::validate_or_throw(sphere);
+    SimplifyReport report;
+    const ProgressiveMesh pm = test::simplify_or_throw(sphere, SimplifyOptions{}, &report);
+    EXPECT_GT(expect_no_crack_at_any_level(sphere, pm), 20);
+    EXPECT_LT(report.seamless_min_vertices, pm.vertex_count());
+    return report.seamless_min_vertices;
+  };
+  const uint32_t narrow = first_crossing(0.1f * static_cast<float>(kSeamUvGap));
+  const uint32_t wide = first_crossing(0.5f);
+  EXPECT_GT(narrow, wide);
+  EXPECT_EQ(first_crossing(2.0f * static_cast<float>(kSeamUvGap)), wide)
+      << "every gap of kSeamUvGap or more is priced in full";
+}
+
 TEST(CollapseSeams, SpectatorNeverCracks) {
   const SkinnedAsset spectator = samples::make_spectator_character();
   EXPECT_GT(expect_no_crack_at_any_level(spectator,
