@@ -551,9 +551,9 @@ class Collapser {
     }
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
-      // note: a substituted class is one no removed face pairs v with.
-      // note: the chart v's corner leaves is that of the class at `from` whose faces go to the
-      // class v now takes; the gap between the two at `from` is the seam's width there.
+      // note: a substituted class is one no removed face pairs v with. The chart its corner
+      // joins is that of the class at `from` whose faces go to the class v now takes; the UV
+      // gap between the two at `from` is the seam's width there.
       const int64_t target = target_class(v, map);
       bool paired = false;
       double share = 1.0;
