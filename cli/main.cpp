@@ -189,7 +189,8 @@ void add_bench(CLI::App& app, Commands& c) {
   bench_simplify_cmd->add_option("--assets", bench.assets,
                                  "Folder with MANIFEST.json (default ../shared/assets)");
   bench_simplify_cmd->add_option("--out", bench.out,
-                                 "Folder for accuracy.csv and accuracy.json (default docs/data)");
+                                 "Folder for accuracy.csv, accuracy.json and accuracy-tables.md "
+                                 "(default docs/data)");
   bench_simplify_cmd->add_option(
       "--plot", bench.plot, "PNG plot to write (default docs/accuracy-vs-time.png; '' = none)");
   bench_simplify_cmd->add_option("--plot-script", bench.plot_script,
@@ -203,6 +204,9 @@ void add_bench(CLI::App& app, Commands& c) {
       ->add_option("--frame-stride", bench.frame_stride,
                    "Measure every k-th frame of 30 fps (default 1; 6 with --quick)")
       ->check(CLI::Range(1, 1000));
+  bench_simplify_cmd->add_option(
+      "--tables-from", bench.tables_from,
+      "Measure nothing: write --out/accuracy-tables.md from an earlier run's accuracy.json");
 
   crowdbake::bench::BenchScaleSettings& bench_scale = c.bench_scale;
   CLI::App* bench_scale_cmd = c.bench_scale_cmd = bench_cmd->add_subcommand(

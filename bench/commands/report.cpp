@@ -13,18 +13,6 @@
 namespace crowdbake::bench {
 namespace {
 
-const BenchLevel* level_at(const BenchRow& row, double target) {
-  for (const BenchLevel& l : row.levels)
-    if (std::abs(l.target - target) < 1e-9 && l.measured) return &l;
-  return nullptr;
-}
-
-const BenchRow* find_row(const BenchAsset& asset, const std::string& method) {
-  for (const BenchRow& r : asset.rows)
-    if (r.method == method) return &r;
-  return nullptr;
-}
-
 std::string percent(double x) {
   char text[32];
   if (!std::isfinite(x)) return "-";
@@ -49,37 +37,50 @@ void write_file(const std::string& path, const std::string& text) {
   }
 }
 
-// Per DQEM configuration and kept fraction: on how many assets its animated max is below
-// both peers', and its mean-RMS relative to the better peer's, averaged over assets.
-struct Versus {
-  int assets = 0, max_below_both = 0;
-  double rms_ratio_sum = 0.0;
-};
+const BenchRow* find_row(const BenchAsset& asset, const std::string& method) {
+  for (const BenchRow& r : asset.rows)
+    if (r.method == method) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+const BenchLevel* level_at(const BenchRow& row, double target) {
+  for (const BenchLevel& l : row.levels)
+    if (std::abs(l.target - target) < 1e-9 && l.measured) return &l;
+  return nullptr;
+}
+
+AgainstPeers against_peers(const BenchAsset& asset, const std::string& config, double fraction) {
+  AgainstPeers p;
+  for (const BenchRow& r : asset.rows)
+    if (r.config == config) p.mine = level_at(r, fraction);
+  const BenchRow* mo = find_row(asset, "meshopt");
+  const BenchRow* gp = find_row(asset, "gltfpack");
+  p.meshopt = mo ? level_at(*mo, fraction) : nullptr;
+  p.gltfpack = gp ? level_at(*gp, fraction) : nullptr;
+  for (const BenchLevel* peer : {p.meshopt, p.gltfpack})
+    if (peer) {
+      p.peer_max = std::min(p.peer_max, peer->error.max);
+      p.peer_rms = std::min(p.peer_rms, peer->error.mean_rms);
+    }
+  return p;
+}
 
 Versus versus_peers(const BenchResult& result, const std::string& config, double fraction) {
   Versus v;
   for (const BenchAsset& a : result.assets) {
-    const BenchRow* mine = nullptr;
-    for (const BenchRow& r : a.rows)
-      if (r.config == config) mine = &r;
-    const BenchRow* mo = find_row(a, "meshopt");
-    const BenchRow* gp = find_row(a, "gltfpack");
-    const BenchLevel* lm = mine ? level_at(*mine, fraction) : nullptr;
-    const BenchLevel* lo = mo ? level_at(*mo, fraction) : nullptr;
-    const BenchLevel* lg = gp ? level_at(*gp, fraction) : nullptr;
-    if (!lm || (!lo && !lg)) continue;
-    const double peer_max = std::min(lo ? lo->error.max : INFINITY, lg ? lg->error.max : INFINITY);
-    const double peer_rms =
-        std::min(lo ? lo->error.mean_rms : INFINITY, lg ? lg->error.mean_rms : INFINITY);
+    const AgainstPeers p = against_peers(a, config, fraction);
+    if (!p.mine || (!p.meshopt && !p.gltfpack)) continue;
     ++v.assets;
-    if (lm->error.max < peer_max) ++v.max_below_both;
-    v.rms_ratio_sum += peer_rms > 0.0 ? lm->error.mean_rms / peer_rms
-                                      : (lm->error.mean_rms > 0.0 ? INFINITY : 1.0);
+    if (p.mine->error.max < p.peer_max) ++v.max_below_both;
+    v.rms_ratio_sum += p.peer_rms > 0.0 ? p.mine->error.mean_rms / p.peer_rms
+                                        : (p.mine->error.mean_rms > 0.0 ? INFINITY : 1.0);
   }
   return v;
 }
 
-std::vector<std::string> dqem_configs(const BenchResult& result) {
+std::vector<std::string> result_configs(const BenchResult& result) {
   std::vector<std::string> configs;
   for (const BenchAsset& a : result.assets)
     for (const BenchRow& r : a.rows)
@@ -88,8 +89,6 @@ std::vector<std::string> dqem_configs(const BenchResult& result) {
         configs.push_back(r.config);
   return configs;
 }
-
-}  // namespace
 
 void print_table(const BenchAsset& a, const std::vector<double>& fractions) {
   std::printf("\n%s  (%u vertices, %u positions, %u triangles, %u clips, %d frames at 30 fps)\n",
@@ -130,7 +129,7 @@ void print_summary(const BenchResult& result) {
   for (double f : result.fractions)
     std::printf(" | %2.0f%%: max < peers  rms / best peer", 100.0 * f);
   std::printf("\n");
-  for (const std::string& config : dqem_configs(result)) {
+  for (const std::string& config : result_configs(result)) {
     std::printf("  %-20s", config.c_str());
     for (double f : result.fractions) {
       const Versus v = versus_peers(result, config, f);
@@ -215,7 +214,7 @@ void write_json(const BenchResult& result, const std::string& path) {
     j["assets"].push_back(ja);
   }
   j["versus_peers"] = nlohmann::json::array();
-  for (const std::string& config : dqem_configs(result))
+  for (const std::string& config : result_configs(result))
     for (double f : result.fractions) {
       const Versus v = versus_peers(result, config, f);
       j["versus_peers"].push_back(
@@ -226,6 +225,71 @@ void write_json(const BenchResult& result, const std::string& path) {
            {"mean_rms_over_better_peer", v.assets ? v.rms_ratio_sum / v.assets : 0.0}});
     }
   write_file(path, j.dump(1) + "\n");
+}
+
+BenchResult read_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw input_error(path, "cannot open the benchmark results (write them with bench simplify)");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  // note: json's value() throws on a key of the wrong type; that and a missing part both
+  // mean the file is not one bench simplify wrote.
+  try {
+    if (!j.is_object() || !j.contains("assets")) throw std::runtime_error("no assets");
+    BenchResult result;
+    result.quick = j.value("quick", false);
+    result.frame_stride = j.value("frame_stride", 1);
+    result.fractions = j.at("fractions").get<std::vector<double>>();
+    result.total_seconds = j.value("total_seconds", 0.0);
+    result.gltfpack = j.value("gltfpack", std::string());
+    for (const nlohmann::json& ja : j.at("assets")) {
+      BenchAsset& a = result.assets.emplace_back();
+      a.name = ja.at("name").get<std::string>();
+      a.source = ja.value("source", std::string());
+      a.vertices = ja.value("vertices", 0u), a.positions = ja.value("positions", 0u);
+      a.triangles = ja.value("triangles", 0u), a.clips = ja.value("clips", 0u);
+      a.frames = ja.value("frames", 0);
+      a.diagonal = ja.value("diagonal", 0.0);
+      a.seconds_error = ja.value("seconds_error", 0.0);
+      for (const nlohmann::json& jr : ja.at("rows")) {
+        BenchRow& r = a.rows.emplace_back();
+        r.config = jr.at("config").get<std::string>();
+        r.method = jr.at("method").get<std::string>();
+        r.samples = jr.value("samples", 0);
+        r.form = jr.value("form", std::string());
+        r.pose_source = jr.value("pose_source", std::string());
+        r.seconds = jr.value("seconds", 0.0);
+        r.note = jr.value("note", std::string());
+        const nlohmann::json& peak = jr.at("peak_rss_mb");
+        r.peak_rss_mb = peak.is_number() ? peak.get<double>() : -1.0;
+        for (const nlohmann::json& jl : jr.at("levels")) {
+          BenchLevel& l = r.levels.emplace_back();
+          l.target = jl.at("target").get<double>();
+          l.measured = jl.at("measured").get<bool>();
+          if (!l.measured) continue;
+          l.kept_positions = jl.at("kept_position_fraction").get<double>();
+          l.kept_vertices = jl.at("kept_vertex_fraction").get<double>();
+          l.triangles = jl.at("triangles").get<unsigned>();
+          l.parameter = jl.at("peer_parameter").get<double>();
+          l.error.bind_rms = jl.at("bind_rms").get<double>();
+          l.error.bind_max = jl.at("bind_max").get<double>();
+          l.error.mean_rms = jl.at("mean_rms").get<double>();
+          l.error.max = jl.at("max").get<double>();
+          l.error.frames = a.frames;
+          l.error.diagonal = a.diagonal;
+        }
+      }
+    }
+    return result;
+  } catch (const std::exception& e) {
+    throw input_error(path, std::string("not the accuracy.json of bench simplify (") + e.what() +
+                                "); write it again with crowdbake bench simplify");
+  }
+}
+
+void write_markdown(const BenchResult& result, const std::string& default_config,
+                    const std::string& path) {
+  write_file(path, markdown_tables(result, default_config));
 }
 
 void write_plot_data(const BenchResult& result, const std::string& path) {

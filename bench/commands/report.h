@@ -1,8 +1,9 @@
 // Results of `crowdbake bench simplify` and the ways they are written: a text table
-// (stdout), CSV (one line per configuration and kept fraction), JSON, and the data file
-// scripts/plot-accuracy.gp draws.
+// (stdout), CSV (one line per configuration and kept fraction), JSON, Markdown tables for
+// the docs, and the data file scripts/plot-accuracy.gp draws.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,41 @@ struct BenchResult {
   std::string gltfpack;  // program used, or empty
 };
 
+// One DQEM configuration against the peers at one kept fraction, over the assets where it and
+// at least one peer were measured: on how many its animated max is below both peers', and
+// its mean-RMS over the better peer's, summed (divide by `assets` for the average).
+struct Versus {
+  int assets = 0, max_below_both = 0;
+  double rms_ratio_sum = 0.0;
+};
+
+// One configuration's level and the peers' at one asset and kept fraction (null where not
+// measured); the better peer's max and mean-RMS (infinite without a peer).
+struct AgainstPeers {
+  const BenchLevel *mine = nullptr, *meshopt = nullptr, *gltfpack = nullptr;
+  double peer_max = INFINITY, peer_rms = INFINITY;
+};
+
+const BenchLevel* level_at(const BenchRow& row, double target);
+AgainstPeers against_peers(const BenchAsset& asset, const std::string& config, double fraction);
+Versus versus_peers(const BenchResult& result, const std::string& config, double fraction);
+// The DQEM configurations in the order of their rows.
+std::vector<std::string> result_configs(const BenchResult& result);
+
 void print_table(const BenchAsset& asset, const std::vector<double>& fractions);
 void print_summary(const BenchResult& result);
 void write_csv(const BenchResult& result, const std::string& path);
 void write_json(const BenchResult& result, const std::string& path);
+// write_json's file read back (`bench simplify --tables-from`); an Error naming the file when
+// it is not one.
+BenchResult read_json(const std::string& path);
+// The label of the configuration `crowdbake bake` uses ("S=16 exact"; simplify.cpp).
+std::string default_config_label();
+// The tables docs/accuracy.md shows (report_markdown.cpp): every configuration against the
+// peers, `default_config` per asset against the peers, and one table per asset.
+std::string markdown_tables(const BenchResult& result, const std::string& default_config);
+void write_markdown(const BenchResult& result, const std::string& default_config,
+                    const std::string& path);
 // Columns: label (S for DQEM rows), series (static, pullback, exact, clips, meshopt,
 // gltfpack), seconds, mean-RMS at 25%, max at 25%, mean-RMS at 10% (errors in % of the
 // diagonal); one gnuplot data block (two blank lines apart) per asset, in result order.

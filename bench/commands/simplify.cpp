@@ -191,8 +191,7 @@ std::vector<uint32_t> default_kept(const std::vector<BenchRow>& rows,
                                    const std::vector<std::pair<size_t, size_t>>& owner,
                                    const std::vector<SkinnedAsset>& lods, size_t fractions) {
   std::vector<uint32_t> kept(fractions, 0);
-  const SimplifyOptions defaults;
-  const std::string label = sampled_label(defaults.samples, defaults.form);
+  const std::string label = default_config_label();
   for (size_t i = 0; i < owner.size(); ++i)
     if (rows[owner[i].first].config == label) kept[owner[i].second] = count_lod(lods[i]).positions;
   return kept;
@@ -266,9 +265,29 @@ void draw_plot(const BenchSettings& settings, const std::string& data, const Ben
                settings.plot);
 }
 
+// Creates the output folder.
+fs::path output_folder(const std::string& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec)
+    throw Error(Error::Kind::kOutput, out, "cannot create the output folder: " + ec.message());
+  return out;
+}
+
 }  // namespace
 
+std::string default_config_label() {
+  const SimplifyOptions defaults;
+  return sampled_label(defaults.samples, defaults.form);
+}
+
 int run_bench_simplify(const BenchSettings& settings) {
+  if (!settings.tables_from.empty()) {
+    const BenchResult earlier = read_json(settings.tables_from);
+    write_markdown(earlier, default_config_label(),
+                   (output_folder(settings.out) / "accuracy-tables.md").string());
+    return 0;
+  }
   const auto start = std::chrono::steady_clock::now();
   const Progress progress;
   BenchResult result;
@@ -280,11 +299,7 @@ int run_bench_simplify(const BenchSettings& settings) {
     std::cerr << "note: gltfpack not found; run scripts/gltfpack/install.sh <build>/npm-gltfpack "
                  "or set CROWDBAKE_GLTFPACK\n";
 
-  std::error_code ec;
-  fs::create_directories(settings.out, ec);
-  if (ec)
-    throw Error(Error::Kind::kOutput, settings.out,
-                "cannot create the output folder: " + ec.message());
+  const fs::path out = output_folder(settings.out);
   const WorkFolder scratch("crowdbake-bench");
   const fs::path& work = scratch.path();
 
@@ -298,11 +313,10 @@ int run_bench_simplify(const BenchSettings& settings) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(result);
 
-  const std::string csv = (fs::path(settings.out) / "accuracy.csv").string();
-  const std::string json = (fs::path(settings.out) / "accuracy.json").string();
-  const std::string data = (fs::path(settings.out) / "accuracy-vs-time.dat").string();
-  write_csv(result, csv);
-  write_json(result, json);
+  const std::string data = (out / "accuracy-vs-time.dat").string();
+  write_csv(result, (out / "accuracy.csv").string());
+  write_json(result, (out / "accuracy.json").string());
+  write_markdown(result, default_config_label(), (out / "accuracy-tables.md").string());
   write_plot_data(result, data);
   draw_plot(settings, data, result);
   return 0;

@@ -14,13 +14,16 @@ namespace crowdbake::bench {
 // (docs/accuracy.md).
 struct BenchSettings {
   std::string assets = "../shared/assets";  // folder with MANIFEST.json; absent: spectator only
-  std::string out = "docs/data";            // accuracy.csv, accuracy.json, accuracy-vs-time.dat
+  std::string out = "docs/data";            // accuracy.csv, .json, -tables.md, accuracy-vs-time.dat
   std::string plot = "docs/accuracy-vs-time.png";  // empty: no plot
   std::string plot_script = "scripts/plot-accuracy.gp";
   bool quick = false;           // fewer configurations, every 6th frame (CI smoke test)
   bool spectator_only = false;  // skip the manifest assets
   int threads = 0;              // 0 = hardware concurrency
   int frame_stride = 0;         // measure every k-th 30 fps frame; 0 = 6 with quick, else 1
+  // An accuracy.json of an earlier run: write its accuracy-tables.md to `out` and measure
+  // nothing.
+  std::string tables_from;
 };
 
 int run_bench_simplify(const BenchSettings& settings);
