@@ -39,7 +39,7 @@ class SmallList {
   const T& front() const { return data()[0]; }
   T& back() { return data()[size_ - 1]; }
   void pop_back() { --size_; }
-  void push_back(const T& x) {
+  void push_back(T x) {  // note: by value, so an element of the list itself may be pushed
     if (size_ == capacity_) grow();
     data()[size_++] = x;
   }

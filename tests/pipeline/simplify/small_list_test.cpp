@@ -56,6 +56,14 @@ TEST(SmallList, MovingTakesTheElementsAndLeavesAnEmptyList) {
   }
 }
 
+// Pushing one of the list's own elements when the push moves the list to the heap.
+TEST(SmallList, PushingItsOwnElementWhileGrowing) {
+  SmallList<uint32_t, 4> list;
+  for (uint32_t x : {5u, 6u, 7u, 8u}) list.push_back(x);
+  list.push_back(*list.begin());
+  EXPECT_EQ(items(list), (std::vector<uint32_t>{5, 6, 7, 8, 5}));
+}
+
 TEST(SmallList, EraseKeepsTheOrderOfTheRest) {
   SmallList<uint32_t, 4> list;
   for (uint32_t x : {1u, 2u, 3u, 4u, 5u, 6u}) list.push_back(x);
