@@ -1,6 +1,6 @@
 // A short list held in place: up to kInline elements inside the object, more on the heap.
-// The collapse loop keeps lists per position (its live faces, its candidates); a vector's
-// header and its separate block cost two cache misses per read where this costs one.
+// The collapse loop keeps one per position (its live faces); a vector's header and its
+// separate block cost two cache misses per read where this costs one.
 // T must be trivially copyable.
 #pragma once
 
@@ -35,10 +35,6 @@ class SmallList {
   size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
 
-  T& front() { return data()[0]; }
-  const T& front() const { return data()[0]; }
-  T& back() { return data()[size_ - 1]; }
-  void pop_back() { --size_; }
   void push_back(T x) {  // note: by value, so an element of the list itself may be pushed
     if (size_ == capacity_) grow();
     data()[size_++] = x;
@@ -67,8 +63,8 @@ class SmallList {
   }
 
   uint32_t size_ = 0, capacity_ = kInline;
-  // note: the elements in place, or (once they outgrow it) the heap block's address; a raw
-  // buffer rather than a union so that T may have default member initialisers.
+  // note: the elements in place, or (once they outgrow it) the heap block's address; raw
+  // bytes in place, so that T may have default member initialisers.
   union Store {
     alignas(T) unsigned char in_place[kInline * sizeof(T)];
     T* heap;
