@@ -2,10 +2,13 @@
 // depfile and JSON report. Progress goes to stderr on a terminal only.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/missing_joints.h"
@@ -157,6 +160,28 @@ int run_bake(const BakeCommandSettings& s) {
                   static_cast<unsigned long long>(c.size));
     std::printf("  lod        %u..%u vertices\n", pack.progressive.min_vertices,
                 pack.geometry.vertex_count());
+    // note: an artist baking by hand sees here that a foot or a head is gone at the far end of
+    // a crowd, and which setting keeps it (docs/simplification.md, "Joint ends").
+    const std::vector<MissingJoint> lost =
+        joints_unreached_at_min(pack, stored_weights(pack.geometry, settings.pack));
+    if (!lost.empty()) {
+      // note: a part is named by its topmost lost joint (a palm, not its fingers as well).
+      std::string names;
+      for (const MissingJoint& m : lost) {
+        const auto joint = std::find_if(pack.joints.begin(), pack.joints.end(),
+                                        [&](const PackJoint& j) { return j.name == m.name; });
+        const int parent = joint != pack.joints.end() ? joint->parent : -1;
+        const bool parent_lost =
+            parent >= 0 && std::any_of(lost.begin(), lost.end(), [&](const MissingJoint& x) {
+              return x.name == pack.joints[static_cast<size_t>(parent)].name;
+            });
+        if (!parent_lost) names += (names.empty() ? "" : ", ") + m.name;
+      }
+      std::printf(
+          "  lost       at %u vertices: %s, with the joints below them (no vertex left; "
+          "simplify.keep_joint_ends keeps one of each)\n",
+          pack.progressive.min_vertices, names.c_str());
+    }
     std::printf("  animation  max error %.2e of the bbox diagonal (%s coding: %.2e of it)\n",
                 report.animation_max_error, report.animation_coding.c_str(),
                 report.animation_coding_max_error);

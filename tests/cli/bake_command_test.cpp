@@ -1,10 +1,13 @@
 // `crowdbake bake`: atomic, deterministic output; depfile; report; config errors.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "asset_paths.h"
 #include "cli/cli_runner.h"
 #include "crowdbake/formats/pack.h"
 #include "gltf_test_builder.h"
@@ -275,6 +278,39 @@ TEST(BakeCommand, KeepJointEndsIsAConfigKeyNamedWhenOn) {
   const test::CommandResult bad = bake_with_config(dir, R"({"simplify": {"keep_joint_ends": 1}})");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("simplify.keep_joint_ends"), std::string::npos) << bad.err;
+}
+
+// On a terminal the bake's summary names the parts its coarsest level has lost (by their
+// topmost joint) and the setting that keeps them; with the setting on, the line is gone. The
+// summary is for terminals only, so the bake runs under script(1), which gives it one.
+TEST(BakeCommand, TerminalSummaryNamesTheLostPartsAndTheSetting) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  if (std::system("command -v script >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "script(1) not found (util-linux): no terminal to run the bake on";
+  test::TempDir dir;
+  const std::string knight =
+      (test::shared_assets() / "Quaternius_Knight/KnightCharacter.fbx").string();
+  std::ofstream(dir / "ends.json") << R"({"simplify": {"keep_joint_ends": true}})";
+  const auto summary = [&](const std::string& extra) {
+    const std::string bake = test::shell_quote(CROWDBAKE_EXE) + " bake " +
+                             test::shell_quote(knight) + " -o " +
+                             test::shell_quote((dir / "x.crowdpack").string()) + extra;
+    const std::string cmd = "script -qec " + test::shell_quote(bake) + " /dev/null >" +
+                            test::shell_quote((dir / "summary.txt").string()) + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    return test::slurp(dir / "summary.txt");
+  };
+  const std::string plain = summary("");
+  const size_t at = plain.find("  lost ");
+  ASSERT_NE(at, std::string::npos) << plain;
+  const std::string line = plain.substr(at, plain.find('\n', at) - at);
+  EXPECT_NE(line.find("Foot.L"), std::string::npos) << line;
+  EXPECT_NE(line.find("Palm.L"), std::string::npos) << line;
+  EXPECT_EQ(line.find("Fingers.L"), std::string::npos) << line;  // below Palm.L
+  EXPECT_NE(line.find("simplify.keep_joint_ends"), std::string::npos) << line;
+  const std::string ends = summary(" --config " + test::shell_quote((dir / "ends.json").string()));
+  EXPECT_NE(ends.find("  lod "), std::string::npos) << ends;
+  EXPECT_EQ(ends.find("  lost "), std::string::npos) << ends;
 }
 
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
