@@ -75,7 +75,8 @@ struct CollapseState {
                              : limb_joints(mesh, posed, poses, small_part, kLimbFraction)),
         star(mesh.position_count(), 0),
         refused(mesh.position_count()),
-        leaving(mesh.position_count()) {
+        leaving(mesh.position_count()),
+        vertex_removed(mesh.vertex_count, 0) {
     for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
       for (int k = 0; k < 3; ++k) incident[mesh.position_of[corner[3 * t + k]]].push_back(t);
   }
@@ -89,6 +90,7 @@ struct CollapseState {
   std::vector<uint32_t> star;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates
+  std::vector<char> vertex_removed;             // per vertex: a record has removed it
 };
 
 // Which part of the mesh one collapse loop works on. A hero mesh is cut in two halves that
@@ -133,6 +135,7 @@ class Collapser {
         star_(state.star),
         refused_(state.refused),
         leaving_(state.leaving),
+        vertex_removed_(state.vertex_removed),
         queue_(mesh.position_count()),
         lookahead_(lane.lookahead) {
     uint32_t joints = 0;
@@ -600,9 +603,12 @@ class Collapser {
 
   void perform(uint32_t from, uint32_t to, const Scratch& scratch, CollapseRecord& record) {
     forget_ahead_near(from, to, scratch);
-    // Perform: record every wedge of `from` (unused ones follow the first mapped wedge).
+    // Perform: record every wedge of `from` not removed yet (unused ones follow the first
+    // mapped wedge).
     for (uint32_t i = mesh_.wedge_offset[from]; i < mesh_.wedge_offset[from + 1]; ++i) {
       const uint32_t v = mesh_.wedges[i];
+      if (vertex_removed_[v]) continue;
+      vertex_removed_[v] = 1;
       const int64_t w = target_class(v, scratch.map);
       record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : scratch.map.front().second});
     }
@@ -622,6 +628,8 @@ class Collapser {
       corner = static_cast<uint32_t>(target_class(corner, scratch.map));
       incident_[to].push_back(t);
     }
+    remove_unused_wedges(to, record);
+    for (uint32_t p : scratch.third) remove_unused_wedges(p, record);
     position_alive_[from] = 0;
     if (limb_[from] != kNoLimb) --limb_positions_[limb_[from]];
     incident_[from].clear();
@@ -655,6 +663,28 @@ class Collapser {
           update(x);
         }
     retry_refused(to, ring);
+  }
+
+  // A wedge that no live face uses any more leaves the levels with the collapse that made it
+  // unused, onto its attribute class (the same position, primitive and UV), instead of
+  // staying until its position collapses: on a flat-shaded export most wedges of a position
+  // lose their face long before the position goes, and each one kept is a vertex the level
+  // pays for and draws nothing with (docs/simplification.md, "Unused wedges"). A class's own
+  // vertex stays while its position lives: moved corners are pointed at it. A lane leaves the
+  // positions on its cut to the loop after it.
+  void remove_unused_wedges(uint32_t p, CollapseRecord& record) {
+    if (!mine(p)) return;
+    const FaceList& faces = incident_[p];
+    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
+      const uint32_t w = mesh_.wedges[i];
+      if (mesh_.class_of[w] == w || vertex_removed_[w]) continue;
+      const bool used = std::any_of(faces.begin(), faces.end(), [&](uint32_t t) {
+        return corner_[3 * t] == w || corner_[3 * t + 1] == w || corner_[3 * t + 2] == w;
+      });
+      if (used) continue;
+      vertex_removed_[w] = 1;
+      record.wedges.push_back({w, mesh_.class_of[w]});
+    }
   }
 
   // Offers again the refused collapses waiting at `to` and its ring, once each (a pair waits
@@ -843,6 +873,7 @@ class Collapser {
   std::vector<uint32_t>& star_;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& refused_;
   std::vector<std::vector<Candidate>>& leaving_;
+  std::vector<char>& vertex_removed_;
   std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb in the lane
   // Scratch of the attempts and their helpers, kept so the loop does not allocate.
   Scratch scratch_;

@@ -125,16 +125,16 @@ TEST(LodCommand, MeasureSaysWhichJointsNoJointBelowReaches) {
 }
 
 // --keep-joint-ends: the KnightCharacter's feet hang from the root, outside the legs' chains,
-// and by default its left foot is unreached at 5% (docs/accuracy.md); with the flag every joint
-// is reached.
+// and by default its left foot is unreached at the coarsest level (docs/accuracy.md); with the
+// flag every joint is reached there.
 TEST(LodCommand, KeepJointEndsKeepsTheFeet) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   test::TempDir dir;
   const std::string knight =
       (test::shared_assets() / "Quaternius_Knight/KnightCharacter.fbx").string();
   const auto level = [&](const std::vector<std::string>& extra) {
-    std::vector<std::string> args{"lod",       knight, "--ratio", "0.05",
-                                  "--measure", "1",    "-o",      (dir / "x.glb").string()};
+    std::vector<std::string> args{"lod",       knight, "--vertices", "1",
+                                  "--measure", "1",    "-o",         (dir / "x.glb").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::CommandResult r = test::run_crowdbake(args);
     EXPECT_EQ(r.exit_code, 0) << r.err;

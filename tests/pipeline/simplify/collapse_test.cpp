@@ -418,6 +418,79 @@ TEST(CollapseSeams, PerCornerCharactersNeverCrack) {
   }
 }
 
+// Every triangle corner its own vertex, as flat-shaded FBX exports write them.
+SkinnedAsset per_corner(SkinnedAsset a) {
+  for (Primitive& p : a.primitives) {
+    Primitive q = p;
+    q.positions.clear(), q.normals.clear(), q.uvs.clear(), q.colors.clear(), q.joints.clear();
+    q.weights.clear(), q.indices.clear();
+    for (uint32_t i : p.indices) {
+      q.indices.push_back(static_cast<uint32_t>(q.positions.size()));
+      q.positions.push_back(p.positions[i]);
+      if (!p.normals.empty()) q.normals.push_back(p.normals[i]);
+      if (!p.uvs.empty()) q.uvs.push_back(p.uvs[i]);
+      if (!p.colors.empty()) q.colors.push_back(p.colors[i]);
+      q.joints.push_back(p.joints[i]);
+      q.weights.push_back(p.weights[i]);
+    }
+    p = std::move(q);
+  }
+  return a;
+}
+
+// At every level, a vertex no triangle uses is the own vertex of its attribute class (the
+// lowest id among its position's corners with its primitive and UV), which moved corners are
+// pointed at; any other unused corner left the levels with the collapse that emptied it.
+// Returns the most vertices a level kept unused.
+uint32_t expect_only_class_vertices_unused(const SkinnedAsset& asset, const ProgressiveMesh& pm) {
+  const SimplifyMesh mesh = build_simplify_mesh(asset);
+  uint32_t most = 0, last = 0;
+  for (uint32_t n = pm.vertex_count(); n >= pm.min_vertices && n > 0; --n) {
+    const uint32_t used = pm.usable_vertices(n);
+    if (used == last) continue;
+    last = used;
+    std::vector<char> drawn(used, 0);
+    for (uint32_t v : pm.reconstruct(used)) drawn[v] = 1;
+    uint32_t unused = 0;
+    for (uint32_t v = 0; v < used; ++v) {
+      if (drawn[v]) continue;
+      ++unused;
+      const uint32_t original = pm.vertex_source[v];
+      if (mesh.class_of[original] != original) {
+        ADD_FAILURE() << "at " << used << " vertices, vertex " << original
+                      << " is kept though no triangle uses it and its class has vertex "
+                      << mesh.class_of[original];
+        return most;
+      }
+    }
+    most = std::max(most, unused);
+  }
+  return most;
+}
+
+TEST(CollapseWedges, NoLevelKeepsACornerNoTriangleUses) {
+  const SkinnedAsset spectator = per_corner(samples::make_spectator_character());
+  test::validate_or_throw(spectator);
+  const ProgressiveMesh pm = test::simplify_or_throw(spectator, SimplifyOptions{});
+  expect_only_class_vertices_unused(spectator, pm);
+  // note: per corner, the minimum's triangles alone use about as many vertices as they have
+  // corners; before unused corners left the levels, the spectator's minimum kept 3.1 times
+  // its triangles' corners.
+  const uint32_t corners = 3 * pm.triangle_count[pm.min_vertices];
+  EXPECT_LE(pm.min_vertices, corners + corners / 2) << corners / 3 << " triangles";
+  EXPECT_GT(expect_no_crack_at_any_level(spectator, pm), 100);
+}
+
+TEST(CollapseWedges, PerCornerCharactersKeepNoCornerNoTriangleUses) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  for (const char* path : {"Quaternius_Zombie/Zombie.fbx", "Quaternius_Knight/KnightCharacter.fbx",
+                           "Quaternius_Spider/Spider.fbx", "Fox/Fox.glb"}) {
+    SCOPED_TRACE(path);
+    const SkinnedAsset a = test::import_or_throw((test::shared_assets() / path).string());
+    expect_only_class_vertices_unused(a, test::simplify_or_throw(a, SimplifyOptions{}));
+  }
+}
+
 // Triangles of the LoD per connected part of the original, by which part a triangle's
 // first corner came from.
 std::map<int, uint32_t> triangles_per_part(const ProgressiveMesh& pm, const std::vector<int>& part,
