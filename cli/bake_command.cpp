@@ -178,9 +178,11 @@ int run_bake(const BakeCommandSettings& s) {
         if (!parent_lost) names += (names.empty() ? "" : ", ") + m.name;
       }
       std::printf(
-          "  lost       at %u vertices: %s, with the joints below them (no vertex left; "
-          "simplify.keep_joint_ends keeps one of each)\n",
-          pack.progressive.min_vertices, names.c_str());
+          "  lost       at %u vertices: %s, with the joints below them (no vertex left%s)\n",
+          pack.progressive.min_vertices, names.c_str(),
+          settings.simplify.keep_joint_ends
+              ? ""
+              : "; simplify.keep_joint_ends, off here, keeps one of each");
     }
     std::printf("  animation  max error %.2e of the bbox diagonal (%s coding: %.2e of it)\n",
                 report.animation_max_error, report.animation_coding.c_str(),

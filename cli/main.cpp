@@ -104,10 +104,10 @@ void add_lod(CLI::App& app, Commands& c) {
   lod_cmd->add_option("--max-collapse-cost", lod.simplify.max_collapse_cost,
                       "Stop before the first collapse costing more (normalised quadric units; "
                       "0 = as far as topology allows; default 0.005)");
-  lod_cmd->add_flag("--keep-joint-ends", lod.simplify.keep_joint_ends,
+  lod_cmd->add_flag("--keep-joint-ends,!--no-keep-joint-ends", lod.simplify.keep_joint_ends,
                     "The end of every branch of the skeleton keeps a vertex at every level, so "
-                    "no foot, head or tail vanishes (raises the minimum; docs/simplification.md, "
-                    "\"Joint ends\")");
+                    "no foot, head or tail vanishes (the default; --no-keep-joint-ends: the limb "
+                    "tips only, lower minimums; docs/simplification.md, \"Joint ends\")");
   lod_cmd->add_option("--measure", lod.measure_fps,
                       "Also measure the level's animated error against the original over every "
                       "clip at this many frames a second (e.g. 10), and say where its max is");

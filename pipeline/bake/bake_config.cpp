@@ -253,7 +253,8 @@ std::string bake_settings_json(const BakeSettings& s) {
     j["simplify"]["split_positions"] = s.simplify.split_positions;
   // note: always written: packs baked before the key existed had no ceiling.
   j["simplify"]["max_collapse_cost"] = s.simplify.max_collapse_cost;
-  if (s.simplify.keep_joint_ends) j["simplify"]["keep_joint_ends"] = true;
+  // note: always written: packs baked before the key existed kept no joint ends.
+  j["simplify"]["keep_joint_ends"] = s.simplify.keep_joint_ends;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();
   j["level_errors"]["samples"] = s.level_errors.samples;
   j["level_errors"]["fps"] = s.level_errors.fps;

@@ -258,9 +258,9 @@ TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
   }
 }
 
-// keep_joint_ends is a config key, named in the settings text only when on (packs from
-// before it keep their bytes); a bad value names the key.
-TEST(BakeCommand, KeepJointEndsIsAConfigKeyNamedWhenOn) {
+// keep_joint_ends is a config key, on by default and named in the settings text either way;
+// a bad value names the key.
+TEST(BakeCommand, KeepJointEndsIsAConfigKeyOnByDefault) {
   test::TempDir dir;
   const auto bake = [&](const std::string& config, const std::string& name) {
     const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
@@ -269,20 +269,21 @@ TEST(BakeCommand, KeepJointEndsIsAConfigKeyNamedWhenOn) {
     return test::run_crowdbake({"inspect", (dir / name).string()}).out;
   };
   const std::string plain = bake("{}", "plain.crowdpack");
-  bake(R"({"simplify": {"keep_joint_ends": false}})", "off.crowdpack");
-  const std::string on = bake(R"({"simplify": {"keep_joint_ends": true}})", "on.crowdpack");
-  EXPECT_EQ(plain.find("keep_joint_ends"), std::string::npos) << plain;
-  EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "off.crowdpack"));
-  EXPECT_NE(on.find("keep_joint_ends=true"), std::string::npos) << on;
-  EXPECT_NE(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "on.crowdpack"));
+  const std::string off = bake(R"({"simplify": {"keep_joint_ends": false}})", "off.crowdpack");
+  bake(R"({"simplify": {"keep_joint_ends": true}})", "on.crowdpack");
+  EXPECT_NE(plain.find("keep_joint_ends=true"), std::string::npos) << plain;
+  EXPECT_EQ(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "on.crowdpack"));
+  EXPECT_NE(off.find("keep_joint_ends=false"), std::string::npos) << off;
+  EXPECT_NE(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "off.crowdpack"));
   const test::CommandResult bad = bake_with_config(dir, R"({"simplify": {"keep_joint_ends": 1}})");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("simplify.keep_joint_ends"), std::string::npos) << bad.err;
 }
 
 // On a terminal the bake's summary names the parts its coarsest level has lost (by their
-// topmost joint) and the setting that keeps them; with the setting on, the line is gone. The
-// summary is for terminals only, so the bake runs under script(1), which gives it one.
+// topmost joint) and the setting that would keep them, when a config turned it off; by
+// default there is no such line. The summary is for terminals only, so the bake runs under
+// script(1), which gives it one.
 TEST(BakeCommand, TerminalSummaryNamesTheLostPartsAndTheSetting) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   if (std::system("command -v script >/dev/null 2>&1") != 0)
@@ -290,7 +291,7 @@ TEST(BakeCommand, TerminalSummaryNamesTheLostPartsAndTheSetting) {
   test::TempDir dir;
   const std::string knight =
       (test::shared_assets() / "Quaternius_Knight/KnightCharacter.fbx").string();
-  std::ofstream(dir / "ends.json") << R"({"simplify": {"keep_joint_ends": true}})";
+  std::ofstream(dir / "no-ends.json") << R"({"simplify": {"keep_joint_ends": false}})";
   const auto summary = [&](const std::string& extra) {
     const std::string bake = test::shell_quote(CROWDBAKE_EXE) + " bake " +
                              test::shell_quote(knight) + " -o " +
@@ -300,17 +301,18 @@ TEST(BakeCommand, TerminalSummaryNamesTheLostPartsAndTheSetting) {
     EXPECT_EQ(std::system(cmd.c_str()), 0);
     return test::slurp(dir / "summary.txt");
   };
-  const std::string plain = summary("");
-  const size_t at = plain.find("  lost ");
-  ASSERT_NE(at, std::string::npos) << plain;
-  const std::string line = plain.substr(at, plain.find('\n', at) - at);
+  const std::string no_ends =
+      summary(" --config " + test::shell_quote((dir / "no-ends.json").string()));
+  const size_t at = no_ends.find("  lost ");
+  ASSERT_NE(at, std::string::npos) << no_ends;
+  const std::string line = no_ends.substr(at, no_ends.find('\n', at) - at);
   EXPECT_NE(line.find("Foot.L"), std::string::npos) << line;
   EXPECT_NE(line.find("Palm.L"), std::string::npos) << line;
   EXPECT_EQ(line.find("Fingers.L"), std::string::npos) << line;  // below Palm.L
   EXPECT_NE(line.find("simplify.keep_joint_ends"), std::string::npos) << line;
-  const std::string ends = summary(" --config " + test::shell_quote((dir / "ends.json").string()));
-  EXPECT_NE(ends.find("  lod "), std::string::npos) << ends;
-  EXPECT_EQ(ends.find("  lost "), std::string::npos) << ends;
+  const std::string plain = summary("");
+  EXPECT_NE(plain.find("  lod "), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("  lost "), std::string::npos) << plain;
 }
 
 TEST(BakeCommandErrors, UnwritableOutputLeavesNothing) {
