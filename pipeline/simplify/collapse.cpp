@@ -669,7 +669,7 @@ class Collapser {
   // unused, onto its attribute class (the same position, primitive and UV), instead of
   // staying until its position collapses: on a flat-shaded export most wedges of a position
   // lose their face long before the position goes, and each one kept is a vertex the level
-  // pays for and draws nothing with (docs/simplification.md, "Unused wedges"). A class's own
+  // pays for and draws nothing with (docs/simplification.md, "Unused corners"). A class's own
   // vertex stays while its position lives: moved corners are pointed at it. A lane leaves the
   // positions on its cut to the loop after it.
   void remove_unused_wedges(uint32_t p, CollapseRecord& record) {
