@@ -2,7 +2,6 @@
 // depfile and JSON report. Progress goes to stderr on a terminal only.
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -100,10 +99,13 @@ int run_bake(const BakeCommandSettings& s) {
       files.insert(files.end(), region.begin(), region.end());
     throw_if_failed(write_file_atomically(s.depfile, depfile_text(s.output, files)));
   }
+  const bool summary = !s.quiet && ::isatty(STDOUT_FILENO);
+  // note: the joints are told from the weights as the pack stores them (quantized), which is
+  // what `inspect` and the runtime read; the bake's own floats can break ties otherwise.
+  const std::vector<float> weights = !s.report.empty() || summary
+                                         ? stored_weights(pack.geometry, settings.pack)
+                                         : std::vector<float>{};
   if (!s.report.empty()) {
-    // note: the joints are told from the weights as the pack stores them (quantized), which
-    // is what `inspect` and the runtime read; the bake's own floats can break ties otherwise.
-    const std::vector<float> weights = stored_weights(pack.geometry, settings.pack);
     nlohmann::ordered_json j;
     j["input"] = {{"file", s.input},
                   {"joints", asset.skeleton.joints.size()},
@@ -148,7 +150,7 @@ int run_bake(const BakeCommandSettings& s) {
     throw_if_failed(write_file_atomically(s.report, j.dump(2) + "\n"));
   }
 
-  if (!s.quiet && ::isatty(STDOUT_FILENO)) {
+  if (summary) {
     std::printf("%s -> %s (%zu bytes, %.2f s)\n", s.input.c_str(), s.output.c_str(), bytes.size(),
                 total);
     std::printf("  %-10s %8s\n", "stage", "seconds");
@@ -162,20 +164,16 @@ int run_bake(const BakeCommandSettings& s) {
                 pack.geometry.vertex_count());
     // note: an artist baking by hand sees here that a foot or a head is gone at the far end of
     // a crowd, and which setting keeps it (docs/simplification.md, "Joint ends").
-    const std::vector<MissingJoint> lost =
-        joints_unreached_at_min(pack, stored_weights(pack.geometry, settings.pack));
+    const std::vector<MissingJoint> lost = joints_unreached_at_min(pack, weights);
     if (!lost.empty()) {
       // note: a part is named by its topmost lost joint (a palm, not its fingers as well).
+      std::vector<char> is_lost(pack.joints.size(), 0);
+      for (const MissingJoint& m : lost) is_lost[m.joint] = 1;
       std::string names;
       for (const MissingJoint& m : lost) {
-        const auto joint = std::find_if(pack.joints.begin(), pack.joints.end(),
-                                        [&](const PackJoint& j) { return j.name == m.name; });
-        const int parent = joint != pack.joints.end() ? joint->parent : -1;
-        const bool parent_lost =
-            parent >= 0 && std::any_of(lost.begin(), lost.end(), [&](const MissingJoint& x) {
-              return x.name == pack.joints[static_cast<size_t>(parent)].name;
-            });
-        if (!parent_lost) names += (names.empty() ? "" : ", ") + m.name;
+        const int parent = pack.joints[m.joint].parent;
+        if (parent < 0 || !is_lost[static_cast<size_t>(parent)])
+          names += (names.empty() ? "" : ", ") + m.name;
       }
       std::printf(
           "  lost       at %u vertices: %s, with the joints below them (no vertex left%s)\n",

@@ -68,7 +68,8 @@ std::vector<MissingJoint> joints_unreached_below(const std::vector<uint32_t>& co
   const std::vector<uint32_t> reaching = coarsest_levels_reaching(coarsest_levels, parents);
   std::vector<MissingJoint> out;
   for (size_t j = 0; j < coarsest_levels.size() && j < names.size(); ++j)
-    if (coarsest_levels[j] > 0 && reaching[j] > level) out.push_back({names[j], reaching[j]});
+    if (coarsest_levels[j] > 0 && reaching[j] > level)
+      out.push_back({names[j], reaching[j], static_cast<uint32_t>(j)});
   return out;
 }
 
@@ -77,7 +78,8 @@ std::vector<MissingJoint> joints_missing_below(const std::vector<uint32_t>& coar
                                                uint32_t level) {
   std::vector<MissingJoint> out;
   for (size_t j = 0; j < coarsest_levels.size() && j < names.size(); ++j)
-    if (coarsest_levels[j] > level) out.push_back({names[j], coarsest_levels[j]});
+    if (coarsest_levels[j] > level)
+      out.push_back({names[j], coarsest_levels[j], static_cast<uint32_t>(j)});
   return out;
 }
 

@@ -14,6 +14,7 @@ namespace crowdbake::cli {
 struct MissingJoint {
   std::string name;
   uint32_t coarsest_level = 0;  // the coarsest level that still has one of its vertices
+  uint32_t joint = 0;           // its index in the skeleton
 };
 
 // The joints whose coarsest level (coarsest_levels_by_joint) is above `level`, in joint order:
