@@ -24,6 +24,8 @@ namespace {
 constexpr double kMinBindNormalDot = 0.0;
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
+// An attribute class whose last vertex has left the levels (CollapseState::anchor).
+constexpr uint32_t kClassGone = 0xffffffffu;
 
 // A collapse of the position whose list holds it onto `to`. Every live directed edge has
 // at most one; its DQEM cost is always computed on the current quadrics (candidates of a
@@ -76,7 +78,8 @@ struct CollapseState {
         star(mesh.position_count(), 0),
         refused(mesh.position_count()),
         leaving(mesh.position_count()),
-        vertex_removed(mesh.vertex_count, 0) {
+        vertex_removed(mesh.vertex_count, 0),
+        anchor(mesh.class_of) {
     for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
       for (int k = 0; k < 3; ++k) incident[mesh.position_of[corner[3 * t + k]]].push_back(t);
   }
@@ -91,6 +94,9 @@ struct CollapseState {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates
   std::vector<char> vertex_removed;             // per vertex: a record has removed it
+  // Per attribute class (indexed by its id, class_of): the vertex moved corners are pointed
+  // at, a live one, or kClassGone once the class has left the levels.
+  std::vector<uint32_t> anchor;
 };
 
 // Which part of the mesh one collapse loop works on. A hero mesh is cut in two halves that
@@ -136,6 +142,7 @@ class Collapser {
         refused_(state.refused),
         leaving_(state.leaving),
         vertex_removed_(state.vertex_removed),
+        anchor_(state.anchor),
         queue_(mesh.position_count()),
         lookahead_(lane.lookahead) {
     uint32_t joints = 0;
@@ -610,7 +617,8 @@ class Collapser {
       if (vertex_removed_[v]) continue;
       vertex_removed_[v] = 1;
       const int64_t w = target_class(v, scratch.map);
-      record.wedges.push_back({v, w >= 0 ? static_cast<uint32_t>(w) : scratch.map.front().second});
+      record.wedges.push_back(
+          {v, anchor_[w >= 0 ? static_cast<uint32_t>(w) : scratch.map.front().second]});
     }
     record.removed_triangles = scratch.shared;
     // note: the removed faces leave their corners' lists at once, so every list holds live
@@ -625,11 +633,21 @@ class Collapser {
     }
     for (uint32_t t : scratch.moved) {
       uint32_t& corner = corner_[3 * t + corner_of(t, from)];
-      corner = static_cast<uint32_t>(target_class(corner, scratch.map));
+      corner = anchor_[static_cast<uint32_t>(target_class(corner, scratch.map))];
       incident_[to].push_back(t);
     }
     remove_unused_wedges(to, record);
     for (uint32_t p : scratch.third) remove_unused_wedges(p, record);
+    // note: an unused wedge of `from` follows a class of `to` that may just have left with
+    // the faces it lost, and a vertex left on its own a live one that may leave after it;
+    // each goes where that one went (every chain ends at a vertex the record keeps).
+    for (auto& entry : record.wedges)
+      for (bool moved = true; moved;) {
+        const auto next = std::find_if(record.wedges.begin(), record.wedges.end(),
+                                       [&](const auto& e) { return e.first == entry.second; });
+        moved = next != record.wedges.end();
+        if (moved) entry.second = next->second;
+      }
     position_alive_[from] = 0;
     if (limb_[from] != kNoLimb) --limb_positions_[limb_[from]];
     incident_[from].clear();
@@ -666,25 +684,74 @@ class Collapser {
   }
 
   // A wedge that no live face uses any more leaves the levels with the collapse that made it
-  // unused, onto its attribute class (the same position, primitive and UV), instead of
-  // staying until its position collapses: on a flat-shaded export most wedges of a position
-  // lose their face long before the position goes, and each one kept is a vertex the level
-  // pays for and draws nothing with (docs/simplification.md, "Unused corners"). A class's own
-  // vertex stays while its position lives: moved corners are pointed at it. A lane leaves the
-  // positions on its cut to the loop after it.
+  // unused, instead of staying until its position collapses: on a flat-shaded export most
+  // wedges of a position lose their face long before the position goes, and each one kept is
+  // a vertex the level pays for and draws nothing with (docs/simplification.md, "Unused
+  // corners"). A class that is still used keeps one used vertex, its anchor, which moved
+  // corners are pointed at. A class no face uses any more leaves too, onto the nearest used
+  // class of its primitive; where its primitive has none at p it stays (one vertex), because
+  // a face of that primitive moving onto p needs a class to take. A lane leaves the positions
+  // on its cut to the loop after it.
   void remove_unused_wedges(uint32_t p, CollapseRecord& record) {
     if (!mine(p)) return;
-    const FaceList& faces = incident_[p];
+    if (incident_[p].empty()) return remove_isolated(p, record);
+    const uint32_t begin = mesh_.wedge_offset[p], end = mesh_.wedge_offset[p + 1];
+    for (uint32_t i = begin; i < end; ++i) {
+      const uint32_t c = mesh_.wedges[i];
+      if (mesh_.class_of[c] != c || anchor_[c] == kClassGone) continue;
+      uint32_t keep = used_member(p, c), target = keep;
+      if (keep == kClassGone) {
+        const int64_t other = nearest_class(p, c, true);
+        keep = other < 0 ? anchor_[c] : kClassGone;
+        target = other < 0 ? anchor_[c] : used_member(p, static_cast<uint32_t>(other));
+      }
+      for (uint32_t k = i; k < end; ++k) {
+        const uint32_t w = mesh_.wedges[k];
+        if (mesh_.class_of[w] != c || w == keep || vertex_removed_[w] || uses(p, w)) continue;
+        vertex_removed_[w] = 1;
+        record.wedges.push_back({w, target});
+      }
+      anchor_[c] = keep;
+    }
+  }
+
+  // A position left without faces (the last collapses of a part that vanishes) keeps no
+  // vertex: no face of any later level can reach it. Its vertices go onto a live vertex of
+  // the lane, which stands for them only in the records (docs/simplification.md, "Unused
+  // corners").
+  void remove_isolated(uint32_t p, CollapseRecord& record) {
+    while (survivor_ < mesh_.vertex_count) {
+      const uint32_t q = mesh_.position_of[survivor_];
+      if (mine(q) && !vertex_removed_[survivor_] && !incident_[q].empty()) break;
+      ++survivor_;
+    }
+    if (survivor_ == mesh_.vertex_count) return;
     for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
       const uint32_t w = mesh_.wedges[i];
-      if (mesh_.class_of[w] == w || vertex_removed_[w]) continue;
-      const bool used = std::any_of(faces.begin(), faces.end(), [&](uint32_t t) {
-        return corner_[3 * t] == w || corner_[3 * t + 1] == w || corner_[3 * t + 2] == w;
-      });
-      if (used) continue;
+      if (mesh_.class_of[w] == w) anchor_[w] = kClassGone;
+      if (vertex_removed_[w]) continue;
       vertex_removed_[w] = 1;
-      record.wedges.push_back({w, mesh_.class_of[w]});
+      record.wedges.push_back({w, survivor_});
     }
+  }
+
+  // The vertex of class c at p a live face uses: its anchor while that is used, else its
+  // lowest used member; kClassGone when no face uses the class.
+  uint32_t used_member(uint32_t p, uint32_t c) const {
+    if (anchor_[c] != kClassGone && uses(p, anchor_[c])) return anchor_[c];
+    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
+      const uint32_t w = mesh_.wedges[i];
+      if (mesh_.class_of[w] == c && !vertex_removed_[w] && uses(p, w)) return w;
+    }
+    return kClassGone;
+  }
+
+  // A live face uses vertex w of position p.
+  bool uses(uint32_t p, uint32_t w) const {
+    const FaceList& faces = incident_[p];
+    return std::any_of(faces.begin(), faces.end(), [&](uint32_t t) {
+      return corner_[3 * t] == w || corner_[3 * t + 1] == w || corner_[3 * t + 2] == w;
+    });
   }
 
   // Offers again the refused collapses waiting at `to` and its ring, once each (a pair waits
@@ -709,13 +776,15 @@ class Collapser {
   }
 
   // The attribute class at position p in the same primitive as class v with the nearest
-  // UV (lowest id on ties), or -1 when p has none in that primitive.
-  int64_t nearest_class(uint32_t p, uint32_t v) const {
+  // UV (lowest id on ties), or -1 when p has none in that primitive; only classes a live face
+  // uses when `used_only`, else any that has not left the levels.
+  int64_t nearest_class(uint32_t p, uint32_t v, bool used_only = false) const {
     int64_t best = -1;
     float best_distance = 0.0f;
     for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
       const uint32_t w = mesh_.wedges[i];
-      if (mesh_.class_of[w] != w || mesh_.primitive[w] != mesh_.primitive[v]) continue;
+      if (mesh_.class_of[w] != w || w == v || mesh_.primitive[w] != mesh_.primitive[v]) continue;
+      if (anchor_[w] == kClassGone || (used_only && used_member(p, w) == kClassGone)) continue;
       const glm::vec2 d = mesh_.uv[w] - mesh_.uv[v];
       const float distance = glm::dot(d, d);
       if (best < 0 || distance < best_distance) best = w, best_distance = distance;
@@ -874,6 +943,8 @@ class Collapser {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& refused_;
   std::vector<std::vector<Candidate>>& leaving_;
   std::vector<char>& vertex_removed_;
+  std::vector<uint32_t>& anchor_;
+  uint32_t survivor_ = 0;  // remove_isolated's last live vertex of the lane, a lower bound
   std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb in the lane
   // Scratch of the attempts and their helpers, kept so the loop does not allocate.
   Scratch scratch_;
