@@ -638,9 +638,10 @@ class Collapser {
     }
     remove_unused_wedges(to, record);
     for (uint32_t p : scratch.third) remove_unused_wedges(p, record);
+    remove_faceless(to, scratch.third, record);
     // note: an unused wedge of `from` follows a class of `to` that may just have left with
-    // the faces it lost, and a vertex left on its own a live one that may leave after it;
-    // each goes where that one went (every chain ends at a vertex the record keeps).
+    // the faces it lost; it goes where that class went (every chain ends at a vertex the
+    // record keeps).
     for (auto& entry : record.wedges)
       for (bool moved = true; moved;) {
         const auto next = std::find_if(record.wedges.begin(), record.wedges.end(),
@@ -694,7 +695,7 @@ class Collapser {
   // on its cut to the loop after it.
   void remove_unused_wedges(uint32_t p, CollapseRecord& record) {
     if (!mine(p)) return;
-    if (incident_[p].empty()) return remove_isolated(p, record);
+    if (incident_[p].empty()) return;  // note: remove_faceless empties it
     const uint32_t begin = mesh_.wedge_offset[p], end = mesh_.wedge_offset[p + 1];
     for (uint32_t i = begin; i < end; ++i) {
       const uint32_t c = mesh_.wedges[i];
@@ -715,24 +716,33 @@ class Collapser {
     }
   }
 
-  // A position left without faces (the last collapses of a part that vanishes) keeps no
-  // vertex: no face of any later level can reach it. Its vertices go onto a live vertex of
-  // the lane, which stands for them only in the records (docs/simplification.md, "Unused
-  // corners").
-  void remove_isolated(uint32_t p, CollapseRecord& record) {
-    while (survivor_ < mesh_.vertex_count) {
-      const uint32_t q = mesh_.position_of[survivor_];
-      if (mine(q) && !vertex_removed_[survivor_] && !incident_[q].empty()) break;
-      ++survivor_;
-    }
-    if (survivor_ == mesh_.vertex_count) return;
-    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
+  // A position this collapse left without faces keeps no vertex: no face of a later level can
+  // reach it. Its vertices go onto a vertex at `to`, so that the faces this collapse removes
+  // shrink to `to` under a geomorph, as they do at a position that lives on. Where `to` is left
+  // without faces too (the last collapse of a part that vanishes), one of its vertices stays
+  // as that point: a vanished part costs one vertex (docs/simplification.md, "Unused classes
+  // and faceless positions").
+  void remove_faceless(uint32_t to, const std::vector<uint32_t>& third, CollapseRecord& record) {
+    uint32_t pivot = kClassGone;
+    for (uint32_t i = mesh_.wedge_offset[to]; i < mesh_.wedge_offset[to + 1]; ++i) {
       const uint32_t w = mesh_.wedges[i];
-      if (mesh_.class_of[w] == w) anchor_[w] = kClassGone;
-      if (vertex_removed_[w]) continue;
-      vertex_removed_[w] = 1;
-      record.wedges.push_back({w, survivor_});
+      if (vertex_removed_[w] || (!incident_[to].empty() && !uses(to, w))) continue;
+      pivot = w;
+      break;
     }
+    if (pivot == kClassGone) return;
+    const auto empty = [&](uint32_t p) {
+      if (!mine(p) || !incident_[p].empty()) return;
+      for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
+        const uint32_t w = mesh_.wedges[i];
+        if (mesh_.class_of[w] == w) anchor_[w] = kClassGone;
+        if (vertex_removed_[w] || w == pivot) continue;
+        vertex_removed_[w] = 1;
+        record.wedges.push_back({w, pivot});
+      }
+    };
+    empty(to);
+    for (uint32_t p : third) empty(p);
   }
 
   // The vertex of class c at p a live face uses: its anchor while that is used, else its
@@ -944,7 +954,6 @@ class Collapser {
   std::vector<std::vector<Candidate>>& leaving_;
   std::vector<char>& vertex_removed_;
   std::vector<uint32_t>& anchor_;
-  uint32_t survivor_ = 0;  // remove_isolated's last live vertex of the lane, a lower bound
   std::vector<uint32_t> limb_positions_;  // per joint: live positions of its limb in the lane
   // Scratch of the attempts and their helpers, kept so the loop does not allocate.
   Scratch scratch_;
