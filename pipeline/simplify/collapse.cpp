@@ -697,22 +697,43 @@ class Collapser {
     if (!mine(p)) return;
     if (incident_[p].empty()) return;  // note: remove_faceless empties it
     const uint32_t begin = mesh_.wedge_offset[p], end = mesh_.wedge_offset[p + 1];
+    // note: flags per wedge of p, so a position with many faces and classes costs
+    // faces + wedges × classes, not their product with the faces again.
+    const auto index = [&](uint32_t w) {
+      return static_cast<uint32_t>(
+          std::lower_bound(mesh_.wedges.begin() + begin, mesh_.wedges.begin() + end, w) -
+          mesh_.wedges.begin() - begin);
+    };
+    std::vector<char>& used = wedge_used_;
+    used.assign(end - begin, 0);
+    for (uint32_t t : incident_[p]) used[index(corner_[3 * t + corner_of(t, p)])] = 1;
+    // Per class (at its own index): the vertex it keeps, its anchor while that is used, else
+    // its lowest used vertex; kClassGone when no face uses the class.
+    std::vector<uint32_t>& keep = class_keeps_;
+    keep.assign(end - begin, kClassGone);
+    for (uint32_t k = begin; k < end; ++k) {
+      const uint32_t w = mesh_.wedges[k], c = mesh_.class_of[w];
+      if (!used[k - begin] || vertex_removed_[w]) continue;
+      uint32_t& kept = keep[index(c)];
+      if (kept == kClassGone || w == anchor_[c]) kept = w;
+    }
     for (uint32_t i = begin; i < end; ++i) {
       const uint32_t c = mesh_.wedges[i];
       if (mesh_.class_of[c] != c || anchor_[c] == kClassGone) continue;
-      uint32_t keep = used_member(p, c), target = keep;
-      if (keep == kClassGone) {
-        const int64_t other = nearest_class(p, c, true);
-        keep = other < 0 ? anchor_[c] : kClassGone;
-        target = other < 0 ? anchor_[c] : used_member(p, static_cast<uint32_t>(other));
+      uint32_t kept = keep[i - begin], target = kept;
+      if (kept == kClassGone) {
+        const int64_t other =
+            nearest_class_if(p, c, [&](uint32_t w) { return keep[index(w)] != kClassGone; });
+        kept = other < 0 ? anchor_[c] : kClassGone;
+        target = other < 0 ? anchor_[c] : keep[index(static_cast<uint32_t>(other))];
       }
       for (uint32_t k = i; k < end; ++k) {
         const uint32_t w = mesh_.wedges[k];
-        if (mesh_.class_of[w] != c || w == keep || vertex_removed_[w] || uses(p, w)) continue;
+        if (mesh_.class_of[w] != c || w == kept || vertex_removed_[w] || used[k - begin]) continue;
         vertex_removed_[w] = 1;
         record.wedges.push_back({w, target});
       }
-      anchor_[c] = keep;
+      anchor_[c] = kept;
     }
   }
 
@@ -745,17 +766,6 @@ class Collapser {
     for (uint32_t p : third) empty(p);
   }
 
-  // The vertex of class c at p a live face uses: its anchor while that is used, else its
-  // lowest used member; kClassGone when no face uses the class.
-  uint32_t used_member(uint32_t p, uint32_t c) const {
-    if (anchor_[c] != kClassGone && uses(p, anchor_[c])) return anchor_[c];
-    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
-      const uint32_t w = mesh_.wedges[i];
-      if (mesh_.class_of[w] == c && !vertex_removed_[w] && uses(p, w)) return w;
-    }
-    return kClassGone;
-  }
-
   // A live face uses vertex w of position p.
   bool uses(uint32_t p, uint32_t w) const {
     const FaceList& faces = incident_[p];
@@ -786,15 +796,20 @@ class Collapser {
   }
 
   // The attribute class at position p in the same primitive as class v with the nearest
-  // UV (lowest id on ties), or -1 when p has none in that primitive; only classes a live face
-  // uses when `used_only`, else any that has not left the levels.
-  int64_t nearest_class(uint32_t p, uint32_t v, bool used_only = false) const {
+  // UV (lowest id on ties), or -1 when p has none in that primitive; only classes that have
+  // not left the levels, and of those only the ones `eligible` takes.
+  int64_t nearest_class(uint32_t p, uint32_t v) const {
+    return nearest_class_if(p, v, [](uint32_t) { return true; });
+  }
+
+  template <typename Eligible>
+  int64_t nearest_class_if(uint32_t p, uint32_t v, Eligible eligible) const {
     int64_t best = -1;
     float best_distance = 0.0f;
     for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
       const uint32_t w = mesh_.wedges[i];
       if (mesh_.class_of[w] != w || w == v || mesh_.primitive[w] != mesh_.primitive[v]) continue;
-      if (anchor_[w] == kClassGone || (used_only && used_member(p, w) == kClassGone)) continue;
+      if (anchor_[w] == kClassGone || !eligible(w)) continue;
       const glm::vec2 d = mesh_.uv[w] - mesh_.uv[v];
       const float distance = glm::dot(d, d);
       if (best < 0 || distance < best_distance) best = w, best_distance = distance;
@@ -959,6 +974,8 @@ class Collapser {
   Scratch scratch_;
   std::vector<uint32_t> ring_;
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
+  std::vector<char> wedge_used_;       // remove_unused_wedges' flags per wedge of a position
+  std::vector<uint32_t> class_keeps_;  // and the vertex each class there keeps
   PositionQueue queue_;
   // Lookahead (attempt_with_lookahead): the runner-up's evaluation, made by worker_.
   bool lookahead_;
