@@ -744,6 +744,8 @@ class Collapser {
   // as that point: a vanished part costs one vertex (docs/simplification.md, "Unused classes
   // and faceless positions").
   void remove_faceless(uint32_t to, const std::vector<uint32_t>& third, CollapseRecord& record) {
+    const auto faceless = [&](uint32_t p) { return mine(p) && incident_[p].empty(); };
+    if (!faceless(to) && std::none_of(third.begin(), third.end(), faceless)) return;
     uint32_t pivot = kClassGone;
     for (uint32_t i = mesh_.wedge_offset[to]; i < mesh_.wedge_offset[to + 1]; ++i) {
       const uint32_t w = mesh_.wedges[i];
@@ -753,7 +755,7 @@ class Collapser {
     }
     if (pivot == kClassGone) return;
     const auto empty = [&](uint32_t p) {
-      if (!mine(p) || !incident_[p].empty()) return;
+      if (!faceless(p)) return;
       for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
         const uint32_t w = mesh_.wedges[i];
         if (mesh_.class_of[w] == w) anchor_[w] = kClassGone;
