@@ -44,6 +44,15 @@ int Clip::keyframes() const {
   return static_cast<int>(most);
 }
 
+void Primitive::append_vertex(const Primitive& src, size_t v) {
+  positions.push_back(src.positions[v]);
+  if (!src.normals.empty()) normals.push_back(src.normals[v]);
+  if (!src.uvs.empty()) uvs.push_back(src.uvs[v]);
+  if (!src.colors.empty()) colors.push_back(src.colors[v]);
+  joints.push_back(src.joints[v]);
+  weights.push_back(src.weights[v]);
+}
+
 size_t SkinnedAsset::vertex_count() const {
   size_t n = 0;
   for (const Primitive& p : primitives) n += p.vertex_count();

@@ -112,16 +112,10 @@ SkinnedAsset extract_lod(const SkinnedAsset& asset, const ProgressiveMesh& pm, u
   std::vector<std::vector<uint32_t>> kept(asset.primitives.size());
   for (uint32_t i = 0; i < used; ++i) {
     const auto [prim, v] = origin[pm.vertex_source[i]];
-    const Primitive& src = asset.primitives[prim];
     Primitive& dst = lod.primitives[prim];
     local[i] = static_cast<uint32_t>(dst.positions.size());
     if (progressive_index) kept[prim].push_back(i);
-    dst.positions.push_back(src.positions[v]);
-    if (!src.normals.empty()) dst.normals.push_back(src.normals[v]);
-    if (!src.uvs.empty()) dst.uvs.push_back(src.uvs[v]);
-    if (!src.colors.empty()) dst.colors.push_back(src.colors[v]);
-    dst.joints.push_back(src.joints[v]);
-    dst.weights.push_back(src.weights[v]);
+    dst.append_vertex(asset.primitives[prim], v);
   }
   for (size_t t = 0; t < triangles.size() / 3; ++t) {
     const uint32_t prim = pm.triangle_primitive[t];

@@ -426,12 +426,7 @@ SkinnedAsset per_corner(SkinnedAsset a) {
     q.weights.clear(), q.indices.clear();
     for (uint32_t i : p.indices) {
       q.indices.push_back(static_cast<uint32_t>(q.positions.size()));
-      q.positions.push_back(p.positions[i]);
-      if (!p.normals.empty()) q.normals.push_back(p.normals[i]);
-      if (!p.uvs.empty()) q.uvs.push_back(p.uvs[i]);
-      if (!p.colors.empty()) q.colors.push_back(p.colors[i]);
-      q.joints.push_back(p.joints[i]);
-      q.weights.push_back(p.weights[i]);
+      q.append_vertex(p, i);
     }
     p = std::move(q);
   }

@@ -74,6 +74,9 @@ struct Primitive {
 
   size_t vertex_count() const { return positions.size(); }
   size_t triangle_count() const { return indices.size() / 3; }
+  // Appends vertex v of src (every attribute src has) to this primitive's vertex arrays;
+  // the indices are the caller's.
+  void append_vertex(const Primitive& src, size_t v);
 };
 
 enum class Interpolation { kStep, kLinear, kCubicSpline };
