@@ -7,21 +7,15 @@
 #include <thread>
 
 #include "crowdbake/base/parallel.h"
-#include "eval/closest_point.h"
+#include "simplify/collapse_prices.h"
 #include "simplify/handover_slot.h"
 #include "simplify/lane_merge.h"
 #include "simplify/mesh_halves.h"
 #include "simplify/part_floors.h"
 #include "simplify/position_queue.h"
-#include "simplify/small_list.h"
 
 namespace crowdbake {
 namespace {
-
-// note: a collapse may not turn a face by 90° or more in the bind pose (no face may flip
-// there); that is the one geometric refusal. meshoptimizer's ~75° (cos = 0.25) refused
-// collapses the lowest levels need: docs/simplification.md, "Fold guard".
-constexpr double kMinBindNormalDot = 0.0;
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
 // An attribute class whose last vertex has left the levels (CollapseState::anchor).
@@ -58,11 +52,6 @@ struct Scratch {
 };
 
 enum class Kind { kInterior, kBorder, kFin, kLocked };
-
-// A position's live faces. note: six on average on a closed mesh, and collapses keep it
-// so; ten in place hold nearly every list without a heap block (a hero mesh simplifies 4–6%
-// faster than with a vector per position: docs/simplification.md, "Hero meshes").
-using FaceList = SmallList<uint32_t, 10>;
 
 // The mesh as the collapses leave it, shared by the lanes that collapse it (see Lane).
 struct CollapseState {
@@ -119,8 +108,7 @@ class Collapser {
             const SimplifyOptions& options, const Lane& lane, CollapseState& state, DqemCost& cost,
             CollapseStats& stats)
       : mesh_(mesh),
-        posed_(posed),
-        poses_(poses),
+        view_{mesh, posed, poses, state.corner, state.incident},
         all_poses_(options.check_flips_in_all_poses),
         priced_positions_(lane.priced_positions),
         stand_off_positions_(lane.stand_off_positions),
@@ -317,12 +305,8 @@ class Collapser {
                list.end());
   }
 
-  uint32_t position(uint32_t triangle, int k) const {
-    return mesh_.position_of[corner_[3 * triangle + k]];
-  }
-  const glm::dvec3& at(uint32_t pose, uint32_t p) const {
-    return posed_[size_t{p} * poses_ + pose];
-  }
+  uint32_t position(uint32_t triangle, int k) const { return view_.position(triangle, k); }
+  const glm::dvec3& at(uint32_t pose, uint32_t p) const { return view_.at(pose, p); }
 
   // p's neighbours, sorted, written to `out` (scratch reused across collapses).
   const std::vector<uint32_t>& neighbours(uint32_t p, std::vector<uint32_t>& out) const {
@@ -372,9 +356,7 @@ class Collapser {
                        [&](uint32_t t) { return contains(t, b); });
   }
 
-  bool contains(uint32_t t, uint32_t p) const {
-    return position(t, 0) == p || position(t, 1) == p || position(t, 2) == p;
-  }
+  bool contains(uint32_t t, uint32_t p) const { return view_.contains(t, p); }
 
   // Attribute class (its lowest vertex id) of triangle t's corner at position p.
   uint32_t klass(uint32_t t, uint32_t p) const {
@@ -406,7 +388,7 @@ class Collapser {
       e.verdict = Evaluation::Verdict::kLimb;
       return;
     }
-    if (!closing && folds_in_bind_pose(from, to, scratch.moved)) {
+    if (!closing && folds_in_bind_pose(view_, from, to, scratch.moved)) {
       e.verdict = Evaluation::Verdict::kFold;
       return;
     }
@@ -419,9 +401,14 @@ class Collapser {
     const double length = glm::length(at(0, from) - at(0, to));
     e.penalty = kSeamWeight * e.crossed_area * length * length;
     if (pose_priced()) {
-      if (!closing) e.penalty += flip_penalty(from, to, scratch.moved, e.priced_flips);
-      e.penalty += left_behind_penalty(from, to, scratch.moved);
-      if (stand_off_priced()) e.penalty += stand_off_penalty(from, to, scratch);
+      if (!closing && all_poses_)
+        e.penalty += flip_price(view_, from, to, scratch.moved, kFlipWeight, e.priced_flips);
+      // note: the two were measured together (collapse.h).
+      const double left_behind = stand_off_priced() ? kStandOffLeftBehindWeight : kLeftBehindWeight;
+      e.penalty += left_behind_price(view_, from, to, scratch.moved, left_behind);
+      if (stand_off_priced())
+        e.penalty +=
+            stand_off_price(view_, from, to, scratch.moved, kStandOffWeight, scratch.around);
     }
   }
 
@@ -555,7 +542,7 @@ class Collapser {
       if (it == map.end())
         map.push_back({v, w});
       else if (it->second != w)
-        crossed_area += bind_area(t) * seam_share(w, it->second);
+        crossed_area += view_.bind_area(t) * seam_share(w, it->second);
     }
     for (uint32_t t : moved) {
       const uint32_t v = klass(t, from);
@@ -578,7 +565,7 @@ class Collapser {
         paired = paired || klass(u, from) == v;
         share = std::min(share, seam_share(v, klass(u, from)));
       }
-      if (!paired) crossed_area += bind_area(t) * share;
+      if (!paired) crossed_area += view_.bind_area(t) * share;
     }
 
     return true;
@@ -826,124 +813,8 @@ class Collapser {
     return std::min(1.0, glm::length(glm::dvec2(mesh_.uv[a] - mesh_.uv[b])) / kSeamUvGap);
   }
 
-  double bind_area(uint32_t t) const {
-    const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)),
-                     c = at(0, position(t, 2));
-    return 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
-
-  // True when moving `from` onto `to` turns a surviving face by 90° or more in the
-  // bind pose.
-  bool folds_in_bind_pose(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
-    for (uint32_t t : moved) {
-      glm::dvec3 p[3], q[3];
-      for (int c = 0; c < 3; ++c) {
-        const uint32_t x = position(t, c);
-        p[c] = at(0, x);
-        q[c] = x == from ? at(0, to) : p[c];
-      }
-      const glm::dvec3 before = glm::cross(p[1] - p[0], p[2] - p[0]);
-      const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
-      const double lb = glm::length(before), la = glm::length(after);
-      // note: a face with no area has no orientation to lose.
-      if (!(lb > 0.0)) continue;
-      if (!(la > 0.0) || glm::dot(before, after) <= kMinBindNormalDot * lb * la) return true;
-    }
-    return false;
-  }
-
-  // How far the surface moves away from where `from` was: per pose, the squared distance
-  // from `from` to the nearest face around `to` after the collapse, times the bind-pose area
-  // around `from`, averaged over the poses. QEM measures the new vertex against the old
-  // planes only; a thin feature (a tail, a finger) that slides along its own side planes
-  // costs nothing there while its tip is left far from the new surface.
-  double left_behind_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved) const {
-    double around = 0.0;
-    for (uint32_t t : incident_[from]) around += bind_area(t);
-    double sum = 0.0;
-    for (uint32_t s = 0; s < poses_; ++s) {
-      const glm::dvec3& x = at(s, from);
-      double best = glm::dot(x - at(s, to), x - at(s, to));
-      for (uint32_t t : moved) {
-        glm::dvec3 q[3];
-        for (int c = 0; c < 3; ++c)
-          q[c] = position(t, c) == from ? at(s, to) : at(s, position(t, c));
-        const glm::dvec3 y = closest_point_on_triangle(x, q[0], q[1], q[2]);
-        best = std::min(best, glm::dot(x - y, x - y));
-      }
-      sum += best;
-    }
-    const double weight = stand_off_priced() ? kStandOffLeftBehindWeight : kLeftBehindWeight;
-    return weight * around * sum / poses_;
-  }
-
-  // How far the faces the collapse moves stand off the surface they replace: per pose, each
-  // moved face's area times the squared distance from its centroid to the nearest face
-  // around `from` or `to` before the collapse, averaged over the poses. The left-behind price
-  // measures the old surface from the new one; this one the new from the old. A thin limb whose
-  // root collapses onto the body lies along the planes of its own sides, so DQEM barely sees the
-  // faces from its tip to the body (a web) that the collapse makes.
-  double stand_off_penalty(uint32_t from, uint32_t to, Scratch& scratch) const {
-    // note: the corners of the faces around both ends are gathered once (a face shared by
-    // the two ends once), so each pose reads positions without going through the faces.
-    std::vector<uint32_t>& around = scratch.around;
-    around.clear();
-    for (uint32_t t : incident_[from])
-      for (int c = 0; c < 3; ++c) around.push_back(position(t, c));
-    for (uint32_t t : incident_[to])
-      if (!contains(t, from))
-        for (int c = 0; c < 3; ++c) around.push_back(position(t, c));
-    double sum = 0.0;
-    for (uint32_t s = 0; s < poses_; ++s) {
-      for (uint32_t t : scratch.moved) {
-        glm::dvec3 q[3];
-        for (int c = 0; c < 3; ++c)
-          q[c] = position(t, c) == from ? at(s, to) : at(s, position(t, c));
-        const glm::dvec3 centre = (q[0] + q[1] + q[2]) / 3.0;
-        double nearest = std::numeric_limits<double>::infinity();
-        for (size_t k = 0; k < around.size(); k += 3) {
-          const glm::dvec3 y = closest_point_on_triangle(
-              centre, at(s, around[k]), at(s, around[k + 1]), at(s, around[k + 2]));
-          nearest = std::min(nearest, glm::dot(centre - y, centre - y));
-        }
-        sum += 0.5 * glm::length(glm::cross(q[1] - q[0], q[2] - q[0])) * nearest;
-      }
-    }
-    return kStandOffWeight * sum / poses_;
-  }
-
-  // Expected cost of the faces the collapse flips in the sampled poses: per pose, each
-  // flipped face's area times the squared length of the move, averaged over all poses
-  // (a flip in one pose of S costs 1/S of it), so more poses refine the estimate instead
-  // of adding refusals.
-  double flip_penalty(uint32_t from, uint32_t to, const std::vector<uint32_t>& moved,
-                      uint32_t& flips) const {
-    if (!all_poses_ || poses_ < 2) return 0.0;
-    double sum = 0.0;
-    for (uint32_t s = 1; s < poses_; ++s) {
-      const glm::dvec3 d = at(s, from) - at(s, to);
-      const double length2 = glm::dot(d, d);
-      for (uint32_t t : moved) {
-        glm::dvec3 p[3], q[3];
-        for (int c = 0; c < 3; ++c) {
-          const uint32_t x = position(t, c);
-          p[c] = at(s, x);
-          q[c] = x == from ? at(s, to) : p[c];
-        }
-        const glm::dvec3 before = glm::cross(p[1] - p[0], p[2] - p[0]);
-        const glm::dvec3 after = glm::cross(q[1] - q[0], q[2] - q[0]);
-        if (glm::dot(before, after) <= 0.0 && glm::length(before) > 0.0) {
-          sum += 0.5 * glm::length(before) * length2;
-          ++flips;
-        }
-      }
-    }
-    return kFlipWeight * sum / poses_;
-  }
-
   const SimplifyMesh& mesh_;
-  const std::vector<glm::dvec3>& posed_;
-  uint32_t poses_;
+  PosedMeshView view_;
   bool all_poses_;
   uint32_t priced_positions_;
   uint32_t stand_off_positions_;

@@ -1,0 +1,71 @@
+// What a collapse costs beyond DQEM, and the one geometric refusal: the prices the collapse loop
+// adds to a candidate's cost (collapse.h, docs/simplification.md "One set of rules, all the way
+// down"). Each reads the mesh as the collapses have left it and changes nothing.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "simplify/simplify_mesh.h"
+#include "simplify/small_list.h"
+
+namespace crowdbake {
+
+// A position's live faces. note: six on average on a closed mesh, and collapses keep it
+// so; ten in place hold nearly every list without a heap block (a hero mesh simplifies 4–6%
+// faster than with a vector per position: docs/simplification.md, "Hero meshes").
+using FaceList = SmallList<uint32_t, 10>;
+
+// The live mesh in every sampled pose: posed (posed_positions' layout, pose 0 the bind
+// pose), the current vertex of every triangle corner, each position's live faces.
+struct PosedMeshView {
+  const SimplifyMesh& mesh;
+  const std::vector<glm::dvec3>& posed;
+  uint32_t poses;
+  const std::vector<uint32_t>& corner;
+  const std::vector<FaceList>& incident;
+
+  uint32_t position(uint32_t triangle, int k) const {
+    return mesh.position_of[corner[3 * triangle + k]];
+  }
+  const glm::dvec3& at(uint32_t pose, uint32_t p) const { return posed[size_t{p} * poses + pose]; }
+  bool contains(uint32_t t, uint32_t p) const {
+    return position(t, 0) == p || position(t, 1) == p || position(t, 2) == p;
+  }
+  double bind_area(uint32_t t) const {
+    const glm::dvec3 a = at(0, position(t, 0)), b = at(0, position(t, 1)),
+                     c = at(0, position(t, 2));
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+};
+
+// In every function below, `moved` lists the faces around `from` that the collapse of `from`
+// onto `to` keeps (it moves their corner at `from` to `to`).
+
+// True when moving `from` onto `to` turns one of the moved faces by 90° or more in the bind
+// pose (a face with no area has no orientation to lose).
+bool folds_in_bind_pose(const PosedMeshView& view, uint32_t from, uint32_t to,
+                        const std::vector<uint32_t>& moved);
+
+// How far the surface moves away from where `from` was: weight × the bind-pose area around
+// `from` × the squared distance from `from` to the nearest moved face after the collapse (or
+// to `to`), averaged over the poses.
+double left_behind_price(const PosedMeshView& view, uint32_t from, uint32_t to,
+                         const std::vector<uint32_t>& moved, double weight);
+
+// How far the moved faces stand off the surface they replace: weight × each moved face's area
+// after the collapse × the squared distance from its centroid to the nearest face around
+// `from` or `to` before it, summed over the faces and averaged over the poses. `around` is
+// scratch.
+double stand_off_price(const PosedMeshView& view, uint32_t from, uint32_t to,
+                       const std::vector<uint32_t>& moved, double weight,
+                       std::vector<uint32_t>& around);
+
+// The faces the collapse flips in the sampled poses other than the bind pose: weight × each
+// flipped face's area × the squared length of the move, summed and divided by all the poses
+// (a flip in one pose of S costs 1/S of it). Adds the (face, pose) flips to `flips`.
+double flip_price(const PosedMeshView& view, uint32_t from, uint32_t to,
+                  const std::vector<uint32_t>& moved, double weight, uint32_t& flips);
+
+}  // namespace crowdbake
