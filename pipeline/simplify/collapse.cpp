@@ -8,6 +8,7 @@
 
 #include "crowdbake/base/parallel.h"
 #include "simplify/collapse_prices.h"
+#include "simplify/collapse_wedges.h"
 #include "simplify/handover_slot.h"
 #include "simplify/lane_merge.h"
 #include "simplify/mesh_halves.h"
@@ -18,8 +19,6 @@ namespace crowdbake {
 namespace {
 
 constexpr uint32_t kUnpriced = 0xffffffffu;
-// An attribute class whose last vertex has left the levels (CollapseState::anchor).
-constexpr uint32_t kClassGone = 0xffffffffu;
 
 // A collapse of the position whose list holds it onto `to`. Every live directed edge has
 // at most one; its DQEM cost is always computed on the current quadrics (candidates of a
@@ -358,17 +357,6 @@ class Collapser {
 
   bool contains(uint32_t t, uint32_t p) const { return view_.contains(t, p); }
 
-  // Attribute class (its lowest vertex id) of triangle t's corner at position p.
-  uint32_t klass(uint32_t t, uint32_t p) const {
-    return mesh_.class_of[corner_[3 * t + corner_of(t, p)]];
-  }
-
-  int corner_of(uint32_t t, uint32_t p) const {
-    for (int k = 0; k < 3; ++k)
-      if (position(t, k) == p) return k;
-    return -1;
-  }
-
   Outcome reject_topology() {
     ++stats_.rejected_topology;
     return Outcome::kRefused;
@@ -381,7 +369,8 @@ class Collapser {
     e = Evaluation{};
     bool closing = false;
     if (!topology_allows(from, to, closing, scratch) ||
-        !map_wedges(from, to, e.crossed_area, scratch))
+        !map_wedges(view_, anchor_, from, to, scratch.shared, scratch.moved, scratch.map,
+                    e.crossed_area))
       return;
     const uint16_t limb = limb_[from];
     if (limb != kNoLimb && limb_[to] != limb && limb_positions_[limb] == 1) {
@@ -524,60 +513,6 @@ class Collapser {
     return true;
   }
 
-  // Wedge map, on attribute classes (scratch.map), and the area of faces whose corners cross a
-  // seam. False when a class cannot move.
-  bool map_wedges(uint32_t from, uint32_t to, double& crossed_area, Scratch& scratch) const {
-    const std::vector<uint32_t>&shared = scratch.shared, &moved = scratch.moved;
-    // each class of `from` goes to the class of `to` it
-    // shares a removed face with. A class with two such partners, or a used class with none
-    // (it takes the class at `to` with the nearest UV in its own primitive), crosses a seam
-    // or material border: allowed, at a price. A class with no class at `to` in its own
-    // primitive cannot move (its faces would leave their primitive).
-    std::vector<std::pair<uint32_t, uint32_t>>& map = scratch.map;
-    map.clear();
-    crossed_area = 0.0;
-    for (uint32_t t : shared) {
-      const uint32_t v = klass(t, from), w = klass(t, to);
-      auto it = std::find_if(map.begin(), map.end(), [&](const auto& m) { return m.first == v; });
-      if (it == map.end())
-        map.push_back({v, w});
-      else if (it->second != w)
-        crossed_area += view_.bind_area(t) * seam_share(w, it->second);
-    }
-    for (uint32_t t : moved) {
-      const uint32_t v = klass(t, from);
-      if (std::any_of(map.begin(), map.end(), [&](const auto& m) { return m.first == v; }))
-        continue;
-      const int64_t w = nearest_class(to, v);
-      if (w < 0) return false;
-      map.push_back({v, static_cast<uint32_t>(w)});
-    }
-    for (uint32_t t : moved) {
-      const uint32_t v = klass(t, from);
-      // note: a substituted class is one no removed face pairs v with. The chart its corner
-      // joins is that of the class at `from` whose faces go to the class v now takes; the UV
-      // gap between the two at `from` is the seam's width there.
-      const int64_t target = target_class(v, map);
-      bool paired = false;
-      double share = 1.0;
-      for (uint32_t u : shared) {
-        if (klass(u, to) != target) continue;
-        paired = paired || klass(u, from) == v;
-        share = std::min(share, seam_share(v, klass(u, from)));
-      }
-      if (!paired) crossed_area += view_.bind_area(t) * share;
-    }
-
-    return true;
-  }
-
-  // The class a wedge of `from` moves to (in the wedge map), or -1 when its class is not mapped.
-  int64_t target_class(uint32_t v, const std::vector<std::pair<uint32_t, uint32_t>>& map) const {
-    for (const auto& m : map)
-      if (m.first == mesh_.class_of[v]) return m.second;
-    return -1;
-  }
-
   // An evaluation reads the faces around its two ends and their corners, their stars, the
   // ends' quadrics and the live positions of from's limb. A collapse of `from` onto `to`
   // changes the faces around `from`, `to` and their rings, the stars of `to`, its ring after
@@ -603,7 +538,7 @@ class Collapser {
       const uint32_t v = mesh_.wedges[i];
       if (vertex_removed_[v]) continue;
       vertex_removed_[v] = 1;
-      const int64_t w = target_class(v, scratch.map);
+      const int64_t w = mapped_class(mesh_, v, scratch.map);
       record.wedges.push_back(
           {v, anchor_[w >= 0 ? static_cast<uint32_t>(w) : scratch.map.front().second]});
     }
@@ -619,8 +554,8 @@ class Collapser {
       }
     }
     for (uint32_t t : scratch.moved) {
-      uint32_t& corner = corner_[3 * t + corner_of(t, from)];
-      corner = anchor_[static_cast<uint32_t>(target_class(corner, scratch.map))];
+      uint32_t& corner = corner_[3 * t + corner_index(view_, t, from)];
+      corner = anchor_[static_cast<uint32_t>(mapped_class(mesh_, corner, scratch.map))];
       incident_[to].push_back(t);
     }
     remove_unused_wedges(to, record);
@@ -693,7 +628,7 @@ class Collapser {
     };
     std::vector<char>& used = wedge_used_;
     used.assign(end - begin, 0);
-    for (uint32_t t : incident_[p]) used[index(corner_[3 * t + corner_of(t, p)])] = 1;
+    for (uint32_t t : incident_[p]) used[index(corner_[3 * t + corner_index(view_, t, p)])] = 1;
     // Per class (at its own index): the vertex it keeps, its anchor while that is used, else
     // its lowest used vertex; kClassGone when no face uses the class.
     std::vector<uint32_t>& keep = class_keeps_;
@@ -709,8 +644,8 @@ class Collapser {
       if (mesh_.class_of[c] != c || anchor_[c] == kClassGone) continue;
       uint32_t kept = keep[i - begin], target = kept;
       if (kept == kClassGone) {
-        const int64_t other =
-            nearest_class_if(p, c, [&](uint32_t w) { return keep[index(w)] != kClassGone; });
+        const int64_t other = nearest_class_if(
+            mesh_, anchor_, p, c, [&](uint32_t w) { return keep[index(w)] != kClassGone; });
         kept = other < 0 ? anchor_[c] : kClassGone;
         target = other < 0 ? anchor_[c] : keep[index(static_cast<uint32_t>(other))];
       }
@@ -782,35 +717,6 @@ class Collapser {
       if (position_alive_[a] && position_alive_[b] && a != to && b != to && mine(a) && mine(b) &&
           adjacent(a, b))
         offer(a, fresh(a, b));
-  }
-
-  // The attribute class at position p in the same primitive as class v with the nearest
-  // UV (lowest id on ties), or -1 when p has none in that primitive; only classes that have
-  // not left the levels, and of those only the ones `eligible` takes.
-  int64_t nearest_class(uint32_t p, uint32_t v) const {
-    return nearest_class_if(p, v, [](uint32_t) { return true; });
-  }
-
-  template <typename Eligible>
-  int64_t nearest_class_if(uint32_t p, uint32_t v, Eligible eligible) const {
-    int64_t best = -1;
-    float best_distance = 0.0f;
-    for (uint32_t i = mesh_.wedge_offset[p]; i < mesh_.wedge_offset[p + 1]; ++i) {
-      const uint32_t w = mesh_.wedges[i];
-      if (mesh_.class_of[w] != w || w == v || mesh_.primitive[w] != mesh_.primitive[v]) continue;
-      if (anchor_[w] == kClassGone || !eligible(w)) continue;
-      const glm::vec2 d = mesh_.uv[w] - mesh_.uv[v];
-      const float distance = glm::dot(d, d);
-      if (best < 0 || distance < best_distance) best = w, best_distance = distance;
-    }
-    return best;
-  }
-
-  // The share of the full seam price for a corner moving between classes a and b at one
-  // position: their UV gap over kSeamUvGap, at most 1; 1 between materials.
-  double seam_share(uint32_t a, uint32_t b) const {
-    if (mesh_.primitive[a] != mesh_.primitive[b]) return 1.0;
-    return std::min(1.0, glm::length(glm::dvec2(mesh_.uv[a] - mesh_.uv[b])) / kSeamUvGap);
   }
 
   const SimplifyMesh& mesh_;
