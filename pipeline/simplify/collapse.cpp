@@ -8,6 +8,7 @@
 
 #include "crowdbake/base/parallel.h"
 #include "simplify/collapse_prices.h"
+#include "simplify/collapse_topology.h"
 #include "simplify/collapse_wedges.h"
 #include "simplify/handover_slot.h"
 #include "simplify/lane_merge.h"
@@ -44,13 +45,10 @@ struct Evaluation {
 };
 
 // The lists one attempt fills (perform() reads those of the attempt it performs).
-struct Scratch {
-  std::vector<uint32_t> shared, moved, third, common, from_ring, to_ring, around;
-  std::vector<std::pair<uint32_t, uint32_t>> map;
-  std::vector<std::pair<uint32_t, int>> edges;
+struct Scratch : TopologyLists {
+  WedgeMap map;
+  std::vector<uint32_t> around;
 };
-
-enum class Kind { kInterior, kBorder, kFin, kLocked };
 
 // The mesh as the collapses leave it, shared by the lanes that collapse it (see Lane).
 struct CollapseState {
@@ -146,7 +144,8 @@ class Collapser {
     done_ = done;
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
       if (incident_[p].empty()) continue;
-      if (count_locked_ && kind(p, scratch_.edges) == Kind::kLocked) ++stats_.locked_positions;
+      if (count_locked_ && position_kind(view_, p, scratch_.edges) == PositionKind::kLocked)
+        ++stats_.locked_positions;
       live_ += mine(p);
     }
     std::vector<CollapseRecord> records;
@@ -163,7 +162,7 @@ class Collapser {
   void push_all() {
     for (uint32_t p = 0; p < mesh_.position_count(); ++p) {
       if (!mine(p)) continue;
-      for (uint32_t x : neighbours(p, ring_))
+      for (uint32_t x : neighbours(view_, p, ring_))
         if (mine(x)) leaving_[p].push_back(fresh(p, x));
       update(p);
     }
@@ -307,49 +306,6 @@ class Collapser {
   uint32_t position(uint32_t triangle, int k) const { return view_.position(triangle, k); }
   const glm::dvec3& at(uint32_t pose, uint32_t p) const { return view_.at(pose, p); }
 
-  // p's neighbours, sorted, written to `out` (scratch reused across collapses).
-  const std::vector<uint32_t>& neighbours(uint32_t p, std::vector<uint32_t>& out) const {
-    out.clear();
-    for (uint32_t t : incident_[p])
-      for (int k = 0; k < 3; ++k)
-        if (position(t, k) != p) out.push_back(position(t, k));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-
-  // Interior: every edge has two faces; border: exactly two edges have one face (a simple
-  // border); fin: no border, and one or two edges have more than two faces, as many each (a
-  // point inside or at the end of a curve where several sheets meet: a fin or a flap joined
-  // to a body along an edge chain); anything else (several borders or curves meeting) stays
-  // put.
-  Kind kind(uint32_t p, std::vector<std::pair<uint32_t, int>>& edges) const {
-    edges.clear();
-    for (uint32_t t : incident_[p])
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t x = position(t, k);
-        if (x == p) continue;
-        auto it =
-            std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == x; });
-        if (it == edges.end())
-          edges.push_back({x, 1});
-        else
-          ++it->second;
-      }
-    int border = 0, fin = 0, sheets = 0;
-    for (const auto& e : edges) {
-      border += e.second == 1;
-      if (e.second > 2) {
-        if (fin++ > 0 && e.second != sheets) return Kind::kLocked;
-        sheets = e.second;
-      }
-    }
-    // note: a curve's end moves along its one curve edge, so the curve shortens from its
-    // end and the sheets stay joined along what is left of it.
-    if (fin > 0) return border == 0 && fin <= 2 ? Kind::kFin : Kind::kLocked;
-    return border == 0 ? Kind::kInterior : border == 2 ? Kind::kBorder : Kind::kLocked;
-  }
-
   bool adjacent(uint32_t a, uint32_t b) const {
     return std::any_of(incident_[a].begin(), incident_[a].end(),
                        [&](uint32_t t) { return contains(t, b); });
@@ -368,7 +324,7 @@ class Collapser {
     const uint32_t to = candidate.to;
     e = Evaluation{};
     bool closing = false;
-    if (!topology_allows(from, to, closing, scratch) ||
+    if (!topology_allows(view_, small_part_, from, to, closing, scratch) ||
         !map_wedges(view_, anchor_, from, to, scratch.shared, scratch.moved, scratch.map,
                     e.crossed_area))
       return;
@@ -455,64 +411,6 @@ class Collapser {
   // Which prices an evaluation made now includes (a lookahead made under others is dropped).
   int pricing() const { return pose_priced() ? 1 + stand_off_priced() : 0; }
 
-  // The collapse keeps the surface a manifold: fills scratch.shared (faces it removes),
-  // .moved (faces it moves), .from_ring and .to_ring; closing: a tetrahedron flattening into
-  // two faces.
-  bool topology_allows(uint32_t from, uint32_t to, bool& closing, Scratch& scratch) const {
-    std::vector<uint32_t>&shared = scratch.shared, &moved = scratch.moved;
-    shared.clear(), moved.clear();
-    for (uint32_t t : incident_[from]) (contains(t, to) ? shared : moved).push_back(t);
-    const Kind k = kind(from, scratch.edges);
-    if (k == Kind::kLocked) return false;
-    size_t faces_on_edge = k == Kind::kBorder ? 1u : 2u;
-    if (k == Kind::kFin) {
-      // note: like a border position, a fin position moves only along its curve (onto the
-      // other end of one of its curve edges), so the sheets stay joined along it.
-      const auto it = std::find_if(scratch.edges.begin(), scratch.edges.end(),
-                                   [&](const auto& e) { return e.first == to; });
-      if (it == scratch.edges.end() || it->second <= 2) return false;
-      faces_on_edge = static_cast<size_t>(it->second);
-    }
-    if (shared.size() != faces_on_edge) return false;
-
-    // Link condition: the only positions next to both ends are the faces' third corners,
-    // otherwise the collapse would pinch the surface into a non-manifold edge. (Two shared
-    // faces with one third corner are the two sides of a flattened closed part: the
-    // collapse removes both.)
-    std::vector<uint32_t>& third = scratch.third;
-    third.clear();
-    for (uint32_t t : shared)
-      for (int c = 0; c < 3; ++c)
-        if (position(t, c) != from && position(t, c) != to) third.push_back(position(t, c));
-    std::sort(third.begin(), third.end());
-    third.erase(std::unique(third.begin(), third.end()), third.end());
-    std::vector<uint32_t>& common = scratch.common;
-    common.clear();
-    const std::vector<uint32_t>&nf = neighbours(from, scratch.from_ring),
-          &nt = neighbours(to, scratch.to_ring);
-    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
-    if (common != third) return false;
-
-    // note: a closed part that has come down to a tetrahedron (an eye, a lock of hair, a
-    // bone of a skeleton) can only go on by flattening into two faces back to back, which
-    // the next collapse removes; otherwise every closed part would keep 4 faces at the
-    // lowest levels, however many parts there are, and the budget would go to them.
-    closing = small_part_[from] && k == Kind::kInterior && incident_[from].size() == 3 &&
-              incident_[to].size() == 3 && nf.size() == 3 && nt.size() == 3;
-
-    // No face may end up duplicating one that already exists around `to`.
-    for (uint32_t t : moved) {
-      if (closing) break;
-      uint32_t x = 0, y = 0;
-      for (int c = 0, n = 0; c < 3; ++c)
-        if (position(t, c) != from) (n++ == 0 ? x : y) = position(t, c);
-      for (uint32_t u : incident_[to])
-        if (contains(u, x) && contains(u, y)) return false;
-    }
-
-    return true;
-  }
-
   // An evaluation reads the faces around its two ends and their corners, their stars, the
   // ends' quadrics and the live positions of from's limb. A collapse of `from` onto `to`
   // changes the faces around `from`, `to` and their rings, the stars of `to`, its ring after
@@ -582,7 +480,7 @@ class Collapser {
     // (their quadrics did not change) but their stars did: penalties priced on the old
     // stars are priced again, and collapses refused there get another chance.
     ++star_[to];
-    const std::vector<uint32_t>& ring = neighbours(to, ring_);
+    const std::vector<uint32_t>& ring = neighbours(view_, to, ring_);
     leaving_[to].clear();
     for (uint32_t x : ring)
       if (mine(x)) leaving_[to].push_back(fresh(to, x));
