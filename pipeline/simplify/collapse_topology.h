@@ -1,13 +1,13 @@
 // Which collapses keep the surface a manifold: how a position's edges are shared, and the
 // checks a collapse must pass before it is priced (docs/simplification.md, "One set of rules, all
-// the way down"). Read-only, like collapse_prices.h.
+// the way down"). Read-only (posed_mesh_view.h).
 #pragma once
 
 #include <cstdint>
 #include <utility>
 #include <vector>
 
-#include "simplify/collapse_prices.h"
+#include "simplify/posed_mesh_view.h"
 
 namespace crowdbake {
 

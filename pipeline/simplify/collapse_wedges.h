@@ -1,13 +1,13 @@
 // Which attribute class each corner of a collapsing position takes, and what crossing a UV seam
 // or material border costs (docs/simplification.md, "One set of rules, all the way down" and
-// "UV gaps"). Read-only, like collapse_prices.h.
+// "UV gaps"). Read-only (posed_mesh_view.h).
 #pragma once
 
 #include <cstdint>
 #include <utility>
 #include <vector>
 
-#include "simplify/collapse_prices.h"
+#include "simplify/posed_mesh_view.h"
 
 namespace crowdbake {
 
