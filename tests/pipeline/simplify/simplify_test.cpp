@@ -371,9 +371,8 @@ SkinnedAsset in_other_units(SkinnedAsset a, double s) {
 // Exporters write characters in metres, centimetres or inches; the rules measure in the
 // character's own size. A power-of-two scale is exact in float, so it gives the same sequence
 // to the bit; centimetres (x100) round every coordinate, which can swap two near-equal
-// collapses, so there the minimum and the levels' triangle counts stay (the 19 shared
-// characters' animated errors at 25/10/5/2% agree to 0.01% of the diagonal on all but
-// huesitos, docs/simplification.md "Units").
+// collapses, so there the minimum and the levels' triangle counts stay (the animated errors
+// at 25/10/5/2% of the 19 shared characters, measured once: docs/simplification.md "Units").
 TEST(SimplifyUnits, ACharacterInOtherUnitsSimplifiesAlike) {
   std::vector<std::pair<std::string, SkinnedAsset>> characters;
   std::vector<glm::vec3> p;
