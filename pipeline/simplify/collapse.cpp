@@ -68,6 +68,10 @@ struct CollapseState {
         anchor(mesh.class_of) {
     for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
       for (int k = 0; k < 3; ++k) incident[mesh.position_of[corner[3 * t + k]]].push_back(t);
+    const std::vector<uint16_t> bends =
+        limb_bend_joints(mesh, posed, poses, small_part, kLimbFraction, kBendFraction);
+    for (uint32_t p = 0; p < mesh.position_count(); ++p)
+      if (limb[p] == kNoLimb) limb[p] = bends[p];
   }
 
   std::vector<uint32_t> corner;  // current vertex of every triangle corner
@@ -75,7 +79,8 @@ struct CollapseState {
   std::vector<FaceList> incident;  // position -> its live triangles
   std::vector<char> position_alive;
   std::vector<char> small_part;  // position lies on a part that may vanish
-  std::vector<uint16_t> limb;    // per position: the joint it holds a floor of, or kNoLimb
+  std::vector<uint16_t> limb;    // per position: the joint it holds a floor of (a limb's tip,
+                                 // a joint end or a limb's bend), or kNoLimb
   std::vector<uint32_t> star;    // per position: bumped when its incident faces change
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> refused;  // (from, to) waiting
   std::vector<std::vector<Candidate>> leaving;  // per position: its live candidates

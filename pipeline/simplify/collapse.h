@@ -63,6 +63,12 @@ constexpr double kSmallPartFraction = 0.1;
 // positions) is never collapsed onto another joint's, so a limb, head or tail thins to a
 // spike reaching its tip at the lowest levels instead of vanishing.
 constexpr double kLimbFraction = 0.2;
+// A limb's bend (limb_bends: of the joints between a limb's tip and the body it hangs from,
+// the one whose positions stray farthest from the straight line between those two in some
+// sampled pose, an upper arm or a forearm that the clips bend) keeps its last position too when
+// it strays at least this fraction of the middle extent, so the spike reaching the tip bends
+// with the limb (docs/simplification.md, "Limb bends").
+constexpr double kBendFraction = 0.05;
 // A mesh split in two halves (SimplifyOptions::split_positions) is simplified half by half
 // until SimplifyOptions::split_stop_positions are left, or this many per position on the cut
 // between them if that is more; one loop over the whole mesh makes the rest.

@@ -1,5 +1,7 @@
 #include "simplify/limb_tips.h"
 
+#include <algorithm>
+
 namespace crowdbake {
 
 std::vector<char> limb_tips(const std::vector<int>& parent_of, const std::vector<glm::dvec3>& lo,
@@ -33,6 +35,48 @@ std::vector<char> limb_tips(const std::vector<int>& parent_of, const std::vector
   for (int j = 0; j < joints; ++j)
     if (children[j] > 1 && limb_below[j]) tips[j] = 0;
   return tips;
+}
+
+namespace {
+
+double distance_to_segment(const glm::dvec3& x, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double l2 = glm::dot(ab, ab);
+  const double u = l2 > 0.0 ? std::clamp(glm::dot(x - a, ab) / l2, 0.0, 1.0) : 0.0;
+  return glm::length(x - (a + u * ab));
+}
+
+}  // namespace
+
+std::vector<char> limb_bends(const std::vector<int>& parent, const std::vector<char>& tips,
+                             const std::vector<glm::dvec3>& centres,
+                             const std::vector<uint32_t>& count, uint32_t poses, double limit) {
+  const int joints = static_cast<int>(std::min({parent.size(), tips.size(), count.size()}));
+  std::vector<int> children(joints, 0);
+  for (int j = 0; j < joints; ++j)
+    if (parent[j] >= 0 && parent[j] < joints) ++children[parent[j]];
+  const auto centre = [&](int j, uint32_t pose) { return centres[size_t(j) * poses + pose]; };
+  std::vector<char> bends(tips.size(), 0);
+  std::vector<int> chain;
+  for (int tip = 0; tip < joints; ++tip) {
+    if (!tips[tip] || count[tip] == 0) continue;
+    chain.clear();
+    int from = parent[tip];
+    for (; from >= 0 && from < joints && children[from] == 1; from = parent[from])
+      if (count[from] > 0) chain.push_back(from);
+    while (from >= 0 && from < joints && count[from] == 0) from = parent[from];
+    if (from < 0 || from >= joints) continue;
+    int bend = -1;
+    double farthest = limit;
+    for (int j : chain) {
+      double d = 0.0;
+      for (uint32_t k = 0; k < poses; ++k)
+        d = std::max(d, distance_to_segment(centre(j, k), centre(from, k), centre(tip, k)));
+      if (d >= farthest) farthest = d, bend = j;
+    }
+    if (bend >= 0) bends[bend] = 1;
+  }
+  return bends;
 }
 
 }  // namespace crowdbake

@@ -25,4 +25,15 @@ inline double middle_extent(const glm::dvec3& extent) {
 std::vector<char> limb_tips(const std::vector<int>& parent, const std::vector<glm::dvec3>& lo,
                             const std::vector<glm::dvec3>& hi, double limit);
 
+// parent as above; tips: limb_tips' answer. centres: per joint and pose (joint * poses + pose),
+// the mean of the positions the joint weighs most, in that pose; count: per joint, how many
+// (0: none). Returns per joint whether it is a limb's bend: of the joints with positions between
+// a tip and the joint its chain hangs from (the first joint above the chain with positions:
+// a chest, hips), the one whose centre strays farthest, in some pose, from the segment joining
+// that joint's centre to the tip's, if that is at least `limit`. An elbow or a knee the clips
+// bend; a tip whose chain hangs from no joint with positions has none.
+std::vector<char> limb_bends(const std::vector<int>& parent, const std::vector<char>& tips,
+                             const std::vector<glm::dvec3>& centres,
+                             const std::vector<uint32_t>& count, uint32_t poses, double limit);
+
 }  // namespace crowdbake

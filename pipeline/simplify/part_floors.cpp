@@ -99,30 +99,74 @@ std::vector<char> small_parts(const SimplifyMesh& mesh, const std::vector<glm::d
   return out;
 }
 
+namespace {
+
+// Per joint: the bind-pose box of the positions it weighs most off the small parts, and
+// (with `centres`) their mean in every pose; the whole character's middle extent.
+struct JointPositions {
+  std::vector<glm::dvec3> lo, hi, centres;
+  std::vector<uint32_t> count;
+  double middle = 0.0;
+
+  JointPositions(const SimplifyMesh& mesh, const Positions& v, const std::vector<char>& small_part,
+                 bool with_centres) {
+    uint32_t joints = 0;
+    for (uint16_t j : mesh.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
+    lo.assign(joints, glm::dvec3(1e300)), hi.assign(joints, glm::dvec3(-1e300));
+    count.assign(joints, 0);
+    if (with_centres) centres.assign(size_t{joints} * v.poses, glm::dvec3(0.0));
+    glm::dvec3 all_lo(1e300), all_hi(-1e300);
+    for (uint32_t p = 0; p < v.count(); ++p) {
+      if (!v.used[p]) continue;
+      all_lo = glm::min(all_lo, v.at(0, p)), all_hi = glm::max(all_hi, v.at(0, p));
+      if (small_part[p]) continue;
+      const uint16_t j = mesh.dominant_joint[p];
+      lo[j] = glm::min(lo[j], v.at(0, p)), hi[j] = glm::max(hi[j], v.at(0, p));
+      ++count[j];
+      if (with_centres)
+        for (uint32_t k = 0; k < v.poses; ++k) centres[size_t{j} * v.poses + k] += v.at(k, p);
+    }
+    for (uint32_t j = 0; j < joints && with_centres; ++j)
+      for (uint32_t k = 0; k < v.poses && count[j] > 0; ++k)
+        centres[size_t{j} * v.poses + k] /= static_cast<double>(count[j]);
+    middle = middle_extent(all_hi - all_lo);
+  }
+};
+
+// Per position: its dominant joint when `chosen` marks it, else kNoLimb.
+std::vector<uint16_t> positions_of(const SimplifyMesh& mesh, const Positions& v,
+                                   const std::vector<char>& small_part,
+                                   const std::vector<char>& chosen) {
+  std::vector<uint16_t> out(v.count(), kNoLimb);
+  for (uint32_t p = 0; p < v.count(); ++p) {
+    const uint16_t j = mesh.dominant_joint[p];
+    if (v.used[p] && !small_part[p] && chosen[j]) out[p] = j;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<glm::dvec3>& posed,
                                   uint32_t poses, const std::vector<char>& small_part,
                                   double fraction) {
   const Positions v(mesh, posed, poses);
-  const uint32_t positions = v.count();
-  uint32_t joints = 0;
-  for (uint16_t j : mesh.dominant_joint) joints = std::max<uint32_t>(joints, j + 1u);
-  std::vector<glm::dvec3> lo(joints, glm::dvec3(1e300)), hi(joints, glm::dvec3(-1e300));
-  glm::dvec3 all_lo(1e300), all_hi(-1e300);
-  for (uint32_t p = 0; p < positions; ++p) {
-    if (!v.used[p]) continue;
-    all_lo = glm::min(all_lo, v.at(0, p)), all_hi = glm::max(all_hi, v.at(0, p));
-    if (small_part[p]) continue;
-    const uint16_t j = mesh.dominant_joint[p];
-    lo[j] = glm::min(lo[j], v.at(0, p)), hi[j] = glm::max(hi[j], v.at(0, p));
-  }
-  const double limit = fraction * middle_extent(all_hi - all_lo);
-  const std::vector<char> tips = limb_tips(mesh.joint_parent, lo, hi, limit);
-  std::vector<uint16_t> out(positions, kNoLimb);
-  for (uint32_t p = 0; p < positions; ++p) {
-    const uint16_t j = mesh.dominant_joint[p];
-    if (v.used[p] && !small_part[p] && tips[j]) out[p] = j;
-  }
-  return out;
+  const JointPositions joints(mesh, v, small_part, false);
+  return positions_of(mesh, v, small_part,
+                      limb_tips(mesh.joint_parent, joints.lo, joints.hi, fraction * joints.middle));
+}
+
+std::vector<uint16_t> limb_bend_joints(const SimplifyMesh& mesh,
+                                       const std::vector<glm::dvec3>& posed, uint32_t poses,
+                                       const std::vector<char>& small_part, double fraction,
+                                       double bend_fraction) {
+  const Positions v(mesh, posed, poses);
+  const JointPositions joints(mesh, v, small_part, true);
+  const std::vector<char> tips =
+      limb_tips(mesh.joint_parent, joints.lo, joints.hi, fraction * joints.middle);
+  return positions_of(mesh, v, small_part,
+                      limb_bends(mesh.joint_parent, tips, joints.centres, joints.count, poses,
+                                 bend_fraction * joints.middle));
 }
 
 std::vector<uint16_t> joint_ends(const SimplifyMesh& mesh, const std::vector<char>& small_part) {

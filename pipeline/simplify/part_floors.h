@@ -30,6 +30,14 @@ std::vector<uint16_t> limb_joints(const SimplifyMesh& mesh, const std::vector<gl
                                   uint32_t poses, const std::vector<char>& small_part,
                                   double fraction);
 
+// Per position: its dominant joint when that joint is the bend of a limb (limb_bends, for the
+// tips limb_joints finds with `fraction`, straying at least `bend_fraction` of the middle
+// extent in some pose), else kNoLimb; positions on small parts left out.
+std::vector<uint16_t> limb_bend_joints(const SimplifyMesh& mesh,
+                                       const std::vector<glm::dvec3>& posed, uint32_t poses,
+                                       const std::vector<char>& small_part, double fraction,
+                                       double bend_fraction);
+
 // Per position: its dominant joint when that joint ends a branch of the skeleton (no joint
 // below it is the dominant joint of a position with faces), else kNoLimb; positions on small
 // parts and positions without faces are left out of both (SimplifyOptions::keep_joint_ends:

@@ -685,6 +685,24 @@ TEST(CollapseLimbs, JointEndsReachEveryJointByDefault) {
   }
 }
 
+// A limb's bend keeps its last position (docs/simplification.md, "Limb bends"). The Goblin's
+// minimum had no vertex of its upper arms or its left thigh: each arm was one spike from the
+// chest to the fingers, which missed the bent elbow by 16% of the diagonal in its attack.
+TEST(CollapseLimbs, BentLimbsKeepTheirBendAtTheMinimum) {
+  CROWDBAKE_REQUIRE_SHARED_ASSETS();
+  const SkinnedAsset a =
+      test::import_or_throw((test::shared_assets() / "Quaternius_Goblin/Goblin.fbx").string());
+  const SimplifyMesh mesh = build_simplify_mesh(a);
+  const ProgressiveMesh pm = test::simplify_or_throw(a, SimplifyOptions{});
+  EXPECT_EQ(check_progressive_mesh(pm).message(), "");
+  std::set<std::string> kept;
+  for (uint32_t i : pm.reconstruct(pm.min_vertices))
+    kept.insert(a.skeleton.joints[mesh.dominant_joint[mesh.position_of[pm.vertex_source[i]]]].name);
+  for (const char* joint : {"UpperArm.L", "UpperArm.R", "UpperLeg.L"})
+    EXPECT_TRUE(kept.count(joint))
+        << joint << " has no vertex at the minimum (" << pm.min_vertices << " vertices)";
+}
+
 // The Rat's tail is seven short bones, none a tenth of the character: as a chain they keep
 // their tip, so the minimum still reaches the end of the tail (it vanished before).
 TEST(CollapseLimbs, ChainOfShortBonesKeepsItsTip) {
