@@ -30,8 +30,9 @@ std::vector<char> limb_tips(const std::vector<int>& parent, const std::vector<gl
 // (0: none). Returns per joint whether it is a limb's bend: of the joints with positions between
 // a tip and the joint its chain hangs from (the first joint above the chain with positions:
 // a chest, hips), the one whose centre strays farthest, in some pose, from the segment joining
-// that joint's centre to the tip's, if that is at least `limit`. An elbow or a knee the clips
-// bend; a tip whose chain hangs from no joint with positions has none.
+// that joint's centre to the tip's, if that is at least `limit`: where the poses pull a limb
+// off its straight line (an upper arm, a forearm, a thigh). A tip whose chain hangs from no
+// joint with positions (a lone tube) has none.
 std::vector<char> limb_bends(const std::vector<int>& parent, const std::vector<char>& tips,
                              const std::vector<glm::dvec3>& centres,
                              const std::vector<uint32_t>& count, uint32_t poses, double limit);
