@@ -2,16 +2,30 @@
 
 #include <algorithm>
 
+#include "eval/closest_point.h"
+
 namespace crowdbake {
+namespace {
+
+// Per joint: how many joints have it as their parent.
+std::vector<int> child_counts(const std::vector<int>& parent, int joints) {
+  std::vector<int> children(joints, 0);
+  for (int j = 0; j < joints; ++j)
+    if (parent[j] >= 0 && parent[j] < joints) ++children[parent[j]];
+  return children;
+}
+
+}  // namespace
 
 std::vector<char> limb_tips(const std::vector<int>& parent_of, const std::vector<glm::dvec3>& lo,
                             const std::vector<glm::dvec3>& hi, double limit) {
   const int joints = static_cast<int>(std::min(lo.size(), parent_of.size()));
   const auto has_positions = [&](int j) { return j >= 0 && j < joints && lo[j].x <= hi[j].x; };
   const auto parent = [&](int j) { return parent_of[j]; };
-  std::vector<int> children(joints, 0), only_child(joints, -1);
+  const std::vector<int> children = child_counts(parent_of, joints);
+  std::vector<int> only_child(joints, -1);
   for (int j = 0; j < joints; ++j)
-    if (const int p = parent(j); p >= 0 && p < joints) ++children[p], only_child[p] = j;
+    if (const int p = parent(j); p >= 0 && p < joints) only_child[p] = j;
   for (int j = 0; j < joints; ++j)
     if (children[j] != 1) only_child[j] = -1;
   // note: joints come in topological order (parent < child), so one backward pass sees a
@@ -37,24 +51,11 @@ std::vector<char> limb_tips(const std::vector<int>& parent_of, const std::vector
   return tips;
 }
 
-namespace {
-
-double distance_to_segment(const glm::dvec3& x, const glm::dvec3& a, const glm::dvec3& b) {
-  const glm::dvec3 ab = b - a;
-  const double l2 = glm::dot(ab, ab);
-  const double u = l2 > 0.0 ? std::clamp(glm::dot(x - a, ab) / l2, 0.0, 1.0) : 0.0;
-  return glm::length(x - (a + u * ab));
-}
-
-}  // namespace
-
 std::vector<char> limb_bends(const std::vector<int>& parent, const std::vector<char>& tips,
                              const std::vector<glm::dvec3>& centres,
                              const std::vector<uint32_t>& count, uint32_t poses, double limit) {
   const int joints = static_cast<int>(std::min({parent.size(), tips.size(), count.size()}));
-  std::vector<int> children(joints, 0);
-  for (int j = 0; j < joints; ++j)
-    if (parent[j] >= 0 && parent[j] < joints) ++children[parent[j]];
+  const std::vector<int> children = child_counts(parent, joints);
   const auto centre = [&](int j, uint32_t pose) { return centres[size_t(j) * poses + pose]; };
   std::vector<char> bends(tips.size(), 0);
   std::vector<int> chain;
@@ -70,8 +71,11 @@ std::vector<char> limb_bends(const std::vector<int>& parent, const std::vector<c
     double farthest = limit;
     for (int j : chain) {
       double d = 0.0;
-      for (uint32_t k = 0; k < poses; ++k)
-        d = std::max(d, distance_to_segment(centre(j, k), centre(from, k), centre(tip, k)));
+      for (uint32_t k = 0; k < poses; ++k) {
+        const glm::dvec3 x = centre(j, k);
+        d = std::max(d,
+                     glm::length(x - closest_point_on_segment(x, centre(from, k), centre(tip, k))));
+      }
       if (d >= farthest) farthest = d, bend = j;
     }
     if (bend >= 0) bends[bend] = 1;
