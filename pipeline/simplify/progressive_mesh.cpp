@@ -65,11 +65,15 @@ Removal replay_and_validate(uint32_t vertex_count, const std::vector<uint32_t>& 
   removal.vertex_record.assign(vertex_count, kNone);
   removal.triangle_record.assign(triangle_count, kNone);
   // note: corners are kept resolved to the current (alive) vertex, with an incidence
-  // list per vertex, so each record only touches the triangles around what it moves.
+  // list per vertex, so each record only touches the triangles around what it moves. The
+  // lists are linked through the corners themselves (corner 3t + c is a node), one flat
+  // array instead of a vector per vertex: a hero mesh's million small blocks cost more to
+  // allocate and free than the replay itself.
   std::vector<uint32_t> corners = triangles;
-  std::vector<std::vector<uint32_t>> incident(vertex_count);
-  for (uint32_t t = 0; t < triangle_count; ++t) {
-    for (int c = 0; c < 3; ++c) incident[corners[3 * t + c]].push_back(t);
+  std::vector<uint32_t> first(vertex_count, kNone), next(corners.size(), kNone);
+  for (size_t k = corners.size(); k-- > 0;) {
+    next[k] = first[corners[k]];
+    first[corners[k]] = static_cast<uint32_t>(k);
   }
   std::vector<uint32_t> touched;
   for (size_t r = 0; r < collapses.size(); ++r) {
@@ -112,15 +116,19 @@ Removal replay_and_validate(uint32_t vertex_count, const std::vector<uint32_t>& 
     }
     touched.clear();
     for (const auto& [source, target] : record.wedges) {
-      for (uint32_t t : incident[source]) {
-        if (removal.triangle_record[t] != kNone) continue;
-        for (int c = 0; c < 3; ++c) {
-          if (corners[3 * t + c] == source) corners[3 * t + c] = target;
+      // note: the live corners at the source move to the front of the target's list; the
+      // removed triangles' corners leave the lists here.
+      for (uint32_t k = first[source]; k != kNone;) {
+        const uint32_t after = next[k], t = k / 3;
+        if (removal.triangle_record[t] == kNone) {
+          corners[k] = target;
+          next[k] = first[target];
+          first[target] = k;
+          touched.push_back(t);
         }
-        incident[target].push_back(t);
-        touched.push_back(t);
+        k = after;
       }
-      std::vector<uint32_t>().swap(incident[source]);
+      first[source] = kNone;
     }
     for (uint32_t t : touched) {
       if (degenerate(&corners[3 * t])) {

@@ -290,6 +290,52 @@ TEST(SurfaceSampling, CornerSplitVerticesAreWelded) {
   EXPECT_EQ(plan.points.size(), 4u + 5u + 2u);
 }
 
+TEST(SurfaceSampling, SignedZerosAreOnePositionAndNaNIsNone) {
+  // -0 and +0 compare equal, so the corners at the origin are one point; a NaN corner
+  // equals nothing, not even a copy of itself.
+  const double nan = std::nan("");
+  const std::vector<glm::dvec3> positions = {{0, 0, 0},       {1, 0, 0}, {1, 1, 0},
+                                             {-0.0, 0, -0.0}, {1, 1, 0}, {nan, 1, 0},
+                                             {2, 0, 0},       {3, 0, 0}, {nan, 1, 0}};
+  const SurfaceSampling plan = plan_samples(positions, {0, 1, 2, 3, 4, 5, 6, 7, 8}, 100.0);
+  // The first triangle's 3 corners (the second's finite corners weld to them), its NaN
+  // corner, the third's 2 finite corners and its own NaN corner, and a centroid each.
+  EXPECT_EQ(plan.points.size(), 3u + 1u + 2u + 1u + 3u);
+}
+
+TEST(SurfaceSampling, PointsFollowTheZOrderCurve) {
+  // A 40 × 40 grid: the plan's points are sorted by their Morton code, so a point's code
+  // never falls below the one before it; every triangle still names its own points.
+  const TriangleSurface s = grid(40, 40.0);
+  const SurfaceSampling plan = plan_samples(s.positions, s.triangles, 100.0);
+  ASSERT_EQ(plan.points.size(), 41u * 41u + 2u * 40u * 40u);
+  const auto at = [&](const SurfaceSampling::Point& p) {
+    return s.positions[p.v[0]] * p.b[0] + s.positions[p.v[1]] * p.b[1] +
+           s.positions[p.v[2]] * p.b[2];
+  };
+  const auto code = [](glm::dvec3 u) {  // the grid spans [0, 40] in x and y
+    uint64_t c = 0;
+    const auto x = static_cast<uint64_t>(u.x / 40.0 * 2097151.0);
+    const auto y = static_cast<uint64_t>(u.y / 40.0 * 2097151.0);
+    for (int b = 20; b >= 0; --b) c = c << 3 | ((y >> b) & 1) << 1 | ((x >> b) & 1);
+    return c;
+  };
+  for (size_t i = 1; i < plan.points.size(); ++i)
+    ASSERT_LE(code(at(plan.points[i - 1])), code(at(plan.points[i]))) << "point " << i;
+  for (size_t t = 0; t + 1 < plan.offset.size(); ++t)
+    for (uint32_t k = plan.offset[t]; k < plan.offset[t + 1]; ++k) {
+      const SurfaceSampling::Point& p = plan.points[plan.triangle_points[k]];
+      for (int c = 0; c < 3; ++c)
+        if (p.b[c] > 0.0) {
+          const uint32_t* tri = &s.triangles[3 * t];
+          const glm::dvec3 q = s.positions[p.v[c]];
+          EXPECT_TRUE(q == s.positions[tri[0]] || q == s.positions[tri[1]] ||
+                      q == s.positions[tri[2]])
+              << "triangle " << t;
+        }
+    }
+}
+
 TEST(ClipFrameTimes, ThirtyFpsPlusTheEnd) {
   Clip clip;
   clip.duration = 1.0;
