@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace crowdbake {
 namespace {
@@ -14,9 +15,44 @@ constexpr double kGridLimit = 4.0e18;  // cell numbers stay inside int64
 
 }  // namespace
 
-size_t PositionWeld::CellHash::operator()(const Cell& c) const {
+size_t PositionWeld::CellMap::home(const Cell& c) const {
   const auto u = [](int64_t x) { return static_cast<uint64_t>(x); };
-  return static_cast<size_t>((u(c.x) * 73856093u) ^ (u(c.y) * 19349663u) ^ (u(c.z) * 83492791u));
+  uint64_t h = u(c.x) * 0x9E3779B97F4A7C15ull ^ u(c.y) * 0xC2B2AE3D27D4EB4Full ^
+               u(c.z) * 0x165667B19E3779F9ull;
+  h ^= h >> 29;
+  return static_cast<size_t>(h) & (slots_.size() - 1);
+}
+
+uint32_t* PositionWeld::CellMap::find(const Cell& c) {
+  if (slots_.empty()) return nullptr;
+  for (size_t i = home(c);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].id == kNone) return nullptr;
+    if (slots_[i].cell == c) return &slots_[i].id;
+  }
+}
+
+std::pair<uint32_t*, bool> PositionWeld::CellMap::emplace(const Cell& c, uint32_t id) {
+  if (2 * (size_ + 1) > slots_.size()) grow();
+  for (size_t i = home(c);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].id == kNone) {
+      slots_[i] = {c, id};
+      ++size_;
+      return {&slots_[i].id, true};
+    }
+    if (slots_[i].cell == c) return {&slots_[i].id, false};
+  }
+}
+
+void PositionWeld::CellMap::grow() {
+  std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()), Slot{{0, 0, 0}, kNone});
+  old.swap(slots_);
+  for (const Slot& slot : old)
+    if (slot.id != kNone)
+      for (size_t i = home(slot.cell);; i = (i + 1) & (slots_.size() - 1))
+        if (slots_[i].id == kNone) {
+          slots_[i] = slot;
+          break;
+        }
 }
 
 PositionWeld::PositionWeld(double radius)
@@ -44,18 +80,18 @@ uint32_t PositionWeld::add(const glm::vec3& p) {
     for (int dy = 0; dy <= (side[1] != 0); ++dy)
       for (int dz = 0; dz <= (side[2] != 0); ++dz) {
         const Cell c{home.x + dx * side[0], home.y + dy * side[1], home.z + dz * side[2]};
-        const auto it = last_in_cell_.find(c);
-        if (it == last_in_cell_.end()) continue;
-        for (uint32_t k = it->second; k != kNone; k = previous_in_cell_[k]) {
+        const uint32_t* last = last_in_cell_.find(c);
+        if (!last) continue;
+        for (uint32_t k = *last; k != kNone; k = previous_in_cell_[k]) {
           const glm::dvec3 d = glm::abs(where_[k] - x);
           if (d.x <= radius_ && d.y <= radius_ && d.z <= radius_) best = std::min(best, k);
         }
       }
   if (best != kNone) return best;
   const uint32_t id = count_++;
-  auto [it, fresh] = last_in_cell_.emplace(home, id);
-  previous_in_cell_.push_back(fresh ? kNone : it->second);
-  it->second = id;
+  auto [last, fresh] = last_in_cell_.emplace(home, id);
+  previous_in_cell_.push_back(fresh ? kNone : *last);
+  *last = id;
   where_.push_back(x);
   return id;
 }
@@ -66,8 +102,8 @@ uint32_t PositionWeld::add_exact(glm::vec3 p) {
   uint32_t b[3];
   std::memcpy(b, &p, sizeof(b));
   const Cell key{b[0], b[1], b[2]};
-  const auto [it, fresh] = exact_.emplace(key, count_);
-  if (!fresh) return it->second;
+  const auto [id, fresh] = exact_.emplace(key, count_);
+  if (!fresh) return *id;
   previous_in_cell_.push_back(kNone);
   where_.push_back(glm::dvec3(p));
   return count_++;

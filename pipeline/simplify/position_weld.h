@@ -3,7 +3,6 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
-#include <unordered_map>
 #include <vector>
 
 namespace crowdbake {
@@ -33,18 +32,34 @@ class PositionWeld {
     int64_t x, y, z;
     bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
   };
-  struct CellHash {
-    size_t operator()(const Cell& c) const;
+  // Cell -> a position id, open addressing with linear probing in one flat array.
+  // note: a node-based std::unordered_map cost an allocation per cell and a cache miss or two
+  // per lookup; on a hero mesh nearly every position has a cell of its own, and the weld was
+  // a quarter of a second before the first pose was sampled.
+  class CellMap {
+   public:
+    uint32_t* find(const Cell& c);                                   // nullptr when absent
+    std::pair<uint32_t*, bool> emplace(const Cell& c, uint32_t id);  // the slot, whether new
+
+   private:
+    struct Slot {
+      Cell cell;
+      uint32_t id;
+    };
+    size_t home(const Cell& c) const;
+    void grow();
+    std::vector<Slot> slots_;
+    size_t size_ = 0;
   };
 
   uint32_t add_exact(glm::vec3 p);
 
   double radius_, cell_;
   uint32_t count_ = 0;
-  std::unordered_map<Cell, uint32_t, CellHash> last_in_cell_;
-  std::vector<uint32_t> previous_in_cell_;              // per position, kNone at a cell's first
-  std::vector<glm::dvec3> where_;                       // per position on the grid (else unused)
-  std::unordered_map<Cell, uint32_t, CellHash> exact_;  // bit patterns -> position
+  CellMap last_in_cell_;
+  std::vector<uint32_t> previous_in_cell_;  // per position, kNone at a cell's first
+  std::vector<glm::dvec3> where_;           // per position on the grid (else unused)
+  CellMap exact_;                           // bit patterns -> position
 };
 
 // kWeldTolerance × the largest extent of the box [lo, hi], or 0 where that is not a positive

@@ -51,6 +51,23 @@ TEST(PositionWeld, AVertexNearTwoPositionsLandsOnTheLowestNumbered) {
   EXPECT_EQ(weld.add({0.3012f, 0.3f, 0.3f}), 1u);  // within the radius of the second only
 }
 
+// Many cells (a hero mesh has nearly one per position): the table grows many times and
+// every position keeps its id, on the grid and bitwise.
+TEST(PositionWeld, ManyCellsKeepEveryPositionThroughTheTablesGrowth) {
+  for (const double radius : {1e-6, 0.0}) {
+    PositionWeld weld(radius);
+    const auto point = [](int i) {
+      return glm::vec3(static_cast<float>(i % 100) * 0.01f,
+                       static_cast<float>(i / 100 % 100) * 0.01f, static_cast<float>(i / 10000));
+    };
+    constexpr int kCount = 50000;
+    for (int i = 0; i < kCount; ++i) ASSERT_EQ(weld.add(point(i)), static_cast<uint32_t>(i));
+    for (int i = kCount; i-- > 0;)
+      ASSERT_EQ(weld.add(point(i)), static_cast<uint32_t>(i)) << "radius " << radius;
+    EXPECT_EQ(weld.count(), static_cast<uint32_t>(kCount));
+  }
+}
+
 TEST(PositionWeld, NoRadiusOrCoordinatesBeyondTheGridWeldOnlyCopies) {
   PositionWeld none(0.0);
   EXPECT_EQ(none.add({1.0f, 2.0f, 3.0f}), 0u);
