@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "crowdbake/base/flat_id_map.h"
 #include "eval/animated_error.h"
 
 namespace crowdbake {
@@ -15,38 +16,27 @@ constexpr int kMinLevel = 1;
 constexpr int kMaxLevel = 16;
 constexpr uint32_t kInteriorKey = 0xFFFFFFFFu;
 
-// Welds vertices by exact position so points shared by triangles are sampled once: every
-// vertex maps to the lowest-numbered vertex at its position (a coordinate that is NaN equals
-// nothing). An open-addressed table of first vertices, in index order.
-std::vector<uint32_t> weld_by_position(const std::vector<glm::dvec3>& positions) {
-  const uint32_t n = static_cast<uint32_t>(positions.size());
-  size_t size = 64;
-  while (size < 2 * size_t{n}) size *= 2;
-  const size_t mask = size - 1;
-  std::vector<uint32_t> first(size, UINT32_MAX);
-  std::vector<uint32_t> weld(n);
-  for (uint32_t v = 0; v < n; ++v) {
-    const glm::dvec3& p = positions[v];
-    weld[v] = v;
-    if (!(p == p)) continue;
-    // note: + 0.0 makes -0 into +0, which compare equal and so must hash alike.
+// note: + 0.0 makes -0 into +0, which compare equal and so must hash alike.
+struct ExactPositionHash {
+  size_t operator()(const glm::dvec3& p) const {
     uint64_t bits[3];
     const double c[3] = {p.x + 0.0, p.y + 0.0, p.z + 0.0};
     std::memcpy(bits, c, sizeof bits);
-    uint64_t h = (bits[0] * 0x9E3779B97F4A7C15ull) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full) ^
-                 (bits[2] * 0x165667B19E3779F9ull);
-    h ^= h >> 29;
-    for (size_t i = h & mask;; i = (i + 1) & mask) {
-      if (first[i] == UINT32_MAX) {
-        first[i] = v;
-        break;
-      }
-      if (positions[first[i]] == p) {
-        weld[v] = first[i];
-        break;
-      }
-    }
+    const uint64_t h = (bits[0] * 0x9E3779B97F4A7C15ull) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full) ^
+                       (bits[2] * 0x165667B19E3779F9ull);
+    return static_cast<size_t>(h ^ (h >> 29));
   }
+};
+
+// Welds vertices by exact position so points shared by triangles are sampled once: every
+// vertex maps to the lowest-numbered vertex at its position (a coordinate that is NaN equals
+// nothing).
+std::vector<uint32_t> weld_by_position(const std::vector<glm::dvec3>& positions) {
+  const uint32_t n = static_cast<uint32_t>(positions.size());
+  FlatIdMap<glm::dvec3, ExactPositionHash> first;
+  std::vector<uint32_t> weld(n);
+  for (uint32_t v = 0; v < n; ++v)
+    weld[v] = positions[v] == positions[v] ? *first.emplace(positions[v], v).first : v;
   return weld;
 }
 
@@ -67,41 +57,6 @@ struct PointKeyHash {
     h ^= (uint64_t{k.num} << 32 | k.den) * 0xC2B2AE3D27D4EB4Full;
     return static_cast<size_t>(h ^ (h >> 31));
   }
-};
-
-// Edge point -> point id, open addressing with linear probing in one flat array.
-// note: a node-based std::unordered_map missed the cache two or three times per lookup; on a
-// 1M-triangle character its lookups were half of the sampling plan's time.
-class EdgePointIds {
- public:
-  // The id slot of `key`, inserted (holding UINT32_MAX) when absent.
-  uint32_t& at(const PointKey& key) {
-    if (2 * (size_ + 1) > slots_.size()) grow();
-    Slot* slot = find(key);
-    if (slot->id == kEmpty) slot->key = key, slot->id = UINT32_MAX, ++size_;
-    return slot->id;
-  }
-
- private:
-  // note: ids never reach kEmpty (UINT32_MAX - 1 points would not fit in memory).
-  static constexpr uint32_t kEmpty = UINT32_MAX - 1;
-  struct Slot {
-    PointKey key;
-    uint32_t id = kEmpty;
-  };
-  Slot* find(const PointKey& key) {
-    const size_t mask = slots_.size() - 1;
-    for (size_t i = PointKeyHash{}(key)&mask;; i = (i + 1) & mask)
-      if (slots_[i].id == kEmpty || slots_[i].key == key) return &slots_[i];
-  }
-  void grow() {
-    std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()));
-    old.swap(slots_);
-    for (const Slot& slot : old)
-      if (slot.id != kEmpty) *find(slot.key) = slot;
-  }
-  std::vector<Slot> slots_;
-  size_t size_ = 0;
 };
 
 // Interleaves the low 21 bits of x, y, z (Morton / Z-order code).
@@ -190,7 +145,7 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
   // note: vertices are looked up by weld id and interior points are never shared, so only
   // edge points (on triangles longer than the spacing) need the hash map.
   std::vector<uint32_t> vertex_point(positions.size(), UINT32_MAX);
-  EdgePointIds known;
+  FlatIdMap<PointKey, PointKeyHash> known;  // edge point -> point id
   const size_t count = triangles.size() / 3;
   plan.offset.reserve(count + 1);
   plan.offset.push_back(0);
@@ -208,7 +163,9 @@ SurfaceSampling plan_samples(const std::vector<glm::dvec3>& positions,
       return point_id(id, point);
     }
     if (key.den == 0) return point_id(vertex_point[key.a], point);
-    point_id(known.at(key), point);
+    const auto [id, fresh] = known.emplace(key, static_cast<uint32_t>(plan.points.size()));
+    if (fresh) plan.points.push_back(point);
+    plan.triangle_points.push_back(*id);
   };
   uint32_t interior = 0;
   for (size_t t = 0; t < count; ++t) {

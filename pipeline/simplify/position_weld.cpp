@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <utility>
 
 namespace crowdbake {
 namespace {
@@ -15,44 +14,11 @@ constexpr double kGridLimit = 4.0e18;  // cell numbers stay inside int64
 
 }  // namespace
 
-size_t PositionWeld::CellMap::home(const Cell& c) const {
+size_t PositionWeld::CellHash::operator()(const Cell& c) const {
   const auto u = [](int64_t x) { return static_cast<uint64_t>(x); };
-  uint64_t h = u(c.x) * 0x9E3779B97F4A7C15ull ^ u(c.y) * 0xC2B2AE3D27D4EB4Full ^
-               u(c.z) * 0x165667B19E3779F9ull;
-  h ^= h >> 29;
-  return static_cast<size_t>(h) & (slots_.size() - 1);
-}
-
-uint32_t* PositionWeld::CellMap::find(const Cell& c) {
-  if (slots_.empty()) return nullptr;
-  for (size_t i = home(c);; i = (i + 1) & (slots_.size() - 1)) {
-    if (slots_[i].id == kNone) return nullptr;
-    if (slots_[i].cell == c) return &slots_[i].id;
-  }
-}
-
-std::pair<uint32_t*, bool> PositionWeld::CellMap::emplace(const Cell& c, uint32_t id) {
-  if (2 * (size_ + 1) > slots_.size()) grow();
-  for (size_t i = home(c);; i = (i + 1) & (slots_.size() - 1)) {
-    if (slots_[i].id == kNone) {
-      slots_[i] = {c, id};
-      ++size_;
-      return {&slots_[i].id, true};
-    }
-    if (slots_[i].cell == c) return {&slots_[i].id, false};
-  }
-}
-
-void PositionWeld::CellMap::grow() {
-  std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()), Slot{{0, 0, 0}, kNone});
-  old.swap(slots_);
-  for (const Slot& slot : old)
-    if (slot.id != kNone)
-      for (size_t i = home(slot.cell);; i = (i + 1) & (slots_.size() - 1))
-        if (slots_[i].id == kNone) {
-          slots_[i] = slot;
-          break;
-        }
+  const uint64_t h = u(c.x) * 0x9E3779B97F4A7C15ull ^ u(c.y) * 0xC2B2AE3D27D4EB4Full ^
+                     u(c.z) * 0x165667B19E3779F9ull;
+  return static_cast<size_t>(h ^ (h >> 29));
 }
 
 PositionWeld::PositionWeld(double radius)

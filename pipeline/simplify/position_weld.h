@@ -5,6 +5,8 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "crowdbake/base/flat_id_map.h"
+
 namespace crowdbake {
 
 // Positions within this fraction of the model's largest extent of each other, on every axis,
@@ -32,25 +34,12 @@ class PositionWeld {
     int64_t x, y, z;
     bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
   };
-  // Cell -> a position id, open addressing with linear probing in one flat array.
-  // note: a node-based std::unordered_map cost an allocation per cell and a cache miss or two
-  // per lookup; on a hero mesh nearly every position has a cell of its own, and the weld was
-  // a quarter of a second before the first pose was sampled.
-  class CellMap {
-   public:
-    uint32_t* find(const Cell& c);                                   // nullptr when absent
-    std::pair<uint32_t*, bool> emplace(const Cell& c, uint32_t id);  // the slot, whether new
-
-   private:
-    struct Slot {
-      Cell cell;
-      uint32_t id;
-    };
-    size_t home(const Cell& c) const;
-    void grow();
-    std::vector<Slot> slots_;
-    size_t size_ = 0;
+  struct CellHash {
+    size_t operator()(const Cell& c) const;
   };
+  // note: a node-based std::unordered_map cost an allocation per cell; on a hero mesh nearly
+  // every position has a cell of its own, and the weld took a quarter of a second.
+  using CellMap = FlatIdMap<Cell, CellHash>;
 
   uint32_t add_exact(glm::vec3 p);
 
