@@ -22,9 +22,7 @@ struct ExactPositionHash {
     uint64_t bits[3];
     const double c[3] = {p.x + 0.0, p.y + 0.0, p.z + 0.0};
     std::memcpy(bits, c, sizeof bits);
-    const uint64_t h = (bits[0] * 0x9E3779B97F4A7C15ull) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full) ^
-                       (bits[2] * 0x165667B19E3779F9ull);
-    return static_cast<size_t>(h ^ (h >> 29));
+    return hash_words(bits[0], bits[1], bits[2]);
   }
 };
 

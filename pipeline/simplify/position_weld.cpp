@@ -15,10 +15,8 @@ constexpr double kGridLimit = 4.0e18;  // cell numbers stay inside int64
 }  // namespace
 
 size_t PositionWeld::CellHash::operator()(const Cell& c) const {
-  const auto u = [](int64_t x) { return static_cast<uint64_t>(x); };
-  const uint64_t h = u(c.x) * 0x9E3779B97F4A7C15ull ^ u(c.y) * 0xC2B2AE3D27D4EB4Full ^
-                     u(c.z) * 0x165667B19E3779F9ull;
-  return static_cast<size_t>(h ^ (h >> 29));
+  return hash_words(static_cast<uint64_t>(c.x), static_cast<uint64_t>(c.y),
+                    static_cast<uint64_t>(c.z));
 }
 
 PositionWeld::PositionWeld(double radius)

@@ -12,6 +12,14 @@
 
 namespace crowdbake {
 
+// A hash of three 64-bit words (a position's or a grid cell's coordinates) whose low bits mix
+// all three, as FlatIdMap's power-of-two table needs.
+inline size_t hash_words(uint64_t a, uint64_t b, uint64_t c) {
+  const uint64_t h =
+      a * 0x9E3779B97F4A7C15ull ^ b * 0xC2B2AE3D27D4EB4Full ^ c * 0x165667B19E3779F9ull;
+  return static_cast<size_t>(h ^ (h >> 29));
+}
+
 // Key: equality-comparable and copyable; Hash: size_t operator()(const Key&), whose low bits
 // must vary (the table is a power of two). Ids must be below kEmpty.
 template <typename Key, typename Hash>
