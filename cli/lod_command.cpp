@@ -161,6 +161,8 @@ int run_lod(const LodSettings& settings) {
   if (!(settings.simplify.max_collapse_cost >= 0.0 &&
         std::isfinite(settings.simplify.max_collapse_cost)))
     throw usage("--max-collapse-cost must be a finite number >= 0 (0 = no ceiling)");
+  if (!(settings.simplify.small_area_floor >= 0.0 && settings.simplify.small_area_floor <= 10.0))
+    throw usage("--small-area-floor must be in [0, 10] (0 = off)");
 
   SkinnedAsset asset;
   throw_if_failed(import_asset(settings.input, settings.import, asset));

@@ -104,6 +104,10 @@ void add_lod(CLI::App& app, Commands& c) {
   lod_cmd->add_option("--max-collapse-cost", lod.simplify.max_collapse_cost,
                       "Stop before the first collapse costing more (normalised quadric units; "
                       "0 = as far as topology allows; default 0.005)");
+  lod_cmd->add_option("--small-area-floor", lod.simplify.small_area_floor,
+                      "Price a collapse whose faces are smaller than this share of the mean area "
+                      "around a live position as if they had it (0 = off; default 0.3; "
+                      "docs/simplification.md, \"Small areas\")");
   lod_cmd->add_flag("--keep-joint-ends,!--no-keep-joint-ends", lod.simplify.keep_joint_ends,
                     "The end of every branch of the skeleton keeps a vertex at every level, so "
                     "no foot, head or tail vanishes (the default; --no-keep-joint-ends: the limb "

@@ -82,7 +82,7 @@ class ConfigReader {
         body, "simplify",
         {"samples", "seed", "stratified", "form", "pose_source", "check_flips_in_all_poses",
          "max_pose_priced_positions", "max_stand_off_priced_positions", "split_positions",
-         "max_collapse_cost", "keep_joint_ends", "ranges"});
+         "max_collapse_cost", "small_area_floor", "keep_joint_ends", "ranges"});
     if (const Json* p = find(body, "samples"))
       s.samples = static_cast<int>(json_reader::integer(*p, "simplify.samples", 1, 4096));
     if (const Json* p = find(body, "seed"))
@@ -107,6 +107,8 @@ class ConfigReader {
           json_reader::integer(*p, "simplify.split_positions", 0, int64_t{UINT32_MAX}));
     if (const Json* p = find(body, "max_collapse_cost"))
       s.max_collapse_cost = number(*p, "simplify.max_collapse_cost", 0.0, 1e9);
+    if (const Json* p = find(body, "small_area_floor"))
+      s.small_area_floor = number(*p, "simplify.small_area_floor", 0.0, 10.0);
     if (const Json* p = find(body, "keep_joint_ends"))
       s.keep_joint_ends = json_reader::boolean(*p, "simplify.keep_joint_ends");
     if (const Json* p = find(body, "ranges"))
@@ -253,6 +255,8 @@ std::string bake_settings_json(const BakeSettings& s) {
     j["simplify"]["split_positions"] = s.simplify.split_positions;
   // note: always written: packs baked before the key existed had no ceiling.
   j["simplify"]["max_collapse_cost"] = s.simplify.max_collapse_cost;
+  // note: always written: packs baked before the key existed had no floor.
+  j["simplify"]["small_area_floor"] = s.simplify.small_area_floor;
   // note: always written: packs baked before the key existed kept no joint ends.
   j["simplify"]["keep_joint_ends"] = s.simplify.keep_joint_ends;
   j["simplify"]["ranges"] = std::filesystem::path(s.simplify.ranges_file).filename().string();

@@ -114,6 +114,7 @@ class Collapser {
         all_poses_(options.check_flips_in_all_poses),
         priced_positions_(lane.priced_positions),
         stand_off_positions_(lane.stand_off_positions),
+        area_floor_share_(options.small_area_floor),
         max_cost_(options.max_collapse_cost > 0.0 ? options.max_collapse_cost
                                                   : std::numeric_limits<double>::infinity()),
         cost_(cost),
@@ -153,6 +154,8 @@ class Collapser {
         ++stats_.locked_positions;
       live_ += mine(p);
     }
+    for (uint32_t p = 0; p < mesh_.position_count(); ++p)
+      if (mine(p)) area_around_live_ += area_around(p);
     std::vector<CollapseRecord> records;
     push_all();
     drain(records);
@@ -386,16 +389,24 @@ class Collapser {
         break;
     }
     stats_.priced_flips += e.priced_flips;
+    // note: priced here and not in evaluate(), which a lookahead may run before the collapse
+    // in front of it changes the live count the floor follows.
+    const double floor = e.priced ? 0.0 : small_area_floor();
+    const double penalty =
+        e.priced ? 0.0
+                 : e.penalty + (floor > 0.0
+                                    ? small_area_price(e.base + e.penalty, area_around(from), floor)
+                                    : 0.0);
     // note: a candidate still cheaper than the queue's top would be popped next anyway.
-    if (!e.priced && e.penalty > 0.0 && !queue_.empty() && e.base + e.penalty > queue_.top().cost) {
-      offer(from, {e.base + e.penalty, to, star_[from], star_[to]});
+    if (!e.priced && penalty > 0.0 && !queue_.empty() && e.base + penalty > queue_.top().cost) {
+      offer(from, {e.base + penalty, to, star_[from], star_[to]});
       return Outcome::kRequeued;
     }
     // note: the queue pops in cost order, so the first legal collapse over the ceiling ends
     // the sequence rather than being skipped: what is left costs as much or more, and the
     // levels stay a prefix of the sequence without a ceiling (docs/simplification.md, "Cost
     // ceiling").
-    last_cost_ = e.priced ? candidate.cost : e.base + e.penalty;
+    last_cost_ = e.priced ? candidate.cost : e.base + penalty;
     last_crossed_ = e.crossed_area > 0.0;
     if (last_cost_ > max_cost_) return Outcome::kCeiling;
     if (e.crossed_area > 0.0 && stats_.seam_crossings++ == 0)
@@ -407,6 +418,19 @@ class Collapser {
 
     perform(from, to, scratch, record);
     return Outcome::kDone;
+  }
+
+  double area_around(uint32_t p) const {
+    double area = 0.0;
+    for (uint32_t t : incident_[p]) area += view_.bind_area(t);
+    return area;
+  }
+
+  // The floor below which the faces around a position are priced as if they covered it: a
+  // share of the mean area around a live position of the lane (0: none).
+  double small_area_floor() const {
+    return area_floor_share_ > 0.0 && live_ > 0 ? area_floor_share_ * area_around_live_ / live_
+                                                : 0.0;
   }
 
   bool pose_priced() const { return priced_positions_ == 0 || live_ <= priced_positions_; }
@@ -627,6 +651,7 @@ class Collapser {
   bool all_poses_;
   uint32_t priced_positions_;
   uint32_t stand_off_positions_;
+  double area_floor_share_;  // SimplifyOptions::small_area_floor
   double max_cost_;
   DqemCost& cost_;
   CollapseStats& stats_;
@@ -670,7 +695,8 @@ class Collapser {
   bool ahead_ready_ = false, ahead_failed_ = false;
   int ahead_pricing_ = 0;  // pricing() then
   uint32_t collapses_ = 0;
-  uint32_t live_ = 0;  // positions with faces
+  uint32_t live_ = 0;              // positions with faces
+  double area_around_live_ = 0.0;  // the bind-pose area around the lane's positions, at its start
 };
 
 // Adds the counts of one loop's stats to another's.

@@ -54,6 +54,8 @@ constexpr double kFlipWeight = 1.0;
 constexpr double kLeftBehindWeight = 3.0;
 constexpr double kStandOffLeftBehindWeight = 6.0;
 constexpr double kStandOffWeight = 20.0;
+// Each of them, and DQEM, is priced higher where the faces around `from` are small against the
+// level's (SimplifyOptions::small_area_floor).
 // A connected part whose bind-pose bounding-box diagonal is under this fraction of the
 // character's may vanish at the lowest levels (eyes, buttons, locks of hair).
 constexpr double kSmallPartFraction = 0.1;

@@ -114,4 +114,8 @@ double flip_price(const PosedMeshView& view, uint32_t from, uint32_t to,
   return weight * sum / view.poses;
 }
 
+double small_area_price(double cost, double area, double floor) {
+  return area > 0.0 && area < floor ? (floor / area - 1.0) * cost : 0.0;
+}
+
 }  // namespace crowdbake

@@ -38,4 +38,10 @@ double stand_off_price(const PosedMeshView& view, uint32_t from, uint32_t to,
 double flip_price(const PosedMeshView& view, uint32_t from, uint32_t to,
                   const std::vector<uint32_t>& moved, double weight, uint32_t& flips);
 
+// What a collapse of cost `cost` (DQEM and the prices above) costs more because the faces
+// around `from` cover only `area` of the `floor` it is priced at: (floor / area - 1) × cost
+// below the floor, nothing at or above it or where there is no area
+// (SimplifyOptions::small_area_floor).
+double small_area_price(double cost, double area, double floor);
+
 }  // namespace crowdbake

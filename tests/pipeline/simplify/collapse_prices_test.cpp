@@ -99,5 +99,15 @@ TEST(CollapsePrices, FlipsCountInThePosesButTheBindPoseAndAreAveragedOverAllOfTh
   EXPECT_EQ(flips, 0u);
 }
 
+TEST(CollapsePrices, SmallAreasPayAsIfTheyCoveredTheFloor) {
+  // A quarter of the floor: the collapse costs four times as much, three times more.
+  EXPECT_NEAR(small_area_price(2.0, 0.25, 1.0), 6.0, 1e-12);
+  EXPECT_EQ(small_area_price(2.0, 1.0, 1.0), 0.0);   // at the floor
+  EXPECT_EQ(small_area_price(2.0, 3.0, 1.0), 0.0);   // above it
+  EXPECT_EQ(small_area_price(2.0, 0.0, 1.0), 0.0);   // no area, no orientation to keep
+  EXPECT_EQ(small_area_price(2.0, 0.25, 0.0), 0.0);  // no floor
+  EXPECT_EQ(small_area_price(0.0, 0.25, 1.0), 0.0);  // a free collapse stays free
+}
+
 }  // namespace
 }  // namespace crowdbake
