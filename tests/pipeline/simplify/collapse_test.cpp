@@ -727,6 +727,8 @@ TEST(CollapseLimbs, ChainOfShortBonesKeepsItsTip) {
 // that sweep through the air as the arm waves (the farthest point is on the LoD). With it they
 // stay sticks: the max error falls by more than a third without limb bends (which now keep
 // each arm's bend, so the webs are narrower without the price too: 3.43% against 3.11%).
+// Measured without the small-area floor, which keeps the sticks on its own at this level (both
+// give 3.11% with it), so this checks the stand-off price alone.
 TEST(CollapseStandOff, ThinLimbsStaySticksInsteadOfWebs) {
   CROWDBAKE_REQUIRE_SHARED_ASSETS();
   const SkinnedAsset a = test::import_or_throw(
@@ -736,6 +738,7 @@ TEST(CollapseStandOff, ThinLimbsStaySticksInsteadOfWebs) {
   auto error_at_5_percent = [&](uint32_t stand_off_positions) {
     SimplifyOptions o;
     o.max_stand_off_priced_positions = stand_off_positions;
+    o.small_area_floor = 0.0;
     const ProgressiveMesh pm = test::simplify_or_throw(a, o);
     return animated_error(a, extract_lod(a, pm, a.vertex_count() / 20), measure);
   };
