@@ -258,6 +258,30 @@ TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
   }
 }
 
+// The small-area floor is a config key, always named in the settings text (packs from before
+// it had none); 0 turns it off and changes the levels; a bad value names the key.
+TEST(BakeCommand, SmallAreaFloorIsAConfigKeyInTheSettings) {
+  test::TempDir dir;
+  const auto bake = [&](const std::string& config, const std::string& name) {
+    const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::filesystem::rename(dir / "x.crowdpack", dir / name);
+    return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+  };
+  EXPECT_NE(bake("{}", "plain.crowdpack").find("small_area_floor=0.3"), std::string::npos);
+  EXPECT_NE(bake(R"({"simplify": {"small_area_floor": 0}})", "off.crowdpack")
+                .find("small_area_floor=0.0 "),
+            std::string::npos);
+  EXPECT_NE(test::slurp(dir / "plain.crowdpack"), test::slurp(dir / "off.crowdpack"));
+  for (const char* bad :
+       {R"({"simplify": {"small_area_floor": -1}})", R"({"simplify": {"small_area_floor": 11}})",
+        R"({"simplify": {"small_area_floor": "high"}})"}) {
+    const test::CommandResult r = bake_with_config(dir, bad);
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find("simplify.small_area_floor"), std::string::npos) << r.err;
+  }
+}
+
 // keep_joint_ends is a config key, on by default and named in the settings text either way;
 // a bad value names the key.
 TEST(BakeCommand, KeepJointEndsIsAConfigKeyOnByDefault) {

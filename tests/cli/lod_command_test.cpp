@@ -312,6 +312,8 @@ TEST(LodCommandErrors, OptionsOutOfRange) {
   const std::vector<std::array<std::string, 3>> cases = {
       {"--samples", "0", "--samples must be at least 1"},
       {"--max-collapse-cost", "-1", "--max-collapse-cost must be a finite number >= 0"},
+      {"--small-area-floor", "-0.5", "--small-area-floor must be in [0, 10]"},
+      {"--small-area-floor", "11", "--small-area-floor must be in [0, 10]"},
       {"--measure", "500", "--measure must be a frame rate"}};
   for (const auto& [option, value, message] : cases)
     expect_usage_error(
