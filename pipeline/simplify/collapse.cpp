@@ -391,12 +391,12 @@ class Collapser {
     stats_.priced_flips += e.priced_flips;
     // note: priced here and not in evaluate(), which a lookahead may run before the collapse
     // in front of it changes the live count the floor follows.
-    const double floor = e.priced ? 0.0 : small_area_floor();
-    const double penalty =
-        e.priced ? 0.0
-                 : e.penalty + (floor > 0.0
-                                    ? small_area_price(e.base + e.penalty, area_around(from), floor)
-                                    : 0.0);
+    double penalty = 0.0;
+    if (!e.priced) {
+      penalty = e.penalty;
+      if (const double floor = small_area_floor(); floor > 0.0)
+        penalty += small_area_price(e.base + e.penalty, area_around(from), floor);
+    }
     // note: a candidate still cheaper than the queue's top would be popped next anyway.
     if (!e.priced && penalty > 0.0 && !queue_.empty() && e.base + penalty > queue_.top().cost) {
       offer(from, {e.base + penalty, to, star_[from], star_[to]});

@@ -36,6 +36,16 @@ test::CommandResult bake_with_config(const test::TempDir& dir, const std::string
   return test::run_crowdbake(args);
 }
 
+// Bakes with `config` as bake_with_config does, keeps the pack as dir/name and returns what
+// `crowdbake inspect` prints of it.
+std::string bake_and_inspect(const test::TempDir& dir, const std::string& config,
+                             const std::string& name) {
+  const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::filesystem::rename(dir / "x.crowdpack", dir / name);
+  return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+}
+
 TEST(BakeCommand, WritesAPackThatReadsBack) {
   test::TempDir dir;
   const auto input = write_character(dir);
@@ -263,10 +273,7 @@ TEST(BakeCommand, CollapseCostCeilingIsAConfigKeyInTheSettings) {
 TEST(BakeCommand, SmallAreaFloorIsAConfigKeyInTheSettings) {
   test::TempDir dir;
   const auto bake = [&](const std::string& config, const std::string& name) {
-    const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    std::filesystem::rename(dir / "x.crowdpack", dir / name);
-    return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+    return bake_and_inspect(dir, config, name);
   };
   EXPECT_NE(bake("{}", "plain.crowdpack").find("small_area_floor=0.3"), std::string::npos);
   EXPECT_NE(bake(R"({"simplify": {"small_area_floor": 0}})", "off.crowdpack")
@@ -287,10 +294,7 @@ TEST(BakeCommand, SmallAreaFloorIsAConfigKeyInTheSettings) {
 TEST(BakeCommand, KeepJointEndsIsAConfigKeyOnByDefault) {
   test::TempDir dir;
   const auto bake = [&](const std::string& config, const std::string& name) {
-    const test::CommandResult r = bake_with_config(dir, config, {"--quiet"});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    std::filesystem::rename(dir / "x.crowdpack", dir / name);
-    return test::run_crowdbake({"inspect", (dir / name).string()}).out;
+    return bake_and_inspect(dir, config, name);
   };
   const std::string plain = bake("{}", "plain.crowdpack");
   const std::string off = bake(R"({"simplify": {"keep_joint_ends": false}})", "off.crowdpack");

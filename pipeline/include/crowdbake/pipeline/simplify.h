@@ -83,7 +83,7 @@ struct SimplifyOptions {
   // and the animated max see the distance. A collapse whose faces around the position it
   // removes cover less than this share of the mean area around a live position (at the level
   // it is made) costs as if they covered that share: (share / area) x its cost. 0.3 keeps the
-  // most animated maxima below gltfpack's with the mean-RMS 0.02 of it higher
+  // most animated maxima below gltfpack's, at about 3% more mean-RMS on the referee
   // (docs/simplification.md, "Small areas"). 0 = off.
   double small_area_floor = 0.3;
   // The end of every branch of the skeleton (a joint that weighs most on some position outside
